@@ -1,0 +1,69 @@
+# Every dependency comes from Debian; a missing one stops configuration and names the package.
+
+function(vsil_require found what package)
+  if(NOT ${found})
+    message(FATAL_ERROR "vsil needs ${what}: install the Debian package '${package}' "
+                        "(apt-get install ${package}), or run scripts/bootstrap.sh")
+  endif()
+endfunction()
+
+find_package(PkgConfig QUIET)
+
+# OSMesa: the offscreen OpenGL context (slicing/gl_context.cpp is the only user).
+find_path(OSMESA_INCLUDE_DIR GL/osmesa.h)
+find_library(OSMESA_LIBRARY OSMesa)
+vsil_require(OSMESA_LIBRARY "OSMesa" libosmesa6-dev)
+vsil_require(OSMESA_INCLUDE_DIR "OSMesa headers" libosmesa6-dev)
+add_library(vsil::osmesa INTERFACE IMPORTED)
+target_include_directories(vsil::osmesa INTERFACE ${OSMESA_INCLUDE_DIR})
+target_link_libraries(vsil::osmesa INTERFACE ${OSMESA_LIBRARY})
+
+# FFTW (single precision, with its threads library): Gaussian broadening in postfx.
+find_path(FFTW_INCLUDE_DIR fftw3.h)
+find_library(FFTW_FLOAT_LIBRARY fftw3f)
+find_library(FFTW_FLOAT_THREADS_LIBRARY fftw3f_threads)
+vsil_require(FFTW_INCLUDE_DIR "FFTW headers" libfftw3-dev)
+vsil_require(FFTW_FLOAT_LIBRARY "FFTW (single precision)" libfftw3-dev)
+vsil_require(FFTW_FLOAT_THREADS_LIBRARY "FFTW threads" libfftw3-dev)
+add_library(vsil::fftw INTERFACE IMPORTED)
+target_include_directories(vsil::fftw INTERFACE ${FFTW_INCLUDE_DIR})
+target_link_libraries(vsil::fftw INTERFACE ${FFTW_FLOAT_THREADS_LIBRARY} ${FFTW_FLOAT_LIBRARY})
+
+# OpenCV core/imgproc/imgcodecs: image files, distance transforms. Debian's per-module -dev
+# packages ship no CMake config, so the modules are found one by one.
+find_path(OPENCV_INCLUDE_DIR opencv2/core.hpp PATH_SUFFIXES opencv4)
+vsil_require(OPENCV_INCLUDE_DIR "OpenCV headers" libopencv-core-dev)
+add_library(vsil::opencv INTERFACE IMPORTED)
+target_include_directories(vsil::opencv INTERFACE ${OPENCV_INCLUDE_DIR})
+foreach(module core imgproc imgcodecs)
+  find_library(OPENCV_${module}_LIBRARY opencv_${module})
+  vsil_require(OPENCV_${module}_LIBRARY "OpenCV ${module}" libopencv-${module}-dev)
+  target_link_libraries(vsil::opencv INTERFACE ${OPENCV_${module}_LIBRARY})
+endforeach()
+
+find_package(glm QUIET)
+find_path(GLM_INCLUDE_DIR glm/glm.hpp)
+vsil_require(GLM_INCLUDE_DIR "GLM" libglm-dev)
+
+find_package(nlohmann_json 3 QUIET)
+vsil_require(nlohmann_json_FOUND "nlohmann JSON" nlohmann-json3-dev)
+
+find_package(CLI11 QUIET)
+vsil_require(CLI11_FOUND "CLI11 (command-line parsing)" libcli11-dev)
+
+find_package(tinyxml2 QUIET)
+vsil_require(tinyxml2_FOUND "TinyXML-2 (VTK XML files)" libtinyxml2-dev)
+
+find_package(ZLIB QUIET)
+vsil_require(ZLIB_FOUND "zlib (compressed VTI and NRRD payloads)" zlib1g-dev)
+
+find_package(Threads REQUIRED)
+
+if(VSIL_BUILD_TESTS)
+  find_package(GTest QUIET)
+  vsil_require(GTest_FOUND "GoogleTest" libgtest-dev)
+endif()
+if(VSIL_BUILD_BENCH)
+  find_package(benchmark QUIET)
+  vsil_require(benchmark_FOUND "Google Benchmark" libbenchmark-dev)
+endif()

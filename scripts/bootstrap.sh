@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs what vsil needs on Debian bookworm (as root, or with sudo), then configures and
+# builds into build/. Safe to run again: apt-get skips what is installed, cmake rebuilds little.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  cmake g++ make pkg-config      # the build
+  libosmesa6-dev                 # offscreen OpenGL (Mesa llvmpipe)
+  libfftw3-dev                   # FFT Gaussian broadening
+  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev  # images, distance transforms
+  libglm-dev                     # vector and matrix math
+  nlohmann-json3-dev             # JSON (metadata, benchmark tables)
+  libcli11-dev                   # command-line parsing
+  libtinyxml2-dev zlib1g-dev     # VTK XML (.vti) files, zlib/gzip payloads
+  libgtest-dev libbenchmark-dev  # tests and micro-benchmarks
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "bootstrap: installing ${missing[*]}" >&2
+  sudo_cmd=(); [[ $(id -u) -ne 0 ]] && sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE="${VSIL_BUILD_TYPE:-RelWithDebInfo}" ${VSIL_CMAKE_ARGS:-} >&2
+cmake --build build -j"$(nproc)" >&2

@@ -1,0 +1,21 @@
+#pragma once
+// Errors. Library code throws; only main() turns an error into an exit status:
+// InputError (bad files, flags, parameters: the user can fix it) exits 2, everything else 1.
+#include <stdexcept>
+#include <string>
+
+namespace vsil {
+
+// Something the user gave us is wrong. The message names the file or flag and the problem,
+// on one line, e.g. "bonsai.vti: zlib block 3 is truncated".
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Shorthand for the common "<where>: <what>" form.
+[[noreturn]] inline void throwInputError(const std::string& where, const std::string& what) {
+  throw InputError(where + ": " + what);
+}
+
+}  // namespace vsil

@@ -1,0 +1,53 @@
+#include "test_support.h"
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+namespace vsil::test {
+
+std::filesystem::path datasetPath(const std::string& name) {
+  return std::filesystem::path(VSIL_SHARED_DIR) / "datasets" / name;
+}
+
+std::filesystem::path vsilBinary() { return VSIL_BINARY; }
+
+std::filesystem::path scratchDir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "vsil";
+  for (char& c : name) {
+    if (c == '/') c = '_';
+  }
+  const auto dir = std::filesystem::temp_directory_path() / "vsil-tests" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+static std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+CommandResult runVsil(const std::string& arguments) {
+  const auto dir = scratchDir().parent_path() / ("run-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto outPath = dir / "stdout";
+  const auto errPath = dir / "stderr";
+  const std::string command = vsilBinary().string() + " " + arguments + " >" + outPath.string() +
+                              " 2>" + errPath.string() + " </dev/null";
+  const int status = std::system(command.c_str());
+  CommandResult result;
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  result.out = slurp(outPath);
+  result.err = slurp(errPath);
+  return result;
+}
+
+}  // namespace vsil::test

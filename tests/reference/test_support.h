@@ -1,0 +1,23 @@
+#pragma once
+// Helpers shared by the test suites: where the datasets and the built tool are, scratch folders.
+#include <filesystem>
+#include <string>
+
+namespace vsil::test {
+
+// ../shared/datasets/<name> beside the checkout (VSIL_SHARED_DIR at configure time).
+std::filesystem::path datasetPath(const std::string& name);
+// The built `vsil` binary.
+std::filesystem::path vsilBinary();
+// A fresh, empty folder under the build's temporary area, unique to the calling test.
+std::filesystem::path scratchDir();
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+// Runs `vsil <arguments>` (arguments passed to /bin/sh, quote as needed).
+CommandResult runVsil(const std::string& arguments);
+
+}  // namespace vsil::test
