@@ -26,7 +26,9 @@ struct Dataset {
   std::uint64_t fnv;
 };
 
-void PrintTo(const Dataset& dataset, std::ostream* out) { *out << dataset.file; }
+void PrintTo(const Dataset& dataset, std::ostream* out) {
+  *out << dataset.file;
+}
 
 std::uint64_t fnv1a64(const std::vector<float>& samples) {
   std::uint64_t hash = 0xcbf29ce484222325ull;

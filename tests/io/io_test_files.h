@@ -10,8 +10,10 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <zlib.h>
 
+#include "core/error.h"
 #include "core/volume.h"
 
 namespace vsil::test {
@@ -103,6 +105,27 @@ inline std::vector<float> testValues(glm::ivec3 dims, SampleType type) {
     if (type == SampleType::Float32) values[i] = values[i] * 0.37f - 20.5f;
   }
   return values;
+}
+
+// Expects `load()` to throw an InputError whose message is one line, starts with `prefix` and
+// contains each of `parts`; returns the message (empty when nothing was thrown).
+template <typename Load>
+std::string expectInputError(Load&& load, const std::string& prefix,
+                             std::initializer_list<std::string> parts) {
+  try {
+    load();
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(prefix, 0), 0u) << "message: " << message << "\nprefix: " << prefix;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
+    for (const auto& part : parts) {
+      EXPECT_NE(message.find(part), std::string::npos)
+          << "message: " << message << "\nlacks: " << part;
+    }
+    return message;
+  }
+  ADD_FAILURE() << "no InputError; expected one starting with " << prefix;
+  return {};
 }
 
 }  // namespace vsil::test
