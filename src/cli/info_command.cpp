@@ -1,0 +1,134 @@
+// `vsil info VOLUME`: what a volume holds (size, type, spacing, value statistics), as text or
+// JSON. Reads the volume like `render` does, so it is also the quick check of a file.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_volume_options.h"
+#include "cli/commands.h"
+#include "io/volume_loader.h"
+
+namespace vsil::cli {
+namespace {
+
+constexpr int kHistogramBins = 16;
+constexpr double kPercentiles[] = {1, 5, 25, 50, 75, 95, 99};
+
+struct Summary {
+  ValueRange range;
+  double mean = 0.0;
+  double stddev = 0.0;
+  std::vector<std::size_t> histogram;  // kHistogramBins equal bins over [min, max]
+  std::vector<float> percentiles;      // nearest-rank, one per kPercentiles entry
+};
+
+Summary summarize(const Volume& volume) {
+  Summary s;
+  s.range = valueRange(volume);
+  double sum = 0.0, sumSquares = 0.0;
+  s.histogram.assign(kHistogramBins, 0);
+  const double width = double(s.range.max) - double(s.range.min);
+  for (float value : volume.samples) {
+    sum += value;
+    sumSquares += double(value) * value;
+    const int bin = width > 0 ? int((value - s.range.min) / width * kHistogramBins) : 0;
+    ++s.histogram[std::min(bin, kHistogramBins - 1)];
+  }
+  const double n = double(volume.samples.size());
+  s.mean = sum / n;
+  s.stddev = std::sqrt(std::max(0.0, sumSquares / n - s.mean * s.mean));
+  std::vector<float> sorted = volume.samples;
+  for (double p : kPercentiles) {
+    const auto rank = std::size_t(std::ceil(p / 100.0 * n)) - 1;
+    std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(rank), sorted.end());
+    s.percentiles.push_back(sorted[rank]);
+  }
+  return s;
+}
+
+double binEdge(const Summary& s, int i) {
+  return s.range.min + (double(s.range.max) - s.range.min) * i / kHistogramBins;
+}
+
+nlohmann::ordered_json toJson(const Volume& volume, const Summary& s) {
+  nlohmann::ordered_json percentiles = nlohmann::ordered_json::object();
+  for (std::size_t i = 0; i < std::size(kPercentiles); ++i) {
+    percentiles[std::to_string(int(kPercentiles[i]))] = s.percentiles[i];
+  }
+  return {
+      {"source", volume.source},
+      {"name", volume.name},
+      {"dims", {volume.dims.x, volume.dims.y, volume.dims.z}},
+      {"samples", volume.voxelCount()},
+      {"type", sampleTypeName(volume.type)},
+      {"spacing", {volume.spacing.x, volume.spacing.y, volume.spacing.z}},
+      {"min", s.range.min},
+      {"max", s.range.max},
+      {"mean", s.mean},
+      {"stddev", s.stddev},
+      {"percentiles", percentiles},
+      {"histogram", {{"min", s.range.min}, {"max", s.range.max}, {"counts", s.histogram}}},
+  };
+}
+
+std::string toText(const Volume& volume, const Summary& s) {
+  std::ostringstream out;
+  out << "source    " << volume.source << "\n"
+      << "name      " << volume.name << "\n"
+      << "dims      " << volume.dims.x << " x " << volume.dims.y << " x " << volume.dims.z << " ("
+      << volume.voxelCount() << " samples)\n"
+      << "type      " << sampleTypeName(volume.type) << "\n"
+      << "spacing   " << volume.spacing.x << " " << volume.spacing.y << " " << volume.spacing.z
+      << "\n"
+      << "range     " << s.range.min << " .. " << s.range.max << "\n"
+      << "mean      " << s.mean << "  (stddev " << s.stddev << ")\n"
+      << "percentiles";
+  for (std::size_t i = 0; i < std::size(kPercentiles); ++i) {
+    out << "  p" << kPercentiles[i] << " " << s.percentiles[i];
+  }
+  out << "\nhistogram (" << kHistogramBins << " bins over the range)\n";
+  const std::size_t largest = *std::max_element(s.histogram.begin(), s.histogram.end());
+  for (int i = 0; i < kHistogramBins; ++i) {
+    char line[96];
+    const double share = 100.0 * double(s.histogram[i]) / double(volume.voxelCount());
+    std::snprintf(line, sizeof line, "  %12.6g .. %-12.6g %12zu %6.2f%% ", binEdge(s, i),
+                  binEdge(s, i + 1), s.histogram[i], share);
+    out << line << std::string(largest ? 30 * s.histogram[i] / largest : 0, '#') << "\n";
+  }
+  return out.str();
+}
+
+struct InfoOptions {
+  std::string volume;
+  bool json = false;
+  VolumeOptions load;
+};
+
+void runInfo(const InfoOptions& options) {
+  const Volume volume = loadVolume(options.volume, toLoadOptions(options.load));
+  const Summary summary = summarize(volume);
+  // Printed only once everything succeeded: an error leaves stdout empty.
+  std::cout << (options.json ? toJson(volume, summary).dump(2) + "\n" : toText(volume, summary));
+}
+
+const CommandRegistration registration(20, [](CLI::App& app) {
+  auto options = std::make_shared<InfoOptions>();
+  CLI::App* command =
+      app.add_subcommand("info", "Print a volume's size, type, spacing and value statistics");
+  command
+      ->add_option("volume", options->volume,
+                   "volume file (.nrrd .nhdr .vti .vtk, raw with "
+                   "--dims/--type) or gen:NAME[:N]")
+      ->required();
+  command->add_flag("--json", options->json, "machine-readable output");
+  addVolumeOptions(*command, options->load);
+  command->callback([options] { runInfo(*options); });
+});
+
+}  // namespace
+}  // namespace vsil::cli

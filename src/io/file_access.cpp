@@ -1,0 +1,71 @@
+#include "io/file_access.h"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+
+namespace vsil::io {
+namespace {
+
+std::ifstream openForReading(const std::string& path) {
+  errno = 0;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    const int error = errno;
+    throwInputError(path, std::string("cannot be opened for reading") +
+                              (error ? std::string(": ") + std::strerror(error) : ""));
+  }
+  return in;
+}
+
+}  // namespace
+
+std::uint64_t regularFileSize(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (status.type() == fs::file_type::not_found) throwInputError(path, "no such file");
+  if (error) throwInputError(path, "cannot be examined: " + error.message());
+  if (status.type() == fs::file_type::directory)
+    throwInputError(path, "is a directory, not a file");
+  if (status.type() != fs::file_type::regular) throwInputError(path, "is not a regular file");
+  const std::uintmax_t size = fs::file_size(path, error);
+  if (error) throwInputError(path, "cannot be examined: " + error.message());
+  if (size == 0) throwInputError(path, "file is empty");
+  openForReading(path);  // permissions: fail here with a clear message rather than later
+  return size;
+}
+
+std::vector<std::uint8_t> readFileBytes(const std::string& path, std::uint64_t offset,
+                                        std::uint64_t count) {
+  std::ifstream in = openForReading(path);
+  std::vector<std::uint8_t> bytes(count);
+  in.seekg(std::streamoff(offset));
+  in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(count));
+  if (!in || std::uint64_t(in.gcount()) != count) {
+    throwInputError(path, "could not read " + std::to_string(count) + " bytes at offset " +
+                              std::to_string(offset) + " (file changed or unreadable)");
+  }
+  return bytes;
+}
+
+std::string readWholeFile(const std::string& path, std::uint64_t maxBytes) {
+  const std::uint64_t size = regularFileSize(path);
+  if (size > maxBytes) {
+    throwInputError(path, "file of " + std::to_string(size) + " bytes is larger than the " +
+                              std::to_string(maxBytes) + " bytes this format may need within " +
+                              "the memory limit");
+  }
+  std::ifstream in = openForReading(path);
+  std::string text(size, '\0');
+  in.read(text.data(), std::streamsize(size));
+  if (std::uint64_t(in.gcount()) != size) {
+    throwInputError(path, "could not read its " + std::to_string(size) + " bytes");
+  }
+  return text;
+}
+
+}  // namespace vsil::io

@@ -1,0 +1,282 @@
+// NRRD (teem.sourceforge.net/nrrd/format.html): attached (.nrrd) and detached (.nhdr) headers,
+// raw, gzip and ascii encodings, 3D scalar volumes only.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include "core/error.h"
+#include "io/file_access.h"
+#include "io/inflate.h"
+#include "io/readers.h"
+#include "io/sample_codec.h"
+#include "io/text_fields.h"
+
+namespace vsil::io {
+namespace {
+
+// A header longer than this is not a header.
+constexpr std::size_t kMaxHeaderBytes = std::size_t(1) << 20;
+
+struct NrrdHeader {
+  std::map<std::string, std::string> fields;  // field name (lower case, spaces kept) -> value
+  std::uint64_t dataOffset = 0;               // attached data: the byte after the blank line
+  bool ended = false;                         // a blank line closed the header
+
+  const std::string* find(std::initializer_list<const char*> names) const {
+    for (const char* name : names) {
+      if (auto it = fields.find(name); it != fields.end()) return &it->second;
+    }
+    return nullptr;
+  }
+};
+
+NrrdHeader parseHeader(const std::string& path, std::uint64_t fileSize) {
+  const std::size_t readSize = std::size_t(std::min<std::uint64_t>(fileSize, kMaxHeaderBytes));
+  std::ifstream in(path, std::ios::binary);
+  std::string text(readSize, '\0');
+  in.read(text.data(), std::streamsize(readSize));
+  text.resize(std::size_t(in.gcount()));
+
+  if (!text.starts_with("NRRD000")) {
+    throwInputError(path, "is not a NRRD file (the first line must be NRRD0001 .. NRRD0005)");
+  }
+  NrrdHeader header;
+  std::size_t pos = text.find('\n');
+  int lineNumber = 1;
+  while (pos != std::string::npos && pos + 1 < text.size()) {
+    const std::size_t start = pos + 1;
+    const std::size_t newline = text.find('\n', start);
+    ++lineNumber;
+    if (newline == std::string::npos && text.size() == kMaxHeaderBytes) {
+      throwInputError(
+          path, "header has no end within its first " + std::to_string(kMaxHeaderBytes) + " bytes");
+    }
+    const std::size_t end = newline == std::string::npos ? text.size() : newline;
+    std::string_view line(text.data() + start, end - start);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    pos = newline;
+    if (line.empty()) {
+      header.ended = true;
+      header.dataOffset = end + 1;
+      break;
+    }
+    if (line.front() == '#') continue;
+    if (line.find(":=") != std::string_view::npos) continue;  // key/value pairs: not ours
+    const std::size_t colon = line.find(": ");
+    if (colon == std::string_view::npos) {
+      throwInputError(path, "header line " + std::to_string(lineNumber) + " " + quote(line) +
+                                " is neither 'field: value' nor a comment");
+    }
+    header.fields[toLower(trim(line.substr(0, colon)))] = std::string(trim(line.substr(colon + 2)));
+  }
+  return header;
+}
+
+StoredType parseType(const std::string& path, const std::string& name) {
+  static const std::map<std::string, StoredType> aliases = {
+      {"uchar", StoredType::UInt8},
+      {"unsigned char", StoredType::UInt8},
+      {"uint8", StoredType::UInt8},
+      {"uint8_t", StoredType::UInt8},
+      {"signed char", StoredType::Int8},
+      {"int8", StoredType::Int8},
+      {"int8_t", StoredType::Int8},
+      {"short", StoredType::Int16},
+      {"short int", StoredType::Int16},
+      {"signed short", StoredType::Int16},
+      {"signed short int", StoredType::Int16},
+      {"int16", StoredType::Int16},
+      {"int16_t", StoredType::Int16},
+      {"ushort", StoredType::UInt16},
+      {"unsigned short", StoredType::UInt16},
+      {"unsigned short int", StoredType::UInt16},
+      {"uint16", StoredType::UInt16},
+      {"uint16_t", StoredType::UInt16},
+      {"float", StoredType::Float32},
+      {"double", StoredType::Float64},
+  };
+  if (auto it = aliases.find(toLower(name)); it != aliases.end()) return it->second;
+  throwInputError(path, "type " + quote(name) +
+                            " is not supported (uint8, int8, uint16, int16, float, double)");
+}
+
+// "(1,0,0) (0,2,0) (0,0,0.5)": the spacing along each axis is the length of its vector.
+glm::dvec3 spacingFromDirections(const std::string& path, const std::string& text) {
+  const std::string field = "space directions";
+  const auto vectors = splitWhitespace(text);
+  if (vectors.size() != 3) {
+    throwInputError(path, field + " needs 3 vectors, found " + std::to_string(vectors.size()));
+  }
+  glm::dvec3 spacing;
+  for (int axis = 0; axis < 3; ++axis) {
+    std::string_view vector = vectors[axis];
+    if (vector == "none") throwInputError(path, field + " has 'none' for a spatial axis");
+    if (vector.size() < 2 || vector.front() != '(' || vector.back() != ')') {
+      throwInputError(path, field + " vector " + quote(vector) + " is not '(x,y,z)'");
+    }
+    vector = vector.substr(1, vector.size() - 2);
+    double lengthSquared = 0.0;
+    int components = 0;
+    while (true) {
+      const std::size_t comma = vector.find(',');
+      const double value = parseReal(path, field, trim(vector.substr(0, comma)));
+      lengthSquared += value * value;
+      ++components;
+      if (comma == std::string_view::npos) break;
+      vector.remove_prefix(comma + 1);
+    }
+    if (components != 3) {
+      throwInputError(path, field + " vector " + quote(vectors[axis]) + " needs 3 components");
+    }
+    spacing[axis] = std::sqrt(lengthSquared);
+  }
+  checkSpacing(path, field, spacing);
+  return spacing;
+}
+
+// Where the payload lives: the data file (detached) or this file after the header (attached).
+struct Payload {
+  std::string path;   // the file holding the samples
+  std::string label;  // how messages refer to it
+  std::uint64_t offset = 0;
+  std::uint64_t size = 0;  // bytes from offset to the end of that file
+};
+
+Payload locatePayload(const std::string& path, const NrrdHeader& header, std::uint64_t fileSize) {
+  Payload payload;
+  const std::string* dataFile = header.find({"data file", "datafile"});
+  if (!dataFile) {
+    if (!header.ended || header.dataOffset >= fileSize) {
+      throwInputError(path, "has no data: neither a 'data file' field nor data after the header");
+    }
+    payload.path = path;
+    payload.label = "payload after the header";
+    payload.offset = header.dataOffset;
+    payload.size = fileSize - header.dataOffset;
+    return payload;
+  }
+  if (dataFile->starts_with("LIST") || splitWhitespace(*dataFile).size() > 1) {
+    throwInputError(path, "data file " + quote(*dataFile) + ": multi-file data is not supported");
+  }
+  std::filesystem::path dataPath(*dataFile);
+  if (dataPath.is_relative()) dataPath = std::filesystem::path(path).parent_path() / dataPath;
+  payload.path = dataPath.string();
+  payload.label = "data file " + quote(*dataFile);
+  try {
+    payload.size = regularFileSize(payload.path);
+  } catch (const InputError& e) {
+    throwInputError(path, "data file " + quote(*dataFile) + ": " + e.what());
+  }
+  return payload;
+}
+
+}  // namespace
+
+Volume readNrrd(const std::string& path, const VolumeLimits& limits) {
+  const std::uint64_t fileSize = regularFileSize(path);
+  const NrrdHeader header = parseHeader(path, fileSize);
+  auto required = [&](std::initializer_list<const char*> names) -> const std::string& {
+    if (const std::string* value = header.find(names)) return *value;
+    throwInputError(path, std::string("header lacks the required field '") + *names.begin() + "'");
+  };
+
+  const std::string& dimension = required({"dimension"});
+  if (parseInteger(path, "dimension", dimension) != 3) {
+    throwInputError(path, "dimension " + quote(dimension) +
+                              " is not supported: vsil reads 3D scalar volumes (dimension: 3)");
+  }
+  const StoredType type = parseType(path, required({"type"}));
+  const glm::ivec3 dims = parseDims(path, "sizes", required({"sizes"}));
+  checkVolumeSize(path, dims, limits);
+  const std::string encoding = toLower(required({"encoding"}));
+
+  Volume volume = namedVolume(path);
+  volume.dims = dims;
+  volume.type = sampleTypeOf(type);
+  if (const std::string* directions = header.find({"space directions"})) {
+    volume.spacing = spacingFromDirections(path, *directions);
+  } else if (const std::string* spacings = header.find({"spacings"})) {
+    volume.spacing = parseSpacing(path, "spacings", *spacings);
+  }
+
+  bool bigEndian = false;
+  const std::string* endian = header.find({"endian"});
+  if (endian && *endian != "little" && *endian != "big") {
+    throwInputError(path, "endian " + quote(*endian) + " is neither 'little' nor 'big'");
+  }
+  if (endian) bigEndian = *endian == "big";
+  const bool textEncoding = encoding == "ascii" || encoding == "text" || encoding == "txt";
+  if (!endian && storedSize(type) > 1 && !textEncoding) {
+    throwInputError(path, std::string("header lacks the field 'endian', required for ") +
+                              storedTypeName(type) + " samples");
+  }
+  std::int64_t byteSkip = 0;
+  if (const std::string* skip = header.find({"byte skip", "byteskip"})) {
+    byteSkip = parseInteger(path, "byte skip", *skip);
+    if (byteSkip < -1) throwInputError(path, "byte skip " + *skip + " is below -1");
+  }
+  if (const std::string* skip = header.find({"line skip", "lineskip"})) {
+    if (parseInteger(path, "line skip", *skip) != 0) {
+      throwInputError(path, "line skip is not supported");
+    }
+  }
+
+  const Payload payload = locatePayload(path, header, fileSize);
+  const std::size_t expected = payloadBytes(dims, type);
+  const std::string layout = " (" + describeLayout(dims, type) + ")";
+
+  if (encoding == "raw") {
+    std::uint64_t offset = payload.offset;
+    std::uint64_t available = payload.size;
+    if (byteSkip == -1) {  // the data are the last `expected` bytes of the file
+      offset += available >= expected ? available - expected : 0;
+      available = std::min<std::uint64_t>(available, expected);
+    } else if (std::uint64_t(byteSkip) > available) {
+      throwInputError(path, "byte skip " + std::to_string(byteSkip) + " passes the end of the " +
+                                payload.label + " (" + std::to_string(available) + " bytes)");
+    } else {
+      offset += std::uint64_t(byteSkip);
+      available -= std::uint64_t(byteSkip);
+    }
+    if (available != expected) {
+      throwInputError(path, payload.label + " holds " + std::to_string(available) + " bytes, " +
+                                std::to_string(expected) + " expected" + layout);
+    }
+    volume.samples =
+        decodeSamples(path, readFileBytes(payload.path, offset, expected), type, bigEndian);
+  } else if (encoding == "gzip" || encoding == "gz") {
+    if (byteSkip < 0) throwInputError(path, "byte skip -1 is only allowed with raw encoding");
+    // Deflate never grows data by more than a few bytes per 16 KiB block: anything larger than
+    // this bound is not a stream of the expected size, and is refused before reading it.
+    const std::uint64_t inflated = expected + std::uint64_t(byteSkip);
+    const std::uint64_t maxCompressed = inflated + inflated / 256 + 4096;
+    if (payload.size > maxCompressed) {
+      throwInputError(path, payload.label + " holds " + std::to_string(payload.size) +
+                                " bytes, more than a gzip stream of " + std::to_string(inflated) +
+                                " bytes can take" + layout);
+    }
+    const auto compressed = readFileBytes(payload.path, payload.offset, payload.size);
+    std::vector<std::uint8_t> bytes(inflated);
+    inflateExactly(path, "gzip " + payload.label, compressed, bytes, DeflateWrapper::Gzip);
+    volume.samples = decodeSamples(
+        path, std::span<const std::uint8_t>(bytes).subspan(std::size_t(byteSkip)), type, bigEndian);
+  } else if (textEncoding) {
+    // Up to 64 characters per sample is generous for any printed number.
+    const std::uint64_t maxText = std::uint64_t(volume.voxelCount()) * 64 + 4096;
+    if (payload.size > maxText) {
+      throwInputError(path, payload.label + " holds " + std::to_string(payload.size) +
+                                " bytes, too many for ascii text of" + layout);
+    }
+    const auto bytes = readFileBytes(payload.path, payload.offset, payload.size);
+    const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    volume.samples = parseTextSamples(path, text, volume.voxelCount(), type);
+  } else {
+    throwInputError(path, "encoding " + quote(encoding) + " is not supported (raw, gzip, ascii)");
+  }
+  return volume;
+}
+
+}  // namespace vsil::io

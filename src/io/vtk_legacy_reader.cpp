@@ -1,0 +1,179 @@
+// Legacy VTK (.vtk) DATASET STRUCTURED_POINTS with one SCALARS point array, ASCII or BINARY.
+// Binary legacy data are big-endian by the VTK specification (docs.vtk.org, "Simple Legacy
+// Formats"). Data after the array (a trailing newline, further arrays) are ignored.
+#include <fstream>
+#include <optional>
+
+#include "core/error.h"
+#include "io/file_access.h"
+#include "io/readers.h"
+#include "io/sample_codec.h"
+#include "io/text_fields.h"
+
+namespace vsil::io {
+namespace {
+
+// The header (everything before the samples) must lie within this many bytes.
+constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
+
+struct LegacyHeader {
+  bool binary = false;
+  std::optional<glm::ivec3> dims;
+  glm::dvec3 spacing{1.0};
+  std::optional<std::int64_t> pointCount;
+  std::optional<StoredType> type;
+  std::uint64_t dataOffset = 0;
+};
+
+StoredType parseLegacyType(const std::string& path, std::string_view name) {
+  const std::string lower = toLower(name);
+  if (lower == "unsigned_char") return StoredType::UInt8;
+  if (lower == "char") return StoredType::Int8;
+  if (lower == "unsigned_short") return StoredType::UInt16;
+  if (lower == "short") return StoredType::Int16;
+  if (lower == "float") return StoredType::Float32;
+  if (lower == "double") return StoredType::Float64;  // converted to float32 when finite
+  throwInputError(path, "SCALARS type " + quote(name) +
+                            " is not supported (unsigned_char, char, unsigned_short, short, "
+                            "float, double)");
+}
+
+// Walks the header line by line, keeping the byte offset of each line.
+class LineCursor {
+ public:
+  explicit LineCursor(std::string_view text) : text_(text) {}
+  bool atEnd() const { return pos_ >= text_.size(); }
+  std::size_t offset() const { return pos_; }
+  std::string_view rest() const { return text_.substr(pos_); }
+  int lineNumber() const { return line_; }
+  // The next line without its end; nullopt when the text ends before a newline.
+  std::optional<std::string_view> next() {
+    const std::size_t newline = text_.find('\n', pos_);
+    if (newline == std::string_view::npos) return std::nullopt;
+    std::string_view line = text_.substr(pos_, newline - pos_);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    pos_ = newline + 1;
+    ++line_;
+    return line;
+  }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  int line_ = 0;
+};
+
+LegacyHeader parseHeader(const std::string& path, std::string_view text) {
+  LineCursor cursor(text);
+  auto nextLine = [&](const char* what) {
+    const auto line = cursor.next();
+    if (!line) {
+      throwInputError(path, std::string("header ends before ") + what + " (within its first " +
+                                std::to_string(kMaxHeaderBytes) + " bytes)");
+    }
+    return *line;
+  };
+  if (!nextLine("the version line").starts_with("# vtk DataFile Version")) {
+    throwInputError(path, "is not a legacy VTK file (no '# vtk DataFile Version' line)");
+  }
+  nextLine("the title line");
+  LegacyHeader header;
+  // Old writers leave blank lines between the header lines.
+  std::string mode;
+  while (mode.empty()) mode = toLower(trim(nextLine("the ASCII/BINARY line")));
+  if (mode != "ascii" && mode != "binary") {
+    throwInputError(path, "line " + std::to_string(cursor.lineNumber()) + " " + quote(mode) +
+                              " is neither ASCII nor BINARY");
+  }
+  header.binary = mode == "binary";
+
+  while (true) {
+    const std::string_view line = nextLine("the SCALARS data");
+    const auto tokens = splitWhitespace(line);
+    if (tokens.empty()) continue;
+    const std::string keyword = toLower(tokens[0]);
+    const std::string where = "line " + std::to_string(cursor.lineNumber()) + " " + keyword;
+    const auto argument = [&](std::size_t i) {
+      if (i >= tokens.size()) throwInputError(path, where + " lacks an argument");
+      return tokens[i];
+    };
+    const std::string_view arguments =
+        line.substr(std::size_t(tokens[0].data() + tokens[0].size() - line.data()));
+    if (keyword == "dataset") {
+      if (toLower(argument(1)) != "structured_points") {
+        throwInputError(
+            path, "DATASET " + quote(argument(1)) + " is not supported (STRUCTURED_POINTS only)");
+      }
+    } else if (keyword == "dimensions") {
+      header.dims = parseDims(path, "DIMENSIONS", arguments);
+    } else if (keyword == "spacing" || keyword == "aspect_ratio") {
+      header.spacing = parseSpacing(path, "SPACING", arguments);
+    } else if (keyword == "origin") {
+      // Position only; vsil places volumes by their box.
+    } else if (keyword == "point_data") {
+      header.pointCount = parseInteger(path, "POINT_DATA", argument(1));
+    } else if (keyword == "scalars") {
+      if (!header.pointCount) throwInputError(path, "SCALARS comes before POINT_DATA");
+      header.type = parseLegacyType(path, argument(2));
+      if (tokens.size() > 3 && parseInteger(path, "SCALARS components", tokens[3]) != 1) {
+        throwInputError(path, "SCALARS has " + std::string(tokens[3]) +
+                                  " components; only scalar (1-component) data is read");
+      }
+      // LOOKUP_TABLE is optional in practice; when present it is the last header line.
+      if (cursor.rest().starts_with("LOOKUP_TABLE")) nextLine("the LOOKUP_TABLE line end");
+      header.dataOffset = cursor.offset();
+      return header;
+    } else if (keyword == "cell_data" || keyword == "field" || keyword == "vectors" ||
+               keyword == "color_scalars" || keyword == "normals" || keyword == "tensors") {
+      throwInputError(path, quote(tokens[0]) + " before the SCALARS point data is not supported");
+    } else {
+      throwInputError(path, where + ": unknown keyword " + quote(tokens[0]));
+    }
+  }
+}
+
+}  // namespace
+
+Volume readLegacyVtk(const std::string& path, const VolumeLimits& limits) {
+  const std::uint64_t fileSize = regularFileSize(path);
+  std::string start(std::size_t(std::min<std::uint64_t>(fileSize, kMaxHeaderBytes)), '\0');
+  {
+    std::ifstream in(path, std::ios::binary);
+    in.read(start.data(), std::streamsize(start.size()));
+  }
+  const LegacyHeader header = parseHeader(path, start);
+  if (!header.dims) throwInputError(path, "header lacks DIMENSIONS");
+  const glm::ivec3 dims = *header.dims;
+  checkVolumeSize(path, dims, limits);
+  const StoredType type = *header.type;
+
+  Volume volume = namedVolume(path);
+  volume.dims = dims;
+  volume.spacing = header.spacing;
+  volume.type = sampleTypeOf(type);
+  if (*header.pointCount < 0 || std::uint64_t(*header.pointCount) != volume.voxelCount()) {
+    throwInputError(path, "POINT_DATA " + std::to_string(*header.pointCount) + " differs from " +
+                              std::to_string(volume.voxelCount()) + " points of DIMENSIONS");
+  }
+  const std::uint64_t available = fileSize - header.dataOffset;
+  if (header.binary) {
+    const std::size_t expected = payloadBytes(dims, type);
+    if (available < expected) {
+      throwInputError(path, "payload holds " + std::to_string(available) + " bytes, " +
+                                std::to_string(expected) + " expected (" +
+                                describeLayout(dims, type) + ")");
+    }
+    volume.samples = decodeSamples(path, readFileBytes(path, header.dataOffset, expected), type,
+                                   /*bigEndian=*/true);
+  } else {
+    // Up to 64 characters per sample is generous for any printed number; later sections are
+    // not needed.
+    const std::uint64_t wanted = std::uint64_t(volume.voxelCount()) * 64 + 4096;
+    const auto bytes = readFileBytes(path, header.dataOffset, std::min(available, wanted));
+    const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    volume.samples = parseTextSamples(path, text, volume.voxelCount(), type);
+  }
+  return volume;
+}
+
+}  // namespace vsil::io

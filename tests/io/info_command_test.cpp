@@ -1,0 +1,69 @@
+// `vsil info` through the built binary: a dataset in text and JSON, and an error's exit status.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "reference/test_support.h"
+
+namespace vsil {
+namespace {
+
+TEST(InfoCommand, DescribesADataset) {
+  const auto path = test::datasetPath("bucky_32x32x32_uint8.nhdr").string();
+  const auto result = test::runVsil("info '" + path + "'");
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  EXPECT_NE(result.out.find("32 x 32 x 32 (32768 samples)"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("type      uint8"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("histogram"), std::string::npos) << result.out;
+}
+
+TEST(InfoCommand, JsonAgreesWithTheDatasetChecksum) {
+  const auto path = test::datasetPath("bucky_32x32x32_uint8.nhdr").string();
+  const auto result = test::runVsil("info --json '" + path + "'");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto json = nlohmann::json::parse(result.out);
+  EXPECT_EQ(json["name"], "bucky_32x32x32_uint8");
+  EXPECT_EQ(json["dims"], nlohmann::json({32, 32, 32}));
+  EXPECT_EQ(json["type"], "uint8");
+  // The sum of the samples (1174726, see dataset_loading_test) over 32768 samples; the mean is
+  // accumulated in double, exact for integer sums this small.
+  EXPECT_DOUBLE_EQ(json["mean"].get<double>(), 1174726.0 / 32768.0);
+  std::size_t counted = 0;
+  for (const auto& count : json["histogram"]["counts"]) counted += count.get<std::size_t>();
+  EXPECT_EQ(counted, 32768u);
+}
+
+TEST(InfoCommand, RawLayoutFlagsAndGenerators) {
+  const auto raw = test::datasetPath("nucleon_41x41x41_uint8.raw").string();
+  const auto result = test::runVsil("info '" + raw + "' --dims 41x41x41 --type uint8 --json");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(nlohmann::json::parse(result.out)["samples"], 68921);
+  const auto generated = test::runVsil("info gen:torus:16");
+  EXPECT_EQ(generated.exitCode, 0) << generated.err;
+  EXPECT_NE(generated.out.find("float32"), std::string::npos);
+}
+
+TEST(InfoCommand, BadInputExitsTwoWithOneLineNamingTheFile) {
+  const auto path = (test::scratchDir() / "absent.nrrd").string();
+  const auto result = test::runVsil("info '" + path + "'");
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_EQ(result.out, "");
+  EXPECT_EQ(result.err, "vsil: " + path + ": no such file\n");
+}
+
+TEST(InfoCommand, MaxMemoryRefusesLargeVolumes) {
+  // bonsai: 256³ floats = 64 MiB in memory, over a 16 MiB limit.
+  const auto path = test::datasetPath("bonsai.vti").string();
+  const auto result = test::runVsil("info --max-memory 16 '" + path + "'");
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_EQ(result.out, "");
+  EXPECT_NE(result.err.find(path + ": volume of 256x256x256 samples needs 64 MiB"),
+            std::string::npos)
+      << result.err;
+  const auto flags = test::runVsil("info '" + path + "' --dims 4x4 --type uint8");
+  EXPECT_EQ(flags.exitCode, 2);
+  EXPECT_NE(flags.err.find("--dims '4x4'"), std::string::npos) << flags.err;
+}
+
+}  // namespace
+}  // namespace vsil

@@ -1,0 +1,325 @@
+// Bad input gets one-line InputErrors that start with the file's path and say what is wrong:
+// truncated and oversized payloads, absurd sizes, broken headers, non-finite samples,
+// decompression bombs, missing files, directories, empty files.
+#include <unistd.h>
+
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "io/volume_loader.h"
+#include "io_test_files.h"
+#include "reference/test_support.h"
+
+namespace vsil {
+namespace {
+
+using test::Bytes;
+using test::expectInputError;
+
+// Writes `name` with `text` into a fresh scratch folder and returns its path.
+std::string scratchFile(const std::string& name, std::string_view text) {
+  const auto path = test::scratchDir() / name;
+  test::writeFile(path, text);
+  return path.string();
+}
+
+std::string nrrdHeader(const std::string& fields) {
+  return "NRRD0004\n" + fields + "\n";
+}
+
+TEST(InputErrors, DetachedDataFileTooShortSaysBothSizes) {
+  const auto dir = test::scratchDir();
+  test::writeFile(dir / "x.nhdr", nrrdHeader("type: uint8\ndimension: 3\nsizes: 128 128 128\n"
+                                             "encoding: raw\ndata file: x.raw"));
+  test::writeFile(dir / "x.raw", Bytes(1000));
+  const std::string path = (dir / "x.nhdr").string();
+  expectInputError([&] { loadVolume(path); },
+                   path +
+                       ": data file 'x.raw' holds 1000 bytes, 2097152 expected "
+                       "(128x128x128 uint8)",
+                   {});
+}
+
+TEST(InputErrors, AttachedPayloadTruncatedOrTooLong) {
+  const std::string header = nrrdHeader(
+                                 "type: uint16\ndimension: 3\nsizes: 4 4 4\n"
+                                 "endian: little\nencoding: raw") +
+                             "\n";
+  const std::string shortPath = scratchFile("short.nrrd", header + std::string(100, 'a'));
+  expectInputError([&] { loadVolume(shortPath); }, shortPath + ": ",
+                   {"holds 100 bytes, 128 expected (4x4x4 uint16)"});
+  const std::string longPath = scratchFile("long.nrrd", header + std::string(129, 'a'));
+  expectInputError([&] { loadVolume(longPath); }, longPath + ": ", {"holds 129 bytes, 128"});
+}
+
+TEST(InputErrors, RawFileOfTheWrongSize) {
+  const std::string path = scratchFile("v.raw", std::string(999, '\0'));
+  LoadOptions options;
+  options.raw = RawLayout{{10, 10, 10}, SampleType::UInt16, {1, 1, 1}, false};
+  expectInputError([&] { loadVolume(path, options); }, path + ": ",
+                   {"999 bytes", "2000 expected", "10x10x10 uint16"});
+}
+
+TEST(InputErrors, AbsurdDimensionsAreRefusedBeforeAllocating) {
+  const std::string nrrd =
+      scratchFile("huge.nrrd", nrrdHeader("type: uint8\ndimension: 3\nsizes: 100000 100000 100000\n"
+                                          "encoding: raw") +
+                                   "\nxx");
+  expectInputError([&] { loadVolume(nrrd); }, nrrd + ": ", {"100000", "limit"});
+
+  const std::string vti =
+      scratchFile("huge.vti",
+                  "<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 99999 0 99999 0 99999\">"
+                  "<Piece><PointData><DataArray type=\"UInt8\" format=\"ascii\">1</DataArray>"
+                  "</PointData></Piece></ImageData></VTKFile>");
+  expectInputError([&] { loadVolume(vti); }, vti + ": ", {"100000", "limit"});
+
+  const std::string vtk = scratchFile("huge.vtk",
+                                      "# vtk DataFile Version 3.0\nt\nBINARY\n"
+                                      "DATASET STRUCTURED_POINTS\n"
+                                      "DIMENSIONS 100000 100000 100000\n"
+                                      "POINT_DATA 1\nSCALARS s float\nxxxx");
+  expectInputError([&] { loadVolume(vtk); }, vtk + ": ", {"100000", "limit"});
+
+  // With the per-axis limit lifted, the byte count (2^93 bytes) must not overflow unnoticed.
+  LoadOptions options;
+  options.limits.maxDimension = std::numeric_limits<int>::max();
+  options.raw = RawLayout{{2147483647, 2147483647, 2147483647}, SampleType::Float32, {1, 1, 1}};
+  const std::string raw = scratchFile("huge.raw", "x");
+  expectInputError([&] { loadVolume(raw, options); }, raw + ": ", {"memory limit"});
+
+  // Beyond int: the number itself is out of range.
+  const std::string wide = scratchFile(
+      "wide.nrrd", nrrdHeader("type: uint8\ndimension: 3\nsizes: 1 1 99999999999999999999\n"
+                              "encoding: raw") +
+                       "\nx");
+  expectInputError([&] { loadVolume(wide); }, wide + ": ", {"sizes", "out of range"});
+}
+
+TEST(InputErrors, BadNrrdHeaders) {
+  struct Case {
+    const char* header;
+    const char* says;
+  };
+  const Case cases[] = {
+      {"type: uint8\ndimension: 3\nsizes: 2 2 2\n", "required field 'encoding'"},
+      {"dimension: 3\nsizes: 2 2 2\nencoding: raw\n", "required field 'type'"},
+      {"type: uint8\ndimension: 2\nsizes: 2 2\nencoding: raw\n", "dimension '2' is not supported"},
+      {"type: uint8\ndimension: 3\nsizes: 2 x2 2\nencoding: raw\n", "sizes value 'x2' is not an"},
+      {"type: uint8\ndimension: 3\nsizes: 2 2\nencoding: raw\n", "sizes needs 3 values, found 2"},
+      {"type: uint8\ndimension: three\nsizes: 2 2 2\nencoding: raw\n", "dimension value 'three'"},
+      {"type: int32\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n", "type 'int32' is not supported"},
+      {"type: uint16\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n", "'endian', required"},
+      {"type: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: bzip2\n", "encoding 'bzip2'"},
+      {"type: uint8\ndimension: 3\nsizes: 2 2 2\nspacings: 1 -1 1\nencoding: raw\n",
+       "spacings -1.000000 along y is not a positive"},
+      {"type: uint8\ndimension: 3\nsizes: 2 2 2\nspacings: 1 0 1\nencoding: raw\n",
+       "is not a positive"},
+      {"type: uint8\ndimension: 3\nsizes: 2 2 2\nspacings: 1 nan 1\nencoding: raw\n",
+       "is not a positive"},
+      {"type: uint8\ndimension: 3\nsizes: 2 2 2\nspace directions: (1,0,0) none (0,0,1)\n"
+       "encoding: raw\n",
+       "'none' for a spatial axis"},
+      {"type: uint8\nthis line is junk\n", "header line 3 'this line is junk' is neither"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = scratchFile("bad.nrrd", nrrdHeader(c.header) + std::string(8, 'x'));
+    expectInputError([&] { loadVolume(path); }, path + ": ", {c.says});
+  }
+  const std::string notNrrd = scratchFile("plain.nrrd", "hello\n");
+  expectInputError([&] { loadVolume(notNrrd); }, notNrrd + ": ", {"is not a NRRD file"});
+}
+
+TEST(InputErrors, UnknownTypesInEveryFormat) {
+  const std::string vti =
+      scratchFile("t.vti",
+                  "<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 0 0 0 0 0\"><Piece>"
+                  "<PointData><DataArray type=\"Int32\" format=\"ascii\">1</DataArray></PointData>"
+                  "</Piece></ImageData></VTKFile>");
+  expectInputError([&] { loadVolume(vti); }, vti + ": ", {"type 'Int32' is not supported"});
+  const std::string vtk = scratchFile("t.vtk",
+                                      "# vtk DataFile Version 3.0\nt\nASCII\n"
+                                      "DATASET STRUCTURED_POINTS\nDIMENSIONS 1 1 1\n"
+                                      "POINT_DATA 1\nSCALARS s int\n1\n");
+  expectInputError([&] { loadVolume(vtk); }, vtk + ": ", {"SCALARS type 'int' is not supported"});
+}
+
+TEST(InputErrors, NonFiniteFloatsNameTheFirstBadSample) {
+  std::vector<float> values(8, 1.0f);
+  values[5] = std::numeric_limits<float>::quiet_NaN();
+  values[6] = std::numeric_limits<float>::infinity();
+  const std::string nan = scratchFile(
+      "nan.nrrd", nrrdHeader("type: float\ndimension: 3\nsizes: 2 2 2\nendian: big\n"
+                             "encoding: raw") +
+                      "\n" + test::asText(test::encodeSamples(values, SampleType::Float32, true)));
+  expectInputError([&] { loadVolume(nan); }, nan + ": ", {"sample 5 is NaN"});
+
+  const std::string inf =
+      scratchFile("inf.vti",
+                  "<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 2 0 0 0 0\"><Piece>"
+                  "<PointData><DataArray type=\"Float32\" format=\"ascii\">1 -inf 2</DataArray>"
+                  "</PointData></Piece></ImageData></VTKFile>");
+  expectInputError([&] { loadVolume(inf); }, inf + ": ", {"sample 1 is infinite"});
+
+  const std::string big =
+      scratchFile("big.vtk",
+                  "# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_POINTS\n"
+                  "DIMENSIONS 2 1 1\nPOINT_DATA 2\nSCALARS s double\n0 1e300\n");
+  expectInputError([&] { loadVolume(big); }, big + ": ", {"sample 1", "float32 range"});
+
+  const std::string ascii =
+      scratchFile("a.vtk",
+                  "# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_POINTS\n"
+                  "DIMENSIONS 3 1 1\nPOINT_DATA 3\nSCALARS s unsigned_char\n1 256 2\n");
+  expectInputError([&] { loadVolume(ascii); }, ascii + ": ", {"sample 1 '256' is not a uint8"});
+}
+
+TEST(InputErrors, GzipBombsStopAtTheExpectedSize) {
+  const std::string header = nrrdHeader("type: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: gzip");
+  // 1 MiB of zeros packs into ~1 KiB: small enough to be read, then stopped by the inflater.
+  const Bytes bomb = test::deflateBytes(Bytes(1 << 20), true);
+  const std::string small = scratchFile("bomb.nrrd", header + "\n" + test::asText(bomb));
+  expectInputError([&] { loadVolume(small); }, small + ": ",
+                   {"inflates to more than the 64 bytes expected"});
+  // 64 MiB of zeros packs into ~64 KiB: refused by its compressed size alone.
+  const Bytes bigBomb = test::deflateBytes(Bytes(64 << 20), true);
+  const std::string large = scratchFile("bigbomb.nrrd", header + "\n" + test::asText(bigBomb));
+  expectInputError([&] { loadVolume(large); }, large + ": ", {"more than a gzip stream"});
+  // Too little, corrupt, or not gzip at all.
+  const Bytes few = test::deflateBytes(Bytes(10), true);
+  const std::string shortPath = scratchFile("few.nrrd", header + "\n" + test::asText(few));
+  expectInputError([&] { loadVolume(shortPath); }, shortPath + ": ",
+                   {"inflates to 10 bytes, 64 expected"});
+  Bytes cut = test::deflateBytes(Bytes(64, 7), true);
+  cut.resize(cut.size() / 2);
+  const std::string cutPath = scratchFile("cut.nrrd", header + "\n" + test::asText(cut));
+  expectInputError([&] { loadVolume(cutPath); }, cutPath + ": ", {"truncated"});
+  const std::string junk = scratchFile("junk.nrrd", header + "\n" + std::string(64, 'j'));
+  expectInputError([&] { loadVolume(junk); }, junk + ": ", {"corrupt"});
+}
+
+TEST(InputErrors, ZlibBlockBombInVti) {
+  // The block table claims one 8-byte block; the block inflates to 1 MiB.
+  const Bytes packed = test::deflateBytes(Bytes(1 << 20), false);
+  Bytes block;
+  for (std::uint64_t word :
+       {std::uint64_t(1), std::uint64_t(8), std::uint64_t(0), std::uint64_t(packed.size())}) {
+    test::appendWord(block, word, 4, false);
+  }
+  block.insert(block.end(), packed.begin(), packed.end());
+  const std::string path =
+      scratchFile("bomb.vti",
+                  "<VTKFile type=\"ImageData\" compressor=\"vtkZLibDataCompressor\">"
+                  "<ImageData WholeExtent=\"0 1 0 1 0 1\"><Piece><PointData>"
+                  "<DataArray type=\"UInt8\" format=\"appended\" offset=\"0\"/></PointData>"
+                  "</Piece></ImageData><AppendedData encoding=\"raw\">_" +
+                      test::asText(block) + "</AppendedData></VTKFile>");
+  expectInputError([&] { loadVolume(path); }, path + ": ",
+                   {"zlib block 0 inflates to more than the 8 bytes expected"});
+}
+
+TEST(InputErrors, BrokenVtiFiles) {
+  const std::string head =
+      "<VTKFile type=\"ImageData\" header_type=\"UInt32\">"
+      "<ImageData WholeExtent=\"0 1 0 1 0 1\"><Piece><PointData>";
+  const std::string tail = "</PointData></Piece></ImageData>";
+  struct Case {
+    std::string body;
+    const char* says;
+  };
+  const Case cases[] = {
+      {"<VTKFile type=\"ImageData\"><ImageData", "is not valid XML"},
+      {"<VTKFile type=\"PolyData\"/>", "only ImageData"},
+      {head + "</PointData></Piece></ImageData></VTKFile>", "has no <DataArray>"},
+      {head + "<DataArray type=\"UInt8\" format=\"ascii\">1 2 3</DataArray>" + tail + "</VTKFile>",
+       "holds 3 values, 8 expected"},
+      {head + "<DataArray type=\"UInt8\" format=\"binary\">CAAAAA==AQID</DataArray>" + tail +
+           "</VTKFile>",
+       "DataArray holds 3 bytes, 8 expected"},
+      {head + "<DataArray type=\"UInt8\" format=\"binary\">AQ!D</DataArray>" + tail + "</VTKFile>",
+       "invalid character"},
+      {head + "<DataArray type=\"UInt8\" format=\"appended\" offset=\"999\"/>" + tail +
+           "<AppendedData encoding=\"raw\">_abc</AppendedData></VTKFile>",
+       "offset 999 lies outside"},
+      {head + "<DataArray type=\"UInt8\" format=\"appended\" offset=\"0\"/>" + tail + "</VTKFile>",
+       "has no <AppendedData>"},
+      {head + "<DataArray type=\"UInt8\" format=\"appended\" offset=\"0\"/>" + tail +
+           "<AppendedData encoding=\"raw\">_ab",  // the file ends inside the header
+       "block header is truncated"},
+      {head + "<DataArray type=\"UInt8\" NumberOfComponents=\"3\" format=\"ascii\">1</DataArray>" +
+           tail + "</VTKFile>",
+       "only scalar"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = scratchFile("broken.vti", c.body);
+    expectInputError([&] { loadVolume(path); }, path + ": ", {c.says});
+  }
+}
+
+TEST(InputErrors, BrokenLegacyVtkFiles) {
+  const std::string head = "# vtk DataFile Version 3.0\ntitle\nBINARY\nDATASET STRUCTURED_POINTS\n";
+  struct Case {
+    std::string body;
+    const char* says;
+  };
+  const Case cases[] = {
+      {"hello\n", "is not a legacy VTK file"},
+      {head + "DIMENSIONS 2 2 2\nPOINT_DATA 8\nSCALARS s unsigned_char\nLOOKUP_TABLE default\n"
+              "abc",
+       "payload holds 3 bytes, 8 expected (2x2x2 uint8)"},
+      {head + "DIMENSIONS 2 2 2\nPOINT_DATA 9\nSCALARS s unsigned_char\nabcdefghi",
+       "POINT_DATA 9 differs from 8"},
+      {"# vtk DataFile Version 3.0\nt\nBINARY\nDATASET POLYDATA\n", "STRUCTURED_POINTS only"},
+      {head + "DIMENSIONS 2 2\n", "DIMENSIONS needs 3 values"},
+      {head + "DIMENSIONS 2 2 2\nSPACING 1 1 0\n", "is not a positive"},
+      {head + "DIMENSIONS 2 2 2\n", "header ends before the SCALARS data"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = scratchFile("broken.vtk", c.body);
+    expectInputError([&] { loadVolume(path); }, path + ": ", {c.says});
+  }
+}
+
+TEST(InputErrors, MissingDataFileNamesHeaderAndDataFile) {
+  const std::string path =
+      scratchFile("m.nhdr", nrrdHeader("type: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n"
+                                       "data file: missing.raw"));
+  expectInputError([&] { loadVolume(path); },
+                   path + ": data file 'missing.raw': ", {"missing.raw: no such file"});
+}
+
+TEST(InputErrors, MissingFilesDirectoriesEmptyAndUnreadableFiles) {
+  const auto dir = test::scratchDir();
+  const std::string missing = (dir / "nothing.vti").string();
+  expectInputError([&] { loadVolume(missing); }, missing + ": no such file", {});
+  const std::string missingUnknown = (dir / "nothing.xyz").string();
+  expectInputError([&] { loadVolume(missingUnknown); }, missingUnknown + ": no such file", {});
+
+  std::filesystem::create_directories(dir / "folder.nrrd");
+  const std::string folder = (dir / "folder.nrrd").string();
+  expectInputError([&] { loadVolume(folder); }, folder + ": is a directory", {});
+  expectInputError([&] { loadVolume(dir.string()); }, dir.string() + ": is a directory", {});
+
+  for (const char* name : {"empty.nrrd", "empty.vti", "empty.vtk"}) {
+    const std::string empty = (dir / name).string();
+    test::writeFile(empty, "");
+    expectInputError([&] { loadVolume(empty); }, empty + ": file is empty", {});
+  }
+
+  const std::string locked = (dir / "locked.nrrd").string();
+  test::writeFile(locked, "NRRD0004\n");
+  std::filesystem::permissions(locked, std::filesystem::perms::none);
+  if (::geteuid() != 0) {  // root reads anything
+    expectInputError([&] { loadVolume(locked); }, locked + ": cannot be opened", {});
+  }
+}
+
+TEST(InputErrors, UnknownExtensionListsTheFormats) {
+  const std::string path = scratchFile("volume.dat", "1234");
+  expectInputError([&] { loadVolume(path); }, path + ": unknown volume format '.dat'",
+                   {".nrrd, .nhdr, .vti, .vtk", "--dims and --type"});
+}
+
+}  // namespace
+}  // namespace vsil

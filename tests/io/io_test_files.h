@@ -1,0 +1,131 @@
+#pragma once
+// Writing small volume files for the reader tests: byte encodings, compression, base64.
+// Header-only; each test writes its files into vsil::test::scratchDir().
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include "core/error.h"
+#include "core/volume.h"
+
+namespace vsil::test {
+
+using Bytes = std::vector<std::uint8_t>;
+
+inline void writeFile(const std::filesystem::path& path, std::string_view text) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(text.data(), std::streamsize(text.size()));
+}
+inline void writeFile(const std::filesystem::path& path, const Bytes& bytes) {
+  writeFile(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+inline std::string asText(const Bytes& bytes) {
+  return {bytes.begin(), bytes.end()};
+}
+
+// Appends `value`'s `size` low bytes (or its float bits) in the given byte order.
+inline void appendWord(Bytes& out, std::uint64_t value, std::size_t size, bool bigEndian) {
+  for (std::size_t i = 0; i < size; ++i) {
+    const std::size_t shift = 8 * (bigEndian ? size - 1 - i : i);
+    out.push_back(std::uint8_t(value >> shift));
+  }
+}
+
+// `values` stored as `type` samples in the given byte order (values must fit the type).
+inline Bytes encodeSamples(const std::vector<float>& values, SampleType type, bool bigEndian) {
+  Bytes out;
+  for (float v : values) {
+    switch (type) {
+      case SampleType::UInt8:
+        out.push_back(std::uint8_t(v));
+        break;
+      case SampleType::UInt16:
+        appendWord(out, std::uint16_t(v), 2, bigEndian);
+        break;
+      case SampleType::Int16:
+        appendWord(out, std::uint16_t(std::int16_t(v)), 2, bigEndian);
+        break;
+      case SampleType::Float32: {
+        std::uint32_t bits;
+        std::memcpy(&bits, &v, 4);
+        appendWord(out, bits, 4, bigEndian);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+// Deflate with a zlib (windowBits 15) or gzip (15 + 16) wrapper.
+inline Bytes deflateBytes(const Bytes& in, bool gzip) {
+  z_stream s{};
+  deflateInit2(&s, 6, Z_DEFLATED, gzip ? 15 + 16 : 15, 8, Z_DEFAULT_STRATEGY);
+  Bytes out(deflateBound(&s, uLong(in.size())) + 32);
+  s.next_in = const_cast<Bytef*>(in.data());
+  s.avail_in = uInt(in.size());
+  s.next_out = out.data();
+  s.avail_out = uInt(out.size());
+  deflate(&s, Z_FINISH);
+  out.resize(s.total_out);
+  deflateEnd(&s);
+  return out;
+}
+
+inline std::string encodeBase64(const Bytes& in) {
+  static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < in.size(); i += 3) {
+    const std::uint32_t b = std::uint32_t(in[i]) << 16 |
+                            (i + 1 < in.size() ? std::uint32_t(in[i + 1]) << 8 : 0) |
+                            (i + 2 < in.size() ? std::uint32_t(in[i + 2]) : 0);
+    out += alphabet[b >> 18 & 63];
+    out += alphabet[b >> 12 & 63];
+    out += i + 1 < in.size() ? alphabet[b >> 6 & 63] : '=';
+    out += i + 2 < in.size() ? alphabet[b & 63] : '=';
+  }
+  return out;
+}
+
+// A small volume's values that fit every sample type: 0, 1, ..., with a negative and a
+// fractional value for the signed and float types.
+inline std::vector<float> testValues(glm::ivec3 dims, SampleType type) {
+  std::vector<float> values(std::size_t(dims.x) * dims.y * dims.z);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    values[i] = float((i * 37) % 251);
+    if (type == SampleType::UInt16) values[i] *= 251.0f;
+    if (type == SampleType::Int16) values[i] = values[i] * 100.0f - 12000.0f;
+    if (type == SampleType::Float32) values[i] = values[i] * 0.37f - 20.5f;
+  }
+  return values;
+}
+
+// Expects `load()` to throw an InputError whose message is one line, starts with `prefix` and
+// contains each of `parts`; returns the message (empty when nothing was thrown).
+template <typename Load>
+std::string expectInputError(Load&& load, const std::string& prefix,
+                             std::initializer_list<std::string> parts) {
+  try {
+    load();
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(prefix, 0), 0u) << "message: " << message << "\nprefix: " << prefix;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
+    for (const auto& part : parts) {
+      EXPECT_NE(message.find(part), std::string::npos)
+          << "message: " << message << "\nlacks: " << part;
+    }
+    return message;
+  }
+  ADD_FAILURE() << "no InputError; expected one starting with " << prefix;
+  return {};
+}
+
+}  // namespace vsil::test

@@ -1,0 +1,152 @@
+// NRRD round trips: files written here (every type, raw and gzip, attached and detached, both
+// byte orders) read back exactly, and header variants (aliases, space directions, byte skip).
+#include <gtest/gtest.h>
+
+#include "io/volume_loader.h"
+#include "io_test_files.h"
+#include "reference/test_support.h"
+
+namespace vsil {
+namespace {
+
+using test::Bytes;
+
+const glm::ivec3 kDims{5, 4, 3};
+
+struct NrrdCase {
+  SampleType type;
+  const char* typeName;  // as written in the header (NRRD spelling or alias)
+  bool gzip;
+  bool detached;
+  bool bigEndian;
+};
+
+std::string caseName(const NrrdCase& c) {
+  return std::string(sampleTypeName(c.type)) + (c.gzip ? "_gzip" : "_raw") +
+         (c.detached ? "_detached" : "_attached") + (c.bigEndian ? "_big" : "_little");
+}
+
+// Writes the case's file(s) into `dir` and returns the path to load.
+std::string writeNrrd(const std::filesystem::path& dir, const NrrdCase& c, const Bytes& samples) {
+  const Bytes payload = c.gzip ? test::deflateBytes(samples, true) : samples;
+  std::string header = "NRRD0004\n# written by nrrd_reader_test\ntype: " + std::string(c.typeName) +
+                       "\ndimension: 3\nsizes: 5 4 3\nspacings: 0.5 1 2.25\nendian: " +
+                       (c.bigEndian ? "big" : "little") +
+                       "\nencoding: " + (c.gzip ? "gzip" : "raw") + "\n";
+  if (c.detached) {
+    header += "data file: payload.bin\n";
+    test::writeFile(dir / "volume.nhdr", header);
+    test::writeFile(dir / "payload.bin", payload);
+    return (dir / "volume.nhdr").string();
+  }
+  test::writeFile(dir / "volume.nrrd", header + "\n" + test::asText(payload));
+  return (dir / "volume.nrrd").string();
+}
+
+class NrrdRoundTrip : public ::testing::TestWithParam<NrrdCase> {};
+
+TEST_P(NrrdRoundTrip, ReadsBackTheWrittenSamples) {
+  const NrrdCase& c = GetParam();
+  const auto values = test::testValues(kDims, c.type);
+  const std::string path =
+      writeNrrd(test::scratchDir(), c, test::encodeSamples(values, c.type, c.bigEndian));
+  const Volume volume = loadVolume(path);
+  EXPECT_EQ(volume.name, "volume");
+  EXPECT_EQ(volume.dims, kDims);
+  EXPECT_EQ(volume.spacing, glm::dvec3(0.5, 1, 2.25));
+  EXPECT_EQ(volume.type, c.type);
+  EXPECT_EQ(volume.samples, values);  // exact: every test value is representable in its type
+}
+
+std::vector<NrrdCase> allCases() {
+  const std::pair<SampleType, const char*> types[] = {{SampleType::UInt8, "uint8"},
+                                                      {SampleType::UInt16, "uint16"},
+                                                      {SampleType::Int16, "int16"},
+                                                      {SampleType::Float32, "float"}};
+  std::vector<NrrdCase> cases;
+  for (const auto& [type, name] : types) {
+    for (bool gzip : {false, true}) {
+      for (bool detached : {false, true}) {
+        for (bool big : {false, true}) cases.push_back({type, name, gzip, detached, big});
+      }
+    }
+  }
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Nrrd, NrrdRoundTrip, ::testing::ValuesIn(allCases()),
+                         [](const auto& info) { return caseName(info.param); });
+
+Volume loadAttached(const std::string& headerFields, const Bytes& payload) {
+  const auto path = test::scratchDir() / "v.nrrd";
+  test::writeFile(
+      path, "NRRD0005\ndimension: 3\nsizes: 2 2 1\n" + headerFields + "\n" + test::asText(payload));
+  return loadVolume(path.string());
+}
+
+TEST(NrrdReader, AcceptsTypeAliases) {
+  const std::pair<const char*, SampleType> aliases[] = {{"uchar", SampleType::UInt8},
+                                                        {"unsigned char", SampleType::UInt8},
+                                                        {"uint8_t", SampleType::UInt8},
+                                                        {"ushort", SampleType::UInt16},
+                                                        {"unsigned short int", SampleType::UInt16},
+                                                        {"short", SampleType::Int16},
+                                                        {"int16_t", SampleType::Int16},
+                                                        {"float", SampleType::Float32}};
+  for (const auto& [alias, type] : aliases) {
+    const std::vector<float> values{1, 2, 3, 4};
+    const Volume v =
+        loadAttached(std::string("type: ") + alias + "\nendian: little\nencoding: raw\n",
+                     test::encodeSamples(values, type, false));
+    EXPECT_EQ(v.type, type) << alias;
+    EXPECT_EQ(v.samples, values) << alias;
+  }
+}
+
+TEST(NrrdReader, Int8LoadsAsInt16AndDoubleAsFloat32) {
+  const Volume int8 = loadAttached("type: signed char\nencoding: raw\n", {0x00, 0x7f, 0x80, 0xff});
+  EXPECT_EQ(int8.type, SampleType::Int16);
+  EXPECT_EQ(int8.samples, (std::vector<float>{0, 127, -128, -1}));
+
+  Bytes doubles;
+  for (double d : {0.5, -2.0, 1e10, 3.25}) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &d, 8);
+    test::appendWord(doubles, bits, 8, false);
+  }
+  const Volume f64 = loadAttached("type: double\nendian: little\nencoding: raw\n", doubles);
+  EXPECT_EQ(f64.type, SampleType::Float32);
+  EXPECT_EQ(f64.samples, (std::vector<float>{0.5f, -2.0f, 1e10f, 3.25f}));
+}
+
+TEST(NrrdReader, SpacingIsTheLengthOfEachSpaceDirection) {
+  const Volume v = loadAttached(
+      "type: uint8\nencoding: raw\nspace: right-anterior-superior\n"
+      "space directions: (0.5,0,0) (0,3,4) (0,0,-2)\n",
+      {1, 2, 3, 4});
+  // 3-4-5 triangle: exact in double.
+  EXPECT_EQ(v.spacing, glm::dvec3(0.5, 5.0, 2.0));
+}
+
+TEST(NrrdReader, AsciiEncodingAndByteSkip) {
+  const Volume text = loadAttached("type: short\nencoding: ascii\n",
+                                   test::Bytes{'1', ' ', '-', '2', '\n', '3', ' ', '4'});
+  EXPECT_EQ(text.samples, (std::vector<float>{1, -2, 3, 4}));
+  const Volume skipped =
+      loadAttached("type: uint8\nencoding: raw\nbyte skip: 3\n", {9, 9, 9, 1, 2, 3, 4});
+  EXPECT_EQ(skipped.samples, (std::vector<float>{1, 2, 3, 4}));
+  const Volume fromEnd =
+      loadAttached("type: uint8\nencoding: raw\nbyte skip: -1\n", {9, 9, 1, 2, 3, 4});
+  EXPECT_EQ(fromEnd.samples, (std::vector<float>{1, 2, 3, 4}));
+}
+
+TEST(NrrdReader, CrLfHeadersAndKeyValuePairs) {
+  const auto path = test::scratchDir() / "crlf.nrrd";
+  test::writeFile(path, std::string("NRRD0004\r\ntype: uint8\r\nmodality:=CT\r\ndimension: 3\r\n"
+                                    "sizes: 2 1 1\r\nencoding: raw\r\n\r\n") +
+                            "\x05\x06");
+  EXPECT_EQ(loadVolume(path.string()).samples, (std::vector<float>{5, 6}));
+}
+
+}  // namespace
+}  // namespace vsil

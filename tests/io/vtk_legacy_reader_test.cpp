@@ -1,0 +1,94 @@
+// Legacy VTK STRUCTURED_POINTS round trips: BINARY (big-endian) and ASCII, each scalar type,
+// with and without LOOKUP_TABLE, SPACING or the old ASPECT_RATIO.
+#include <gtest/gtest.h>
+
+#include "io/volume_loader.h"
+#include "io_test_files.h"
+#include "reference/test_support.h"
+
+namespace vsil {
+namespace {
+
+const glm::ivec3 kDims{5, 4, 3};
+
+struct LegacyCase {
+  SampleType type;
+  const char* typeName;
+  bool binary;
+  bool lookupTable;
+};
+
+std::string writeLegacy(const std::filesystem::path& dir, const LegacyCase& c,
+                        const std::vector<float>& values) {
+  std::string text = std::string("# vtk DataFile Version 3.0\nround trip\n") +
+                     (c.binary ? "BINARY" : "ASCII") +
+                     "\nDATASET STRUCTURED_POINTS\nDIMENSIONS 5 4 3\nORIGIN 0 0 0\n" +
+                     (c.lookupTable ? "SPACING 0.5 1 2.25\n" : "ASPECT_RATIO 0.5 1 2.25\n") +
+                     "POINT_DATA 60\nSCALARS density " + c.typeName + " 1\n" +
+                     (c.lookupTable ? "LOOKUP_TABLE default\n" : "");
+  if (c.binary) {
+    text += test::asText(test::encodeSamples(values, c.type, /*bigEndian=*/true)) + "\n";
+  } else {
+    for (float v : values) text += std::to_string(v) + "\n";
+  }
+  test::writeFile(dir / "legacy.vtk", text);
+  return (dir / "legacy.vtk").string();
+}
+
+class LegacyRoundTrip : public ::testing::TestWithParam<LegacyCase> {};
+
+TEST_P(LegacyRoundTrip, ReadsBackTheWrittenSamples) {
+  const LegacyCase& c = GetParam();
+  const auto values = test::testValues(kDims, c.type);
+  const Volume volume = loadVolume(writeLegacy(test::scratchDir(), c, values));
+  EXPECT_EQ(volume.name, "legacy");
+  EXPECT_EQ(volume.dims, kDims);
+  EXPECT_EQ(volume.spacing, glm::dvec3(0.5, 1, 2.25));
+  EXPECT_EQ(volume.type, c.type);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    // ASCII floats: 6 printed decimals and float rounding, as in vti_reader_test; else exact.
+    EXPECT_NEAR(volume.samples[i], values[i], c.binary ? 0.0 : 1e-4) << "sample " << i;
+  }
+}
+
+std::vector<LegacyCase> allCases() {
+  const std::pair<SampleType, const char*> types[] = {{SampleType::UInt8, "unsigned_char"},
+                                                      {SampleType::UInt16, "unsigned_short"},
+                                                      {SampleType::Int16, "short"},
+                                                      {SampleType::Float32, "float"}};
+  std::vector<LegacyCase> cases;
+  for (const auto& [type, name] : types) {
+    for (bool binary : {true, false}) {
+      for (bool table : {true, false}) cases.push_back({type, name, binary, table});
+    }
+  }
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Legacy, LegacyRoundTrip, ::testing::ValuesIn(allCases()),
+                         [](const auto& info) {
+                           return std::string(info.param.typeName) +
+                                  (info.param.binary ? "_binary" : "_ascii") +
+                                  (info.param.lookupTable ? "_table" : "_notable");
+                         });
+
+TEST(RawReader, ReadsEachTypeInBothByteOrders) {
+  for (SampleType type :
+       {SampleType::UInt8, SampleType::UInt16, SampleType::Int16, SampleType::Float32}) {
+    for (bool big : {false, true}) {
+      const auto values = test::testValues(kDims, type);
+      const auto path = test::scratchDir() / "samples.bin";
+      test::writeFile(path, test::encodeSamples(values, type, big));
+      LoadOptions options;
+      options.raw = RawLayout{kDims, type, {2, 2, 3}, big};
+      const Volume v = loadVolume(path.string(), options);
+      EXPECT_EQ(v.name, "samples");
+      EXPECT_EQ(v.type, type);
+      EXPECT_EQ(v.spacing, glm::dvec3(2, 2, 3));
+      EXPECT_EQ(v.samples, values) << sampleTypeName(type) << (big ? " big" : " little");
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vsil
