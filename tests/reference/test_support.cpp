@@ -2,6 +2,8 @@
 
 #include <sys/wait.h>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -36,7 +38,9 @@ static std::string slurp(const std::filesystem::path& path) {
 }
 
 CommandResult runVsil(const std::string& arguments) {
-  const auto dir = scratchDir().parent_path() / ("run-" + std::to_string(::getpid()));
+  // Not scratchDir(): that would empty the calling test's folder, which holds its inputs.
+  const auto dir = std::filesystem::temp_directory_path() / "vsil-tests" /
+                   ("run-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto outPath = dir / "stdout";
   const auto errPath = dir / "stderr";
