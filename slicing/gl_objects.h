@@ -1,0 +1,116 @@
+#pragma once
+// Move-only owners of GL objects: each deletes exactly the name it owns, leaves 0 behind when
+// moved from, and cannot be copied. A GL context must be current when they are made and destroyed.
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <utility>
+
+#include <glm/glm.hpp>
+
+#include "slicing/gl.h"
+
+namespace vsil::gl {
+
+template <typename Traits>
+class GlName {
+ public:
+  GlName() = default;
+  explicit GlName(GLuint id) : id_(id) {}
+  ~GlName() { reset(); }
+  GlName(const GlName&) = delete;
+  GlName& operator=(const GlName&) = delete;
+  GlName(GlName&& other) noexcept : id_(std::exchange(other.id_, 0)) {}
+  GlName& operator=(GlName&& other) noexcept {
+    if (this != &other) {
+      reset();
+      id_ = std::exchange(other.id_, 0);
+    }
+    return *this;
+  }
+  GLuint id() const { return id_; }
+  explicit operator bool() const { return id_ != 0; }
+  void reset() {
+    if (id_ != 0) Traits::destroy(id_);
+    id_ = 0;
+  }
+
+ private:
+  GLuint id_ = 0;
+};
+
+struct TextureTraits {
+  static void destroy(GLuint id) { glDeleteTextures(1, &id); }
+};
+struct FramebufferTraits {
+  static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); }
+};
+struct RenderbufferTraits {
+  static void destroy(GLuint id) { glDeleteRenderbuffers(1, &id); }
+};
+struct BufferTraits {
+  static void destroy(GLuint id) { glDeleteBuffers(1, &id); }
+};
+struct VertexArrayTraits {
+  static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); }
+};
+struct ProgramTraits {
+  static void destroy(GLuint id) { glDeleteProgram(id); }
+};
+
+using TextureName = GlName<TextureTraits>;
+using FramebufferName = GlName<FramebufferTraits>;
+using RenderbufferName = GlName<RenderbufferTraits>;
+using BufferName = GlName<BufferTraits>;
+using VertexArrayName = GlName<VertexArrayTraits>;
+
+TextureName createTexture();
+FramebufferName createFramebuffer();
+RenderbufferName createRenderbuffer();
+BufferName createBuffer();
+VertexArrayName createVertexArray();
+
+// A linked program built from embedded shader files (slicing/shaders). Every stage gets
+// `#version 450 core`, the given defines and common.glsl in front of its own file.
+class Program {
+ public:
+  Program(std::string_view vertexFile, std::string_view fragmentFile, std::string_view defines = {});
+  GLuint id() const { return name_.id(); }
+  void use() const;
+
+  // Uniform setters; the program must be in use. Unknown names are ignored (GL optimises away
+  // unused uniforms), so one setter can serve programs that share uniforms.
+  void set(const char* name, int value);
+  void set(const char* name, float value);
+  void set(const char* name, glm::vec2 value);
+  void set(const char* name, glm::vec3 value);
+  void set(const char* name, glm::ivec2 value);
+  void set(const char* name, const glm::mat3& value);
+  void set(const char* name, const glm::mat4& value);
+
+ private:
+  GLint location(const char* name);
+  GlName<ProgramTraits> name_;
+  std::string label_;
+  std::unordered_map<std::string, GLint> locations_;
+};
+
+// A 2D texture with a framebuffer that renders into it (and an optional depth buffer).
+class RenderTarget {
+ public:
+  RenderTarget(glm::ivec2 size, GLenum internalFormat, bool withDepth = false);
+  GLuint texture() const { return texture_.id(); }
+  GLuint framebuffer() const { return framebuffer_.id(); }
+  glm::ivec2 size() const { return size_; }
+  GLenum internalFormat() const { return internalFormat_; }
+  void bindForDrawing() const;
+
+ private:
+  glm::ivec2 size_;
+  GLenum internalFormat_;
+  TextureName texture_;
+  FramebufferName framebuffer_;
+  RenderbufferName depth_;
+};
+
+}  // namespace vsil::gl

@@ -1,0 +1,156 @@
+#include "slicing/renderer.h"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <optional>
+
+#include "core/error.h"
+#include "slicing/gl_context.h"
+#include "slicing/gl_state.h"
+#include "slicing/technique.h"
+#include "slicing/volume_texture.h"
+
+namespace vsil {
+
+namespace {
+
+constexpr int kMaxImageSide = 16384;
+constexpr double kMaxSamplesPerVoxel = 64.0;
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+void validate(const RenderSettings& settings) {
+  if (settings.size.x < 1 || settings.size.y < 1 || settings.size.x > kMaxImageSide ||
+      settings.size.y > kMaxImageSide) {
+    throw InputError("--size: " + std::to_string(settings.size.x) + "x" +
+                     std::to_string(settings.size.y) + " is outside 1.." +
+                     std::to_string(kMaxImageSide) + " pixels per side");
+  }
+  if (!std::isfinite(settings.iso)) throw InputError("--iso: must be a finite number");
+  if (!(settings.samplesPerVoxel > 0) || settings.samplesPerVoxel > kMaxSamplesPerVoxel) {
+    throw InputError("--sampling: must be in (0, 64] slices per voxel");
+  }
+  if (!(settings.camera.zoom > 0) || !std::isfinite(settings.camera.zoom)) {
+    throw InputError("--zoom: must be a positive number");
+  }
+  if (!std::isfinite(settings.camera.azimuthDeg) || !std::isfinite(settings.camera.elevationDeg)) {
+    throw InputError("--view: angles must be finite");
+  }
+  if (!(settings.rightAngleExponent > 0) || !std::isfinite(settings.rightAngleThreshold)) {
+    throw InputError("--ra-exponent/--ra-threshold: exponent must be positive, threshold finite");
+  }
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  gl::GlContext* context = nullptr;
+  std::optional<VolumeTexture> volumeTexture;
+  glm::ivec3 dims{0};
+  glm::dvec3 spacing{1.0};
+  gl::BufferName sliceBuffer;
+  gl::VertexArrayName sliceVertexArray;
+  gl::VertexArrayName screenVertexArray;
+  std::map<std::string, std::unique_ptr<Technique>> techniques;
+
+  Technique& technique(const std::string& name) {
+    auto it = techniques.find(name);
+    if (it == techniques.end()) it = techniques.emplace(name, makeTechnique(name)).first;
+    return *it->second;
+  }
+};
+
+Renderer::Renderer(gl::GlContext& context) : impl_(std::make_unique<Impl>()) {
+  impl_->context = &context;
+  context.makeCurrent();
+  impl_->sliceBuffer = gl::createBuffer();
+  impl_->sliceVertexArray = gl::createVertexArray();
+  impl_->screenVertexArray = gl::createVertexArray();
+  VSIL_GL(glBindVertexArray(impl_->sliceVertexArray.id()));
+  VSIL_GL(glBindBuffer(GL_ARRAY_BUFFER, impl_->sliceBuffer.id()));
+  VSIL_GL(glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr));
+  VSIL_GL(glEnableVertexAttribArray(0));
+  glBindVertexArray(0);
+}
+
+Renderer::~Renderer() = default;
+
+std::vector<std::string> Renderer::techniqueNames() { return {"silhouette", "rightangle"}; }
+
+void Renderer::setVolume(const Volume& volume) {
+  impl_->volumeTexture.reset();
+  impl_->volumeTexture.emplace(volume);
+  impl_->dims = volume.dims;
+  impl_->spacing = volume.spacing;
+}
+
+RenderResult Renderer::render(const RenderSettings& settings) {
+  if (!impl_->volumeTexture) throw std::logic_error("Renderer::render before setVolume");
+  validate(settings);
+  Technique& technique = impl_->technique(settings.technique);
+
+  RenderResult result;
+  result.view = makeView(settings.camera, impl_->dims, impl_->spacing, settings.size);
+  const SlicePlan plan =
+      planSlices(result.view, impl_->dims, impl_->spacing, settings.samplesPerVoxel);
+  result.sliceCount = int(plan.slices.size());
+  result.sliceStepEye = plan.stepEye;
+
+  // All slice polygons as triangle fans in one buffer, uploaded once per frame.
+  std::vector<glm::vec3> vertices;
+  std::vector<SliceContext> slices(plan.slices.size());
+  for (std::size_t k = 0; k < plan.slices.size(); ++k) {
+    SliceContext& slice = slices[k];
+    slice.index = int(k);
+    slice.slice = &plan.slices[k];
+    slice.firstVertex = GLint(vertices.size());
+    slice.vertexCount = GLsizei(plan.slices[k].polygonVoxel.size());
+    for (const auto& p : plan.slices[k].polygonVoxel) vertices.emplace_back(p);
+    slice.footprintBounds = polygonPixelBounds(result.view, plan.slices[k].polygonVoxel);
+    PixelRect change = slice.footprintBounds;
+    for (std::size_t back = 1; back <= 2 && back <= k; ++back) {
+      change = change.united(slices[k - back].footprintBounds);
+    }
+    slice.changeBounds = change.grown(1, result.view.viewport);
+  }
+
+  gl::ScopedState restoreState;
+  const auto start = std::chrono::steady_clock::now();
+  VSIL_GL(glBindBuffer(GL_ARRAY_BUFFER, impl_->sliceBuffer.id()));
+  VSIL_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec3)),
+                       vertices.data(), GL_STREAM_DRAW));
+  glViewport(0, 0, settings.size.x, settings.size.y);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_3D, impl_->volumeTexture->id());
+
+  FrameContext frame;
+  frame.settings = &settings;
+  frame.view = &result.view;
+  frame.plan = &plan;
+  frame.dims = impl_->dims;
+  frame.spacing = impl_->spacing;
+  frame.volumeTexture = impl_->volumeTexture->id();
+  frame.sliceVertexArray = impl_->sliceVertexArray.id();
+  frame.screenVertexArray = impl_->screenVertexArray.id();
+
+  technique.beginFrame(frame);
+  for (const SliceContext& slice : slices) technique.drawSlice(frame, slice);
+  technique.endFrame(frame);
+  VSIL_GL(glFinish());
+  result.timings.renderMs = millisecondsSince(start);
+
+  const auto readStart = std::chrono::steady_clock::now();
+  result.frame = technique.readBack(frame);
+  result.timings.readbackMs = millisecondsSince(readStart);
+  gl::checkGlError("Renderer::render", __FILE__, __LINE__);
+  return result;
+}
+
+}  // namespace vsil

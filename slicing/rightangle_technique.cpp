@@ -1,0 +1,61 @@
+#include "slicing/rightangle_technique.h"
+
+#include <limits>
+
+namespace vsil {
+
+void RightAngleTechnique::beginFrame(const FrameContext& frame) {
+  const glm::ivec2 size = frame.view->viewport;
+  if (!target_ || target_->size() != size) {
+    target_.reset();
+    target_.emplace(size, GL_RGBA32F, /*withDepth=*/true);
+  }
+  if (!program_) program_.emplace("slice.vert", "rightangle.frag");
+  target_->bindForDrawing();
+  glDisable(GL_SCISSOR_TEST);
+  const GLfloat zero[4] = {0, 0, 0, 0};
+  const GLfloat farDepth = 1.0f;
+  VSIL_GL(glClearBufferfv(GL_COLOR, 0, zero));
+  VSIL_GL(glClearBufferfv(GL_DEPTH, 0, &farDepth));
+  program_->use();
+  setSliceUniforms(*program_, frame, nullptr);
+  program_->set("rightAngleExponent", float(frame.settings->rightAngleExponent));
+  program_->set("rightAngleThreshold", float(frame.settings->rightAngleThreshold));
+}
+
+void RightAngleTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
+  if (slice.vertexCount == 0) return;
+  // Slices come front to back and each lies deeper than the last: the depth test keeps the
+  // first hit and rejects the samples behind it early.
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  program_->set("sliceEyeDistance", float(slice.slice->eyeDistance));
+  program_->set("sliceDepth", float(slice.slice->depth));
+  glBindVertexArray(frame.sliceVertexArray);
+  VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
+}
+
+FrameBuffers RightAngleTechnique::readBack(const FrameContext&) {
+  return frameFromStateImage(readTargetFlipped(*target_, 4));
+}
+
+FrameBuffers frameFromStateImage(const cv::Mat& stateDepthShade) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  FrameBuffers frame;
+  frame.state.create(stateDepthShade.rows, stateDepthShade.cols);
+  frame.depth.create(stateDepthShade.rows, stateDepthShade.cols);
+  frame.shade.create(stateDepthShade.rows, stateDepthShade.cols);
+  for (int y = 0; y < stateDepthShade.rows; ++y) {
+    const cv::Vec4f* row = stateDepthShade.ptr<cv::Vec4f>(y);
+    for (int x = 0; x < stateDepthShade.cols; ++x) {
+      const auto state = PixelState(std::uint8_t(row[x][0] + 0.5f));
+      frame.state(y, x) = std::uint8_t(state);
+      frame.depth(y, x) = state == PixelState::Empty ? nan : row[x][1];
+      frame.shade(y, x) = state == PixelState::Filled ? row[x][2] : nan;
+    }
+  }
+  return frame;
+}
+
+}  // namespace vsil

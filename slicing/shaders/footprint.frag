@@ -1,0 +1,10 @@
+// footprint.frag (silhouette pass 1 of 3): the alpha test of the slice.
+// In: the volume on this slice. Out: footprint = 1 where the sample is >= isoValue (FILLED);
+// other pixels are discarded and keep the cleared 0 (EMPTY).
+layout(location = 0) out uint footprint;
+
+void main() {
+  vec3 voxel = voxelFromEyePoint(slicePointEye());
+  if (!insideVolume(voxel) || sampleVolume(voxel) < isoValue) discard;
+  footprint = 1u;
+}

@@ -1,0 +1,7 @@
+// slice.vert: a slice polygon (box ∩ plane), vertices in voxel coordinates.
+// Fragment shaders recompute their sample point from gl_FragCoord (common.glsl), so the
+// polygon only decides which pixels run.
+layout(location = 0) in vec3 positionVoxel;
+uniform mat4 clipFromVoxel;
+
+void main() { gl_Position = clipFromVoxel * vec4(positionVoxel, 1.0); }

@@ -1,0 +1,110 @@
+#include "slicing/slicer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace vsil {
+
+PixelRect PixelRect::united(const PixelRect& other) const {
+  if (empty()) return other;
+  if (other.empty()) return *this;
+  return {std::min(x0, other.x0), std::min(y0, other.y0), std::max(x1, other.x1),
+          std::max(y1, other.y1)};
+}
+
+PixelRect PixelRect::grown(int pixels, glm::ivec2 viewport) const {
+  if (empty()) return *this;
+  return {std::max(0, x0 - pixels), std::max(0, y0 - pixels), std::min(viewport.x, x1 + pixels),
+          std::min(viewport.y, y1 + pixels)};
+}
+
+std::vector<glm::dvec3> slicePolygon(const View& view, glm::ivec3 dims, double eyeDistance) {
+  const glm::dvec3 lo(-0.5), hi = glm::dvec3(dims) - 0.5;
+  auto corner = [&](int i) {
+    return glm::dvec3((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
+  };
+  auto distanceOf = [&](const glm::dvec3& voxel) {
+    return -(view.eyeFromVoxel * glm::dvec4(voxel, 1.0)).z;
+  };
+  std::vector<glm::dvec3> points;
+  // The 12 box edges join corners differing in one bit.
+  for (int a = 0; a < 8; ++a) {
+    for (int bit = 1; bit < 8; bit <<= 1) {
+      if (a & bit) continue;
+      const int b = a | bit;
+      const glm::dvec3 pa = corner(a), pb = corner(b);
+      const double da = distanceOf(pa) - eyeDistance, db = distanceOf(pb) - eyeDistance;
+      if ((da < 0) == (db < 0)) continue;  // both on one side (a touch counts once, below)
+      const double t = da / (da - db);
+      points.push_back(pa + t * (pb - pa));
+    }
+  }
+  if (points.size() < 3) return {};
+  // Order around the centroid by angle in the eye's xy-plane.
+  glm::dvec2 centre(0.0);
+  std::vector<glm::dvec2> projected;
+  for (const auto& p : points) {
+    const glm::dvec4 eye = view.eyeFromVoxel * glm::dvec4(p, 1.0);
+    projected.emplace_back(eye.x, eye.y);
+    centre += projected.back();
+  }
+  centre /= double(points.size());
+  std::vector<std::size_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::atan2(projected[a].y - centre.y, projected[a].x - centre.x) <
+           std::atan2(projected[b].y - centre.y, projected[b].x - centre.x);
+  });
+  std::vector<glm::dvec3> polygon;
+  for (std::size_t i : order) polygon.push_back(points[i]);
+  return polygon;
+}
+
+SlicePlan planSlices(const View& view, glm::ivec3 dims, glm::dvec3 spacing,
+                     double samplesPerVoxel) {
+  if (!(samplesPerVoxel > 0) || !std::isfinite(samplesPerVoxel)) {
+    throw std::invalid_argument("planSlices: samples per voxel must be positive");
+  }
+  // Voxels crossed per unit of eye (= world) distance along the view direction.
+  const glm::dvec3 extent = glm::dvec3(dims) * spacing;
+  const double longest = std::max({extent.x, extent.y, extent.z});
+  const glm::dvec3 directionVoxel = view.viewDirectionWorld() * (longest / spacing);
+  const double voxelsPerUnit = glm::length(directionVoxel);
+  const double range = view.farEye - view.nearEye;
+  const int count = std::max(1, int(std::lround(range * voxelsPerUnit * samplesPerVoxel)));
+  SlicePlan plan;
+  plan.stepEye = range / count;
+  plan.slices.reserve(std::size_t(count));
+  for (int k = 0; k < count; ++k) {
+    Slice slice;
+    slice.eyeDistance = view.nearEye + (k + 0.5) * plan.stepEye;
+    slice.depth = (k + 0.5) / count;
+    slice.polygonVoxel = slicePolygon(view, dims, slice.eyeDistance);
+    plan.slices.push_back(std::move(slice));
+  }
+  return plan;
+}
+
+PixelRect polygonPixelBounds(const View& view, const std::vector<glm::dvec3>& polygonVoxel) {
+  if (polygonVoxel.empty()) return {};
+  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+  const glm::dmat4 clipFromVoxel = view.clipFromVoxel();
+  for (const auto& p : polygonVoxel) {
+    const glm::dvec4 clip = clipFromVoxel * glm::dvec4(p, 1.0);
+    const double px = (clip.x / clip.w + 1.0) * 0.5 * view.viewport.x;
+    const double py = (1.0 - clip.y / clip.w) * 0.5 * view.viewport.y;
+    minX = std::min(minX, px);
+    maxX = std::max(maxX, px);
+    minY = std::min(minY, py);
+    maxY = std::max(maxY, py);
+  }
+  // Clamp before converting: the box may extend far beyond a zoomed-in viewport.
+  auto clampX = [&](double x) { return std::clamp(x, -1.0, view.viewport.x + 1.0); };
+  auto clampY = [&](double y) { return std::clamp(y, -1.0, view.viewport.y + 1.0); };
+  PixelRect rect{int(std::floor(clampX(minX))), int(std::floor(clampY(minY))),
+                 int(std::ceil(clampX(maxX))) + 1, int(std::ceil(clampY(maxY))) + 1};
+  return rect.grown(0, view.viewport);
+}
+
+}  // namespace vsil

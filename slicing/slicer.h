@@ -1,0 +1,45 @@
+#pragma once
+// View-aligned slicing: planes perpendicular to the view direction (constant eye distance),
+// front to back, each cut with the volume's box into a convex polygon of 3 to 6 vertices.
+// Pure geometry, no GL: the CPU references use the same plan.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/camera.h"
+
+namespace vsil {
+
+struct Slice {
+  double eyeDistance = 0;   // -z_eye of the plane
+  double depth = 0;         // normalized depth d of the plane (View::normalizedDepth)
+  std::vector<glm::dvec3> polygonVoxel;  // box ∩ plane in voxel coordinates, convex, ordered
+};
+
+// Pixel rectangle [x0, x1) x [y0, y1) in image pixels (origin top-left); empty when x0 >= x1.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+  PixelRect united(const PixelRect& other) const;
+  PixelRect grown(int pixels, glm::ivec2 viewport) const;  // clamped to the viewport
+};
+
+struct SlicePlan {
+  double stepEye = 0;  // distance between consecutive planes
+  std::vector<Slice> slices;
+};
+
+// Slices every `1 / samplesPerVoxel` voxels along the view direction (anisotropic spacing
+// counted), spread evenly over the box's eye-distance range [nearEye, farEye] with the first
+// and last plane half a step inside it.
+SlicePlan planSlices(const View& view, glm::ivec3 dims, glm::dvec3 spacing,
+                     double samplesPerVoxel);
+
+// Box ∩ plane at eye distance `eyeDistance`, in voxel coordinates; empty if they miss.
+std::vector<glm::dvec3> slicePolygon(const View& view, glm::ivec3 dims, double eyeDistance);
+
+// The pixels whose centres may fall inside the polygon (its projected bounding box, rounded
+// outwards), clamped to the viewport.
+PixelRect polygonPixelBounds(const View& view, const std::vector<glm::dvec3>& polygonVoxel);
+
+}  // namespace vsil

@@ -1,0 +1,52 @@
+#include "slicing/technique.h"
+
+#include <cmath>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "core/error.h"
+#include "slicing/rightangle_technique.h"
+#include "slicing/silhouette_technique.h"
+
+namespace vsil {
+
+std::unique_ptr<Technique> makeTechnique(const std::string& name) {
+  if (name == "silhouette") return std::make_unique<SilhouetteTechnique>();
+  if (name == "rightangle") return std::make_unique<RightAngleTechnique>();
+  throw InputError("--technique: unknown technique '" + name +
+                   "' (known: silhouette, rightangle)");
+}
+
+void setSliceUniforms(gl::Program& program, const FrameContext& frame, const Slice* slice) {
+  const View& view = *frame.view;
+  program.set("volumeTexture", 0);
+  program.set("volumeDims", glm::vec3(frame.dims));
+  program.set("voxelFromEye", glm::mat4(glm::inverse(view.eyeFromVoxel)));
+  program.set("eyeFromVoxelGradient",
+              glm::mat3(glm::transpose(glm::inverse(glm::dmat3(view.eyeFromVoxel)))));
+  program.set("viewportSize", glm::vec2(view.viewport));
+  program.set("halfExtent", glm::vec2(view.halfExtent));
+  program.set("orthographic", view.orthographic ? 1 : 0);
+  program.set("isoValue", frame.settings->iso);
+  program.set("clipFromVoxel", glm::mat4(view.clipFromVoxel()));
+  if (slice) {
+    program.set("sliceEyeDistance", float(slice->eyeDistance));
+    program.set("sliceDepth", float(slice->depth));
+  }
+}
+
+cv::Mat readTargetFlipped(const gl::RenderTarget& target, int channels) {
+  const glm::ivec2 size = target.size();
+  cv::Mat image(size.y, size.x, CV_32FC(channels));
+  VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer()));
+  VSIL_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
+  VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
+  VSIL_GL(glReadPixels(0, 0, size.x, size.y, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT,
+                       image.data));
+  cv::Mat flipped;
+  cv::flip(image, flipped, 0);
+  return flipped;
+}
+
+}  // namespace vsil

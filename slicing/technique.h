@@ -1,0 +1,58 @@
+#pragma once
+// A technique is one paper's method expressed as passes over the shared slicing loop:
+// the Renderer walks the slices front to back and calls drawSlice for each; the technique owns
+// its render targets and programs. New techniques (illustrate, mip, semantic) plug in here.
+#include <memory>
+#include <string>
+
+#include "core/frame.h"
+#include "slicing/gl_objects.h"
+#include "slicing/renderer.h"
+#include "slicing/slicer.h"
+
+namespace vsil {
+
+// What every pass of a frame shares. Owned by the Renderer.
+struct FrameContext {
+  const RenderSettings* settings = nullptr;
+  const View* view = nullptr;
+  const SlicePlan* plan = nullptr;
+  glm::ivec3 dims{0};
+  glm::dvec3 spacing{1.0};
+  GLuint volumeTexture = 0;      // GL_TEXTURE_3D, R32F, data units, linear filtering
+  GLuint sliceVertexArray = 0;   // all slice polygons, slice k at [firstVertex, +vertexCount)
+  GLuint screenVertexArray = 0;  // empty VAO for the full-screen triangle (gl_VertexID)
+};
+
+struct SliceContext {
+  int index = 0;
+  const Slice* slice = nullptr;
+  GLint firstVertex = 0;
+  GLsizei vertexCount = 0;      // 0 when the plane misses the box
+  PixelRect footprintBounds;    // pixels this slice's polygon may cover
+  // Pixels whose state may change at this slice or may differ between ping-pong targets:
+  // the union of this and the two previous slices' bounds, grown by one pixel.
+  PixelRect changeBounds;
+};
+
+class Technique {
+ public:
+  virtual ~Technique() = default;
+  virtual void beginFrame(const FrameContext& frame) = 0;
+  virtual void drawSlice(const FrameContext& frame, const SliceContext& slice) = 0;
+  // GPU work after the last slice (e.g. the extra empty slice); the Renderer then calls glFinish.
+  virtual void endFrame(const FrameContext& frame) = 0;
+  virtual FrameBuffers readBack(const FrameContext& frame) = 0;
+};
+
+// "silhouette" or "rightangle"; throws InputError listing the names for anything else.
+std::unique_ptr<Technique> makeTechnique(const std::string& name);
+
+// Uniforms every slice shader reads (common.glsl): the volume, the camera and this slice.
+void setSliceUniforms(gl::Program& program, const FrameContext& frame, const Slice* slice);
+
+// GL texture rows run bottom-up; FrameBuffers rows top-down. Reads the target's colour
+// attachment as floats with `channels` channels (1 or 4) and flips it.
+cv::Mat readTargetFlipped(const gl::RenderTarget& target, int channels);
+
+}  // namespace vsil

@@ -1,0 +1,143 @@
+// `vsil render` end to end, through the built binary: outputs, metadata, determinism, errors.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "core/frame.h"
+#include "test_support.h"
+
+namespace vsil {
+namespace {
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
+  const auto dir = test::scratchDir();
+  const auto result = test::runVsil(
+      "render gen:sphere:48 --size 96x80 --iso 0.5 --view 10,20 --ortho --out " +
+      (dir / "a.png").string() + " --state-out " + (dir / "state.png").string() +
+      " --depth-out " + (dir / "depth.png").string() + " --meta-out " +
+      (dir / "meta.json").string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.out.find("a.png"), std::string::npos) << "prints where the image is";
+
+  const cv::Mat state = cv::imread((dir / "state.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(state.type(), CV_8UC1);
+  ASSERT_EQ(state.cols, 96);
+  ASSERT_EQ(state.rows, 80);
+  const cv::Mat depth = cv::imread((dir / "depth.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(depth.type(), CV_16UC1);
+  int silhouettes = 0;
+  for (int y = 0; y < state.rows; ++y) {
+    for (int x = 0; x < state.cols; ++x) {
+      const int grey = state.at<std::uint8_t>(y, x);
+      EXPECT_TRUE(grey == 0 || grey == 85 || grey == 255) << "grey " << grey;
+      const bool line = grey == 255;
+      silhouettes += line;
+      EXPECT_EQ(depth.at<std::uint16_t>(y, x) != 0, line) << "at (" << x << "," << y << ")";
+    }
+  }
+  EXPECT_GT(silhouettes, 40);
+
+  const auto meta = nlohmann::json::parse(slurp(dir / "meta.json"));
+  EXPECT_EQ(meta["parameters"]["technique"], "silhouette");
+  EXPECT_EQ(meta["dataset"]["name"], "sphere");
+  EXPECT_EQ(meta["dataset"]["dims"], nlohmann::json({48, 48, 48}));
+  EXPECT_EQ(meta["camera"]["viewport"], nlohmann::json({96, 80}));
+  for (const char* key : {"render", "readback", "postfx", "total"}) {
+    EXPECT_TRUE(meta["timings_ms"][key].is_number()) << key;
+  }
+  EXPECT_GT(meta["slices"].get<int>(), 40);
+
+  // The camera in the metadata projects the sphere's centre to the middle of its outline.
+  glm::dmat4 eyeFromVoxel, clipFromEye;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) {
+      eyeFromVoxel[c][r] = meta["camera"]["eye_from_voxel"][r][c].get<double>();
+      clipFromEye[c][r] = meta["camera"]["clip_from_eye"][r][c].get<double>();
+    }
+  }
+  const glm::dvec4 clip = clipFromEye * eyeFromVoxel * glm::dvec4(23.5, 23.5, 23.5, 1.0);
+  const double px = (clip.x / clip.w + 1) * 0.5 * 96, py = (1 - clip.y / clip.w) * 0.5 * 80;
+  double sumX = 0, sumY = 0;
+  for (int y = 0; y < state.rows; ++y) {
+    for (int x = 0; x < state.cols; ++x) {
+      if (state.at<std::uint8_t>(y, x) != 255) continue;
+      sumX += x + 0.5;
+      sumY += y + 0.5;
+    }
+  }
+  EXPECT_NEAR(sumX / silhouettes, px, 0.5);
+  EXPECT_NEAR(sumY / silhouettes, py, 0.5);
+  // Silhouette depth: the sphere's centre depth, normalized over depth_range_eye.
+  const double nearEye = meta["camera"]["depth_range_eye"][0], farEye = meta["camera"]["depth_range_eye"][1];
+  const double centreDepth = (-(eyeFromVoxel * glm::dvec4(23.5, 23.5, 23.5, 1.0)).z - nearEye) /
+                             (farEye - nearEye);
+  double depthSum = 0;
+  for (int y = 0; y < state.rows; ++y) {
+    for (int x = 0; x < state.cols; ++x) {
+      const int code = depth.at<std::uint16_t>(y, x);
+      if (code) depthSum += (code - 1) / 65534.0;
+    }
+  }
+  EXPECT_NEAR(depthSum / silhouettes, centreDepth, 0.02);
+}
+
+TEST(RenderCommand, SameCommandTwiceGivesIdenticalBytes) {
+  const auto dir = test::scratchDir();
+  for (const char* technique : {"silhouette", "rightangle"}) {
+    std::string outputs[2];
+    for (int run = 0; run < 2; ++run) {
+      const std::string name = std::string(technique) + std::to_string(run);
+      const auto result = test::runVsil("render gen:torus:48 --size 100x90 --technique " +
+                                        std::string(technique) + " --out " +
+                                        (dir / (name + ".png")).string() + " --depth-out " +
+                                        (dir / (name + "-depth.png")).string());
+      ASSERT_EQ(result.exitCode, 0) << result.err;
+      outputs[run] = slurp(dir / (name + ".png")) + slurp(dir / (name + "-depth.png"));
+    }
+    EXPECT_EQ(outputs[0], outputs[1]) << technique;
+  }
+}
+
+struct BadRender {
+  const char* arguments;
+  const char* expected;  // a fragment of the one-line error
+};
+
+class RenderCommandRejects : public ::testing::TestWithParam<BadRender> {};
+
+TEST_P(RenderCommandRejects, WithOneLineAndExitTwoAndNoOutput) {
+  const auto dir = test::scratchDir();
+  const auto out = dir / "never.png";
+  const auto result = test::runVsil(std::string("render ") + GetParam().arguments + " --out " +
+                                    out.string());
+  EXPECT_EQ(result.exitCode, 2) << result.err;
+  EXPECT_NE(result.err.find(GetParam().expected), std::string::npos) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_TRUE(result.out.empty()) << result.out;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    BadInput, RenderCommandRejects,
+    ::testing::Values(BadRender{"gen:sphere:16 --technique nope", "--technique"},
+                      BadRender{"gen:sphere:16 --size 0x10", "--size"},
+                      BadRender{"gen:sphere:16 --size 12", "--size"},
+                      BadRender{"gen:sphere:16 --view 1", "--view"},
+                      BadRender{"gen:sphere:16 --zoom -1", "--zoom"},
+                      BadRender{"gen:sphere:16 --sampling 0", "--sampling"},
+                      BadRender{"gen:nosuchthing", "nosuchthing"},
+                      BadRender{"/nonexistent/volume.nrrd", "/nonexistent/volume.nrrd"}));
+
+}  // namespace
+}  // namespace vsil

@@ -1,0 +1,75 @@
+#include "slice_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vsil::reference {
+
+SliceSampler::SliceSampler(const Volume& volume, const View& view)
+    : volume_(volume),
+      view_(view),
+      voxelFromEye_(glm::inverse(view.eyeFromVoxel)),
+      eyeFromVoxelGradient_(glm::transpose(glm::inverse(glm::dmat3(view.eyeFromVoxel)))),
+      viewportSize_(view.viewport),
+      halfExtent_(view.halfExtent),
+      dims_(volume.dims) {}
+
+glm::vec3 SliceSampler::eyePoint(int x, int y, float eyeDistance) const {
+  // gl_FragCoord has its origin at the bottom-left.
+  const glm::vec2 fragCoord(float(x) + 0.5f, float(view_.viewport.y - 1 - y) + 0.5f);
+  const glm::vec2 ndc = fragCoord / viewportSize_ * 2.0f - 1.0f;
+  const float scale = view_.orthographic ? 1.0f : eyeDistance;
+  const glm::vec2 xy = ndc * halfExtent_ * scale;
+  return {xy.x, xy.y, -eyeDistance};
+}
+
+glm::vec3 SliceSampler::voxelFromEyePoint(glm::vec3 eye) const {
+  return glm::vec3(voxelFromEye_ * glm::vec4(eye, 1.0f));
+}
+
+bool SliceSampler::insideVolume(glm::vec3 voxel) const {
+  return voxel.x >= -0.5f && voxel.y >= -0.5f && voxel.z >= -0.5f && voxel.x <= dims_.x - 0.5f &&
+         voxel.y <= dims_.y - 0.5f && voxel.z <= dims_.z - 0.5f;
+}
+
+float SliceSampler::sample(glm::vec3 voxel) const {
+  // OpenGL: texture coordinate u = (voxel + 0.5) / dims, texel space u * dims - 0.5.
+  const glm::vec3 u = (voxel + 0.5f) / dims_;
+  const glm::vec3 t = u * dims_ - 0.5f;
+  const glm::vec3 base = glm::floor(t);
+  const glm::vec3 f = t - base;
+  auto at = [&](int x, int y, int z) {
+    x = std::clamp(x, 0, volume_.dims.x - 1);
+    y = std::clamp(y, 0, volume_.dims.y - 1);
+    z = std::clamp(z, 0, volume_.dims.z - 1);
+    return volume_.at(x, y, z);
+  };
+  const int x0 = int(base.x), y0 = int(base.y), z0 = int(base.z);
+  float result = 0.0f;
+  for (int dz = 0; dz < 2; ++dz) {
+    for (int dy = 0; dy < 2; ++dy) {
+      for (int dx = 0; dx < 2; ++dx) {
+        const float w = (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z);
+        result += w * at(x0 + dx, y0 + dy, z0 + dz);
+      }
+    }
+  }
+  return result;
+}
+
+glm::vec3 SliceSampler::gradientVoxel(glm::vec3 voxel) const {
+  return glm::vec3(sample(voxel + glm::vec3(1, 0, 0)) - sample(voxel - glm::vec3(1, 0, 0)),
+                   sample(voxel + glm::vec3(0, 1, 0)) - sample(voxel - glm::vec3(0, 1, 0)),
+                   sample(voxel + glm::vec3(0, 0, 1)) - sample(voxel - glm::vec3(0, 0, 1))) *
+         0.5f;
+}
+
+float SliceSampler::facingRatio(glm::vec3 voxel, glm::vec3 eye) const {
+  const glm::vec3 normalEye = eyeFromVoxelGradient_ * gradientVoxel(voxel);
+  const float length2 = glm::dot(normalEye, normalEye);
+  if (length2 <= 0.0f) return 1.0f;
+  const glm::vec3 toEye = view_.orthographic ? glm::vec3(0, 0, 1) : -glm::normalize(eye);
+  return std::abs(glm::dot(normalEye / std::sqrt(length2), toEye));
+}
+
+}  // namespace vsil::reference

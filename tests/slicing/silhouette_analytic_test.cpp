@@ -1,0 +1,161 @@
+// Analytic truth: silhouettes of spheres whose outlines are known exactly.
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "analytic_volumes.h"
+#include "gl_harness.h"
+#include "slicing/renderer.h"
+
+namespace vsil {
+namespace {
+
+// Projected centre (pixels, top-left origin) and radius (pixels) of a ball in an orthographic
+// view: the silhouette of a sphere is a circle of the sphere's radius around its projection.
+struct Circle {
+  glm::dvec2 centre;
+  double radius;
+};
+
+Circle projectBall(const test::Ball& ball, const View& view) {
+  const glm::dvec4 clip = view.clipFromVoxel() * glm::dvec4(ball.centreVoxel, 1.0);
+  const glm::dvec2 pixel((clip.x / clip.w + 1) * 0.5 * view.viewport.x,
+                         (1 - clip.y / clip.w) * 0.5 * view.viewport.y);
+  // World units per voxel (spacing 1) is worldFromVoxel's scale; pixels per world unit from
+  // the orthographic half extent.
+  const double worldPerVoxel = view.worldFromVoxel[0][0];
+  const double pixelsPerWorld = view.viewport.y / (2.0 * view.halfExtent.y);
+  return {pixel, ball.radiusVoxels * worldPerVoxel * pixelsPerWorld};
+}
+
+RenderResult renderOrthographic(const Volume& volume, glm::ivec2 size, double azimuth = 0,
+                                double elevation = 0) {
+  RenderSettings settings;
+  settings.size = size;
+  settings.iso = 0.5f;
+  settings.camera.orthographic = true;
+  settings.camera.azimuthDeg = azimuth;
+  settings.camera.elevationDeg = elevation;
+  Renderer renderer(test::sharedGlContext());
+  renderer.setVolume(volume);
+  return renderer.render(settings);
+}
+
+using SilhouetteAnalytic = test::GlTest;
+
+TEST_F(SilhouetteAnalytic, SeparatedSpheresGiveOnePixelCirclesAtTheProjectedRadius) {
+  const std::vector<test::Ball> balls = {{{24, 40, 30}, 14.0}, {{72, 40, 50}, 10.0},
+                                         {{50, 76, 40}, 7.5}};
+  const Volume volume = test::ballsVolume({96, 96, 80}, balls);
+  const RenderResult result = renderOrthographic(volume, {320, 320});
+  std::vector<Circle> circles;
+  for (const auto& ball : balls) circles.push_back(projectBall(ball, result.view));
+
+  std::vector<int> onCircle(balls.size(), 0);
+  for (int y = 0; y < result.frame.height(); ++y) {
+    for (int x = 0; x < result.frame.width(); ++x) {
+      if (PixelState(result.frame.state(y, x)) != PixelState::Silhouette) continue;
+      const glm::dvec2 p(x + 0.5, y + 0.5);
+      // Which circle's outline is nearest, and how far off.
+      std::size_t best = 0;
+      double bestOff = 1e9;
+      for (std::size_t i = 0; i < circles.size(); ++i) {
+        const double off = glm::length(p - circles[i].centre) - circles[i].radius;
+        if (std::abs(off) < std::abs(bestOff)) {
+          bestOff = off;
+          best = i;
+        }
+      }
+      // Silhouette pixels are filled pixels at the rim: centres within one pixel inside the
+      // exact circle (plus the trilinear reconstruction's sub-pixel error).
+      EXPECT_LE(bestOff, 0.25) << "at (" << x << "," << y << ")";
+      EXPECT_GE(bestOff, -1.5) << "at (" << x << "," << y << ")";
+      ++onCircle[best];
+    }
+  }
+  for (std::size_t i = 0; i < circles.size(); ++i) {
+    // Thinness: a one-pixel 8-connected digital circle has between 1 and sqrt(2)·... pixels
+    // per unit length (about 1.27 on average over orientations for an inner boundary);
+    // a doubled line would be near 2.
+    const double perLength = onCircle[i] / (2 * std::numbers::pi * circles[i].radius);
+    EXPECT_GE(perLength, 0.8) << "circle " << i;
+    EXPECT_LE(perLength, 1.4) << "circle " << i;
+  }
+}
+
+TEST_F(SilhouetteAnalytic, OverlappingSpheresShowOnlyTheVisibleOutline) {
+  // Front ball (nearer the eye at azimuth 0: larger z) overlaps a back ball in projection.
+  const test::Ball front{{44, 48, 62}, 18.0};
+  const test::Ball back{{66, 48, 30}, 20.0};
+  const Volume volume = test::ballsVolume({112, 96, 96}, {front, back});
+  const RenderResult result = renderOrthographic(volume, {320, 300});
+  const Circle f = projectBall(front, result.view), b = projectBall(back, result.view);
+  ASSERT_LT(glm::length(f.centre - b.centre), f.radius + b.radius) << "they must overlap";
+
+  int frontRim = 0, backRim = 0, hidden = 0, interior = 0;
+  for (int y = 0; y < result.frame.height(); ++y) {
+    for (int x = 0; x < result.frame.width(); ++x) {
+      if (PixelState(result.frame.state(y, x)) != PixelState::Silhouette) continue;
+      const glm::dvec2 p(x + 0.5, y + 0.5);
+      const double offFront = glm::length(p - f.centre) - f.radius;
+      const double offBack = glm::length(p - b.centre) - b.radius;
+      if (offFront <= 0.25 && offFront >= -1.5) {
+        ++frontRim;  // the front sphere's whole outline is visible
+      } else if (offBack <= 0.25 && offBack >= -1.5) {
+        // The back sphere's outline is visible only outside the front disc.
+        if (offFront < 0) ++hidden; else ++backRim;
+      } else {
+        ++interior;
+      }
+    }
+  }
+  EXPECT_EQ(hidden, 0) << "silhouette of the back sphere drawn through the front one";
+  EXPECT_EQ(interior, 0) << "silhouette pixels away from both outlines (double lines?)";
+  EXPECT_GT(frontRim, int(2 * std::numbers::pi * f.radius * 0.8));
+  EXPECT_GT(backRim, int(std::numbers::pi * b.radius * 0.5));
+}
+
+TEST_F(SilhouetteAnalytic, SilhouetteDepthIsWhereTheViewRayGrazesTheSphere) {
+  const test::Ball ball{{40, 40, 40}, 20.0};
+  const Volume volume = test::ballsVolume({80, 80, 80}, {ball});
+  const RenderResult result = renderOrthographic(volume, {200, 200}, 25, 15);
+  const double centreDistance = -(result.view.eyeFromVoxel * glm::dvec4(ball.centreVoxel, 1)).z;
+  const double expected = result.view.normalizedDepth(centreDistance);
+  int count = 0;
+  double sum = 0;
+  for (int y = 0; y < 200; ++y) {
+    for (int x = 0; x < 200; ++x) {
+      if (PixelState(result.frame.state(y, x)) != PixelState::Silhouette) continue;
+      sum += result.frame.depth(y, x);
+      ++count;
+      // Each rim pixel's ray grazes the sphere over a chord centred on the centre's depth;
+      // half a slice of quantization either way.
+      EXPECT_NEAR(result.frame.depth(y, x), expected, 1.0 / result.sliceCount + 1e-6);
+    }
+  }
+  ASSERT_GT(count, 50);
+  EXPECT_NEAR(sum / count, expected, 0.5 / result.sliceCount);
+}
+
+TEST_F(SilhouetteAnalytic, RenderingIsDeterministic) {
+  const Volume volume = test::ballsVolume({64, 64, 64}, {{{30, 34, 32}, 17.0}});
+  RenderSettings settings;
+  settings.size = {150, 130};
+  settings.iso = 0.5f;
+  Renderer renderer(test::sharedGlContext());
+  renderer.setVolume(volume);
+  for (const char* technique : {"silhouette", "rightangle"}) {
+    settings.technique = technique;
+    const RenderResult a = renderer.render(settings);
+    const RenderResult b = renderer.render(settings);
+    EXPECT_EQ(cv::norm(a.frame.state, b.frame.state, cv::NORM_INF), 0) << technique;
+    cv::Mat depthA = a.frame.depth.clone(), depthB = b.frame.depth.clone();
+    cv::patchNaNs(depthA, -1);
+    cv::patchNaNs(depthB, -1);
+    EXPECT_EQ(cv::norm(depthA, depthB, cv::NORM_INF), 0) << technique;
+  }
+}
+
+}  // namespace
+}  // namespace vsil
