@@ -5,7 +5,7 @@
 
 #include "cli/cli_postfx_options.h"
 #include "core/error.h"
-#include "reference/digital_curves.h"
+#include "digital_curves.h"
 
 namespace vsil {
 namespace {

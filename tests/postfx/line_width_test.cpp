@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "digital_curves.h"
 #include "postfx/broaden.h"
-#include "reference/digital_curves.h"
 
 namespace vsil {
 namespace {

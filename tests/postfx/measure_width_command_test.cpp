@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image_file.h"
+#include "digital_curves.h"
 #include "postfx/broaden.h"
-#include "reference/digital_curves.h"
-#include "reference/test_support.h"
+#include "test_support.h"
 
 namespace vsil {
 namespace {
