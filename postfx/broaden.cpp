@@ -1,0 +1,89 @@
+#include "postfx/broaden.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
+
+namespace vsil {
+namespace {
+
+// A density below this is a line end or an isolated pixel; ends get at most twice a line's
+// intensity per pixel, which gives back the half of the mass they miss.
+constexpr double kMinimumDensity = 0.5;
+
+}  // namespace
+
+cv::Mat1f lineDensity(const cv::Mat1b& lineMask) {
+  cv::Mat1f mask;
+  cv::Mat1b binary = lineMask != 0;
+  binary.convertTo(mask, CV_32F, 1.0 / 255.0);
+  const double s = kDensityScale;
+  const int reach = int(std::ceil(4 * s));
+  cv::Mat1f blurred;
+  cv::GaussianBlur(mask, blurred, cv::Size(2 * reach + 1, 2 * reach + 1), s, s,
+                   cv::BORDER_CONSTANT);
+  // A straight line of unit density blurs to 1/(√(2π)s) at its centre; the pixels of a digital
+  // line lie across a strip of width b, which lowers the mean of 1/estimate by b²/(12 s²), b²
+  // averaged over orientations as in width_law.h.
+  const double stripBias = 1.0 - (1.0 + 2.0 / std::numbers::pi) / (12.0 * s * s);
+  return blurred * (std::sqrt(2.0 * std::numbers::pi) * s / stripBias);
+}
+
+cv::Mat1b broadenLines(const cv::Mat1f& lineWidths, FftGaussianBlur& blur, double maxWidth) {
+  if (lineWidths.empty()) throw std::invalid_argument("broadenLines: empty image");
+  const cv::Mat1b lineMask = lineWidths > 0;
+  if (maxWidth <= 0) cv::minMaxLoc(lineWidths, nullptr, &maxWidth);
+  if (maxWidth <= 1.0) return lineMask;  // W = 1: the one-pixel lines themselves
+
+  const double sigma = blurSigmaForMaxWidth(maxWidth);
+  const cv::Mat1f density = lineDensity(lineMask);
+  cv::Mat1f intensity(lineWidths.size(), 0.0f);
+  for (int y = 0; y < lineWidths.rows; ++y) {
+    for (int x = 0; x < lineWidths.cols; ++x) {
+      const float width = lineWidths(y, x);
+      if (!(width > 0)) continue;
+      const double perLength = lineIntensityForWidth(std::max(1.0f, width), sigma);
+      intensity(y, x) = float(perLength / std::max(kMinimumDensity, double(density(y, x))));
+    }
+  }
+  const cv::Mat1f blurred = blur.blur(intensity, sigma, kBroadeningKernelShift);
+  cv::Mat1b band = blurred >= float(kLineThreshold);
+  return band | lineMask;
+}
+
+cv::Mat1b broadenMask(const cv::Mat1b& lineMask, double width, FftGaussianBlur& blur) {
+  WidthLaw::fixed(width).validate();
+  cv::Mat1f widths(lineMask.size(), 0.0f);
+  widths.setTo(float(width), lineMask != 0);
+  return broadenLines(widths, blur, width);
+}
+
+cv::Mat1f lineWidthsFromDepth(const cv::Mat1b& lineMask, const cv::Mat1f& depth,
+                              const WidthLaw& law) {
+  if (lineMask.size() != depth.size()) {
+    throw std::invalid_argument("lineWidthsFromDepth: mask and depth differ in size");
+  }
+  cv::Mat1f widths(lineMask.size(), 0.0f);
+  for (int y = 0; y < lineMask.rows; ++y) {
+    for (int x = 0; x < lineMask.cols; ++x) {
+      if (!lineMask(y, x)) continue;
+      const float d = depth(y, x);
+      widths(y, x) = float(law.widthAt(std::isnan(d) ? 0.0 : double(d)));
+    }
+  }
+  return widths;
+}
+
+cv::Mat1b broadenSilhouettes(const FrameBuffers& frame, const WidthLaw& law,
+                             FftGaussianBlur& blur) {
+  law.validate();
+  const cv::Mat1b silhouettes = frame.state == std::uint8_t(PixelState::Silhouette);
+  cv::Mat1f depth = frame.depth;
+  if (depth.empty()) depth = cv::Mat1f(frame.state.size(), 0.0f);
+  return broadenLines(lineWidthsFromDepth(silhouettes, depth, law), blur, law.maxWidth());
+}
+
+}  // namespace vsil

@@ -1,0 +1,66 @@
+#include "postfx/color.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <utility>
+
+#include "core/error.h"
+
+namespace vsil {
+namespace {
+
+constexpr std::array<std::pair<const char*, Rgba>, 13> kNamedColors{{
+    {"black", {0, 0, 0, 255}},
+    {"white", {255, 255, 255, 255}},
+    {"red", {255, 0, 0, 255}},
+    {"green", {0, 128, 0, 255}},
+    {"blue", {0, 0, 255, 255}},
+    {"yellow", {255, 255, 0, 255}},
+    {"cyan", {0, 255, 255, 255}},
+    {"magenta", {255, 0, 255, 255}},
+    {"grey", {128, 128, 128, 255}},
+    {"gray", {128, 128, 128, 255}},
+    {"orange", {255, 165, 0, 255}},
+    {"navy", {0, 0, 128, 255}},
+    {"transparent", {0, 0, 0, 0}},
+}};
+
+int hexDigit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  return -1;
+}
+
+[[noreturn]] void throwBadColor(const std::string& text, const std::string& flagName) {
+  throwInputError(flagName, "'" + text +
+                                "' is not a colour (use a name such as black, white, red, or "
+                                "#rgb, #rrggbb, #rrggbbaa)");
+}
+
+}  // namespace
+
+Rgba parseColor(const std::string& text, const std::string& flagName) {
+  std::string lower = text;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  for (const auto& [name, color] : kNamedColors) {
+    if (lower == name) return color;
+  }
+  const auto bad = [&]() { throwBadColor(text, flagName); };
+  if (lower.empty() || lower[0] != '#') bad();
+  const std::string hex = lower.substr(1);
+  for (char c : hex) {
+    if (hexDigit(c) < 0) bad();
+  }
+  if (hex.size() == 3) {
+    return {hexDigit(hex[0]) * 17, hexDigit(hex[1]) * 17, hexDigit(hex[2]) * 17, 255};
+  }
+  const auto byte = [&](std::size_t i) { return hexDigit(hex[i]) * 16 + hexDigit(hex[i + 1]); };
+  if (hex.size() == 6) return {byte(0), byte(2), byte(4), 255};
+  if (hex.size() == 8) return {byte(0), byte(2), byte(4), byte(6)};
+  throwBadColor(text, flagName);
+}
+
+}  // namespace vsil

@@ -1,0 +1,43 @@
+#include "postfx/compose.h"
+
+#include <cmath>
+
+#include <algorithm>
+
+#include <opencv2/imgproc.hpp>
+
+#include "postfx/broaden.h"
+
+namespace vsil {
+
+cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& options,
+                            FftGaussianBlur& blur, const cv::Mat1b& lines) {
+  const cv::Mat1b band = lines.empty() ? broadenSilhouettes(frame, options.width, blur) : lines;
+  const bool opaque = options.lineColor.a == 255 && options.background.a == 255 &&
+                      (options.fill == FillMode::None || options.fillColor.a == 255);
+  cv::Mat4b image(frame.state.size(), options.background.bgra());
+  for (int y = 0; y < image.rows; ++y) {
+    for (int x = 0; x < image.cols; ++x) {
+      if (band(y, x)) {
+        image(y, x) = options.lineColor.bgra();
+        continue;
+      }
+      if (options.fill == FillMode::None || frame.state(y, x) == std::uint8_t(PixelState::Empty)) {
+        continue;
+      }
+      cv::Vec4b fill = options.fillColor.bgra();
+      if (options.fill == FillMode::Shaded && !frame.shade.empty()) {
+        const float shade = frame.shade(y, x);
+        const double k = std::isnan(shade) ? 1.0 : std::clamp(double(shade), 0.0, 1.0);
+        for (int c = 0; c < 3; ++c) fill[c] = cv::saturate_cast<std::uint8_t>(fill[c] * k);
+      }
+      image(y, x) = fill;
+    }
+  }
+  if (!opaque) return image;
+  cv::Mat3b bgr;
+  cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+  return bgr;
+}
+
+}  // namespace vsil

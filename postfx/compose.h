@@ -1,0 +1,28 @@
+#pragma once
+// Composition of an illustration: broadened lines in the line colour over the fill of the
+// Filled pixels (none, a flat colour, or that colour shaded by the diffuse shade) over the
+// background. The result is 8-bit BGRA (BGR when every colour is opaque), ready for writePng.
+#include <opencv2/core.hpp>
+
+#include "core/frame.h"
+#include "postfx/color.h"
+#include "postfx/gaussian_fft.h"
+#include "postfx/width_law.h"
+
+namespace vsil {
+
+enum class FillMode { None, Flat, Shaded };
+
+struct PostfxOptions {
+  WidthLaw width = WidthLaw::fixed(3);
+  Rgba lineColor{0, 0, 0, 255};
+  Rgba background{255, 255, 255, 255};
+  FillMode fill = FillMode::None;
+  Rgba fillColor{200, 200, 200, 255};
+};
+
+// `lines` is the broadened line mask (broaden.h); pass an empty Mat to broaden here.
+cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& options,
+                            FftGaussianBlur& blur, const cv::Mat1b& lines = {});
+
+}  // namespace vsil

@@ -1,0 +1,223 @@
+#include "postfx/line_width.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include <opencv2/imgproc.hpp>
+
+#include "core/error.h"
+
+namespace vsil {
+namespace {
+
+// Morphological skeleton (Lantuéjoul): the union over k of erode^k(X) minus its opening. Core
+// imgproc has no thinning (that is opencv_contrib's ximgproc); this set is not connected, but a
+// width measurement needs medial pixels, not curves.
+cv::Mat1b morphologicalSkeleton(const cv::Mat1b& mask) {
+  const cv::Mat element = cv::getStructuringElement(cv::MORPH_CROSS, {3, 3});
+  cv::Mat1b skeleton(mask.size(), 0), eroded = mask.clone(), opened;
+  while (cv::countNonZero(eroded) > 0) {
+    cv::morphologyEx(eroded, opened, cv::MORPH_OPEN, element, {-1, -1}, 1, cv::BORDER_CONSTANT, 0);
+    skeleton |= eroded & ~opened;
+    cv::erode(eroded, eroded, element, {-1, -1}, 1, cv::BORDER_CONSTANT, 0);
+  }
+  return skeleton;
+}
+
+double bilinear(const cv::Mat1f& image, double x, double y) {
+  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  if (x0 < 0 || y0 < 0 || x0 + 1 >= image.cols || y0 + 1 >= image.rows) return 0.0;
+  const double fx = x - x0, fy = y - y0;
+  return (1 - fy) * ((1 - fx) * image(y0, x0) + fx * image(y0, x0 + 1)) +
+         fy * ((1 - fx) * image(y0 + 1, x0) + fx * image(y0 + 1, x0 + 1));
+}
+
+double percentile(const std::vector<double>& sorted, double q) {
+  const double position = q * double(sorted.size() - 1);
+  const auto i = std::size_t(position);
+  const double f = position - double(i);
+  return i + 1 < sorted.size() ? sorted[i] * (1 - f) + sorted[i + 1] * f : sorted[i];
+}
+
+std::optional<double> depthNear(const cv::Mat& depth, cv::Point p) {
+  std::optional<double> best;
+  int bestDistance = 1 << 30;
+  for (int dy = -2; dy <= 2; ++dy) {
+    for (int dx = -2; dx <= 2; ++dx) {
+      const int x = p.x + dx, y = p.y + dy;
+      if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) continue;
+      double d = 0;
+      switch (depth.depth()) {
+        case CV_32F:
+          d = depth.at<float>(y, x);
+          break;
+        case CV_16U:
+          d = depth.at<std::uint16_t>(y, x) / 65535.0;
+          break;
+        default:
+          d = depth.at<std::uint8_t>(y, x) / 255.0;
+          break;
+      }
+      if (std::isnan(d) || dx * dx + dy * dy >= bestDistance) continue;
+      best = d;
+      bestDistance = dx * dx + dy * dy;
+    }
+  }
+  return best;
+}
+
+cv::Mat singleChannelDepth(const cv::Mat& depthImage) {
+  if (depthImage.channels() == 1) return depthImage;
+  std::vector<cv::Mat> channels;
+  cv::split(depthImage, channels);
+  return channels[0];
+}
+
+}  // namespace
+
+cv::Mat1b lineMaskFromImage(const cv::Mat& image, const Rgba& lineColor, int tolerance) {
+  if (image.depth() != CV_8U) throw std::invalid_argument("lineMaskFromImage: 8-bit images only");
+  cv::Mat1b mask;
+  if (image.channels() == 1) {
+    const int grey = (lineColor.r * 299 + lineColor.g * 587 + lineColor.b * 114) / 1000;
+    cv::inRange(image, std::max(0, grey - tolerance), std::min(255, grey + tolerance), mask);
+    return mask;
+  }
+  cv::Mat3b bgr;
+  if (image.channels() == 4) {
+    cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+  } else {
+    bgr = image;
+  }
+  const cv::Scalar low(std::max(0, lineColor.b - tolerance), std::max(0, lineColor.g - tolerance),
+                       std::max(0, lineColor.r - tolerance));
+  const cv::Scalar high(std::min(255, lineColor.b + tolerance),
+                        std::min(255, lineColor.g + tolerance),
+                        std::min(255, lineColor.r + tolerance));
+  cv::inRange(bgr, low, high, mask);
+  return mask;
+}
+
+std::vector<LineWidthSample> measureLineWidths(const cv::Mat1b& lineMask) {
+  const cv::Mat1b mask = lineMask != 0;
+  cv::Mat1f distance;
+  cv::distanceTransform(mask, distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  // Which non-line pixel is nearest (labels need the 5x5 approximate transform; only the
+  // direction is taken from it).
+  cv::Mat1f approximate;
+  cv::Mat1i labels;
+  cv::distanceTransform(mask, approximate, labels, cv::DIST_L2, cv::DIST_MASK_5,
+                        cv::DIST_LABEL_PIXEL);
+  std::vector<cv::Point> labelPixel(std::size_t(mask.total()) + 1, cv::Point(-1, -1));
+  for (int y = 0; y < mask.rows; ++y) {
+    for (int x = 0; x < mask.cols; ++x) {
+      if (!mask(y, x)) labelPixel[std::size_t(labels(y, x))] = {x, y};
+    }
+  }
+  const cv::Mat1b skeleton = morphologicalSkeleton(mask);
+  std::vector<LineWidthSample> samples;
+  for (int y = 0; y < mask.rows; ++y) {
+    for (int x = 0; x < mask.cols; ++x) {
+      if (!skeleton(y, x)) continue;
+      const cv::Point nearest = labelPixel[std::size_t(labels(y, x))];
+      if (nearest.x < 0) continue;  // no background at all
+      cv::Point2d away(x - nearest.x, y - nearest.y);
+      away *= 1.0 / std::hypot(away.x, away.y);
+      const double here = distance(y, x);
+      // The far sample can be at most one pixel farther from the near side than p.
+      const double beyond =
+          std::min(double(here) + 1.0, bilinear(distance, x + away.x, y + away.y));
+      samples.push_back({{x, y}, here + std::max(here - 1.0, beyond)});
+    }
+  }
+  return samples;
+}
+
+WidthStatistics summarizeWidths(std::vector<double> widths, double binWidth) {
+  WidthStatistics stats;
+  stats.binWidth = binWidth;
+  if (widths.empty()) return stats;
+  std::sort(widths.begin(), widths.end());
+  stats.count = int(widths.size());
+  double sum = 0;
+  for (double w : widths) sum += w;
+  stats.mean = sum / double(widths.size());
+  stats.min = widths.front();
+  stats.max = widths.back();
+  stats.median = percentile(widths, 0.5);
+  stats.p05 = percentile(widths, 0.05);
+  stats.p25 = percentile(widths, 0.25);
+  stats.p75 = percentile(widths, 0.75);
+  stats.p95 = percentile(widths, 0.95);
+  stats.histogram.assign(std::size_t(stats.max / binWidth) + 1, 0);
+  for (double w : widths) ++stats.histogram[std::size_t(w / binWidth)];
+  return stats;
+}
+
+std::vector<DepthBin> widthAgainstDepth(const std::vector<LineWidthSample>& samples,
+                                        const cv::Mat& depthImage, int binCount) {
+  const cv::Mat depth = singleChannelDepth(depthImage);
+  std::vector<std::vector<double>> perBin(static_cast<std::size_t>(binCount));
+  for (const auto& sample : samples) {
+    const auto d = depthNear(depth, sample.pixel);
+    if (!d) continue;
+    const int bin = std::clamp(int(*d * binCount), 0, binCount - 1);
+    perBin[std::size_t(bin)].push_back(sample.width);
+  }
+  std::vector<DepthBin> bins;
+  for (int i = 0; i < binCount; ++i) {
+    DepthBin bin{double(i) / binCount, double(i + 1) / binCount};
+    const WidthStatistics stats = summarizeWidths(perBin[std::size_t(i)]);
+    bin.count = stats.count;
+    bin.meanWidth = stats.mean;
+    bin.medianWidth = stats.median;
+    bins.push_back(bin);
+  }
+  return bins;
+}
+
+cv::Mat3b plotWidthAgainstDepth(const std::vector<LineWidthSample>& samples,
+                                const cv::Mat& depthImage, const std::vector<DepthBin>& bins) {
+  const cv::Mat depth = singleChannelDepth(depthImage);
+  const int width = 640, height = 480, left = 70, right = 20, top = 30, bottom = 60;
+  cv::Mat3b plot(height, width, cv::Vec3b(255, 255, 255));
+  double maxWidth = 1;
+  for (const auto& s : samples) maxWidth = std::max(maxWidth, s.width);
+  maxWidth = std::ceil(maxWidth * 1.1);
+  const auto toPixel = [&](double d, double w) {
+    return cv::Point(left + int(d * (width - left - right)),
+                     height - bottom - int(w / maxWidth * (height - top - bottom)));
+  };
+  const cv::Scalar black(0, 0, 0), grey(160, 160, 160), blue(200, 80, 0);
+  const auto font = cv::FONT_HERSHEY_SIMPLEX;
+  cv::line(plot, toPixel(0, 0), toPixel(1, 0), black, 1);
+  cv::line(plot, toPixel(0, 0), toPixel(0, maxWidth), black, 1);
+  for (int i = 0; i <= 4; ++i) {
+    const double d = i / 4.0, w = maxWidth * i / 4.0;
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", d);
+    cv::putText(plot, text, toPixel(d, 0) + cv::Point(-15, 20), font, 0.4, black);
+    std::snprintf(text, sizeof text, "%.1f", w);
+    cv::putText(plot, text, toPixel(0, w) + cv::Point(-50, 5), font, 0.4, black);
+  }
+  cv::putText(plot, "normalized depth", {width / 2 - 60, height - 15}, font, 0.5, black);
+  cv::putText(plot, "line width (px)", {5, 18}, font, 0.5, black);
+  for (const auto& s : samples) {
+    if (const auto d = depthNear(depth, s.pixel))
+      cv::circle(plot, toPixel(*d, s.width), 1, grey, -1);
+  }
+  cv::Point previous(-1, -1);
+  for (const auto& bin : bins) {
+    if (bin.count == 0) continue;
+    const cv::Point p = toPixel(0.5 * (bin.depthFrom + bin.depthTo), bin.meanWidth);
+    cv::circle(plot, p, 4, blue, -1);
+    if (previous.x >= 0) cv::line(plot, previous, p, blue, 2);
+    previous = p;
+  }
+  return plot;
+}
+
+}  // namespace vsil

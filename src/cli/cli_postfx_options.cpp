@@ -1,0 +1,72 @@
+#include "cli/cli_postfx_options.h"
+
+#include "core/error.h"
+
+namespace vsil::cli {
+
+vsil::FillMode parseFillMode(const std::string& text, const std::string& flagName) {
+  if (text == "none") return vsil::FillMode::None;
+  if (text == "flat") return vsil::FillMode::Flat;
+  if (text == "shaded") return vsil::FillMode::Shaded;
+  throwInputError(flagName, "'" + text + "' is not a fill mode (none, flat or shaded)");
+}
+
+void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options) {
+  const auto width = [](const std::string& flag) {
+    return [flag](const std::string& text) {
+      double value = 0;
+      if (!CLI::detail::lexical_cast(text, value)) {
+        throwInputError(flag, "'" + text + "' is not a number");
+      }
+      vsil::WidthLaw::fixed(value).validate(flag);
+      return value;
+    };
+  };
+  auto* fixed = command.add_option_function<std::string>(
+      "--width",
+      [&options, parse = width("--width")](const std::string& text) {
+        options.width = vsil::WidthLaw::fixed(parse(text));
+      },
+      "total line width in pixels (>= 1; 1 = the one-pixel silhouettes)");
+  auto* near = command.add_option_function<std::string>(
+      "--width-near",
+      [&options, parse = width("--width-near")](const std::string& text) {
+        options.width.near = parse(text);
+      },
+      "line width at normalized depth 0 (depth-adaptive, with --width-far)");
+  auto* far = command.add_option_function<std::string>(
+      "--width-far",
+      [&options, parse = width("--width-far")](const std::string& text) {
+        options.width.far = parse(text);
+      },
+      "line width at normalized depth 1 (depth-adaptive, with --width-near)");
+  near->needs(far);
+  far->needs(near);
+  fixed->excludes(near);
+  fixed->excludes(far);
+
+  command.add_option_function<std::string>(
+      "--line-color",
+      [&options](const std::string& text) {
+        options.lineColor = vsil::parseColor(text, "--line-color");
+      },
+      "line colour: a name (black, white, red, ...) or #rgb, #rrggbb, #rrggbbaa");
+  command.add_option_function<std::string>(
+      "--background",
+      [&options](const std::string& text) {
+        options.background = vsil::parseColor(text, "--background");
+      },
+      "background colour: a name or #rgb, #rrggbb, #rrggbbaa (transparent allowed)");
+  command.add_option_function<std::string>(
+      "--fill",
+      [&options](const std::string& text) { options.fill = parseFillMode(text, "--fill"); },
+      "what filled (inside) pixels show: none, flat or shaded");
+  command.add_option_function<std::string>(
+      "--fill-color",
+      [&options](const std::string& text) {
+        options.fillColor = vsil::parseColor(text, "--fill-color");
+      },
+      "colour of --fill flat / shaded");
+}
+
+}  // namespace vsil::cli

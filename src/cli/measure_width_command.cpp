@@ -1,0 +1,104 @@
+// vsil measure-width IMAGE [--line-color C] [--json FILE] [--depth FILE [--bins N] [--plot PNG]]
+// Line widths of a finished illustration, sampled on the lines' medial axes (postfx/line_width.h).
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/image_file.h"
+#include "postfx/line_width.h"
+
+namespace vsil::cli {
+namespace {
+
+struct MeasureWidthArgs {
+  std::string image;
+  std::string lineColor = "black";
+  std::string json;
+  std::string depth;
+  std::string plot;
+  int bins = 10;
+  double binWidth = 1.0;
+};
+
+nlohmann::json statisticsJson(const WidthStatistics& stats) {
+  return {{"count", stats.count},
+          {"mean", stats.mean},
+          {"median", stats.median},
+          {"min", stats.min},
+          {"max", stats.max},
+          {"p05", stats.p05},
+          {"p25", stats.p25},
+          {"p75", stats.p75},
+          {"p95", stats.p95},
+          {"bin_width", stats.binWidth},
+          {"histogram", stats.histogram}};
+}
+
+void run(const MeasureWidthArgs& args) {
+  const Rgba color = parseColor(args.lineColor, "--line-color");
+  const cv::Mat image = readImage(args.image);
+  if (image.depth() != CV_8U) throwInputError(args.image, "only 8-bit images are measured");
+  const cv::Mat1b mask = lineMaskFromImage(image, color);
+  if (cv::countNonZero(mask) == 0) {
+    throwInputError(args.image, "no pixel has the line colour " + args.lineColor);
+  }
+  const auto samples = measureLineWidths(mask);
+  std::vector<double> widths;
+  for (const auto& s : samples) widths.push_back(s.width);
+  const WidthStatistics stats = summarizeWidths(widths, args.binWidth);
+
+  nlohmann::json report = {
+      {"image", args.image}, {"line_color", args.lineColor}, {"widths", statisticsJson(stats)}};
+  std::cout << std::fixed << std::setprecision(2) << "samples " << stats.count << "  mean "
+            << stats.mean << "  median " << stats.median << "  p05 " << stats.p05 << "  p95 "
+            << stats.p95 << "  min " << stats.min << "  max " << stats.max << "\n";
+  if (!args.depth.empty()) {
+    const cv::Mat depth = readImage(args.depth);
+    if (depth.size() != image.size()) {
+      throwInputError(args.depth, "is not the size of " + args.image);
+    }
+    const auto bins = widthAgainstDepth(samples, depth, args.bins);
+    nlohmann::json rows = nlohmann::json::array();
+    std::cout << "depth from   to  count  mean  median\n";
+    for (const auto& bin : bins) {
+      rows.push_back({{"depth_from", bin.depthFrom},
+                      {"depth_to", bin.depthTo},
+                      {"count", bin.count},
+                      {"mean_width", bin.meanWidth},
+                      {"median_width", bin.medianWidth}});
+      std::cout << std::setw(10) << bin.depthFrom << std::setw(5) << bin.depthTo << std::setw(7)
+                << bin.count << std::setw(6) << bin.meanWidth << std::setw(8) << bin.medianWidth
+                << "\n";
+    }
+    report["by_depth"] = rows;
+    if (!args.plot.empty()) writePng(args.plot, plotWidthAgainstDepth(samples, depth, bins));
+  }
+  if (!args.json.empty()) writeFileAtomically(args.json, report.dump(2) + "\n");
+}
+
+const CommandRegistration registration(30, [](CLI::App& app) {
+  auto args = std::make_shared<MeasureWidthArgs>();
+  auto* command = app.add_subcommand(
+      "measure-width", "measure line widths in an image: mean, median, percentiles, histogram");
+  command->add_option("image", args->image, "the illustration (PNG)")->required();
+  command->add_option("--line-color", args->lineColor,
+                      "colour of the lines: a name or #rgb, #rrggbb (default black)");
+  command->add_option("--json", args->json, "write the report as JSON to this file");
+  command->add_option("--depth", args->depth,
+                      "the render's --depth-out image: report width against depth");
+  command->add_option("--bins", args->bins, "depth bins (with --depth)")
+      ->check(CLI::Range(1, 1000));
+  command->add_option("--bin-width", args->binWidth, "histogram bin width in pixels")
+      ->check(CLI::PositiveNumber);
+  auto* plot = command->add_option("--plot", args->plot, "plot width against depth (PNG)");
+  plot->needs("--depth");
+  command->callback([args] { run(*args); });
+});
+
+}  // namespace
+}  // namespace vsil::cli

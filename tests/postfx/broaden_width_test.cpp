@@ -1,0 +1,99 @@
+// Broadened widths measured on CPU-made silhouettes (tests/reference/digital_curves.h): circles
+// and straight lines in many orientations, fixed widths 2..40.
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "digital_curves.h"
+#include "postfx/broaden.h"
+
+namespace vsil {
+namespace {
+
+// The tolerance: ±0.5 px or ±4 %, whichever is larger.
+double widthTolerance(double width) {
+  return std::max(0.5, 0.04 * width);
+}
+
+class FixedWidth : public ::testing::TestWithParam<int> {};
+
+TEST_P(FixedWidth, CircleHasTheAskedWidth) {
+  const double width = GetParam();
+  FftGaussianBlur blur;
+  for (double radius : {30.5, 61.3}) {
+    const cv::Point2d centre(110.37, 109.71);
+    const cv::Mat1b lines = test::silhouettePixels({220, 220}, test::discShape(centre, radius));
+    const cv::Mat1b band = broadenMask(lines, width, blur);
+    const double measured = test::ringBandWidth(band, centre, radius, radius + width + 8);
+    std::cout << "circle R=" << radius << " W=" << width << " measured " << measured << "\n";
+    EXPECT_NEAR(measured, width, widthTolerance(width)) << "circle of radius " << radius;
+  }
+}
+
+TEST_P(FixedWidth, StraightLinesHaveTheAskedWidthInEveryOrientation) {
+  const double width = GetParam();
+  FftGaussianBlur blur;
+  std::ostringstream row;
+  row << "W=" << std::setw(2) << width << ":";
+  for (double angle : {3.0, 11.0, 22.5, 29.0, 37.0, 52.0, 60.0, 71.0, 83.0, 97.0, 124.0, 151.0}) {
+    const cv::Point2d point(127.3, 128.6);
+    const cv::Mat1b lines = test::silhouettePixels({256, 256}, test::halfPlaneShape(point, angle));
+    const cv::Mat1b band = broadenMask(lines, width, blur);
+    const double measured = test::straightBandWidth(band, point, angle, 70, width + 10);
+    row << " " << std::fixed << std::setprecision(2) << measured;
+    EXPECT_NEAR(measured, width, widthTolerance(width)) << "line at " << angle << " degrees";
+  }
+  std::cout << row.str() << "\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(Widths, FixedWidth, ::testing::Values(2, 3, 5, 8, 13, 21, 40),
+                         [](const auto& info) { return "W" + std::to_string(info.param); });
+
+}  // namespace
+}  // namespace vsil
+
+namespace vsil {
+namespace {
+
+// Lines exactly along a pixel axis: the quarter-pixel kernel shift (broaden.h) makes their band
+// exactly W rows for integer W. Along a diagonal the band grows by whole diagonal rows of
+// 1/√2 px, so the best possible is within ±0.36 px; the test allows the row step, 0.71 px.
+TEST(LatticeAlignedLines, AxisLinesAreExactDiagonalsWithinOneDiagonalRow) {
+  FftGaussianBlur blur;
+  for (int width : {2, 3, 4, 5, 8, 13, 21, 40}) {
+    for (double angle : {0.0, 90.0, 180.0, 270.0, 45.0, 135.0}) {
+      const cv::Point2d point(127.3, 128.6);
+      const cv::Mat1b lines =
+          test::silhouettePixels({256, 256}, test::halfPlaneShape(point, angle));
+      const cv::Mat1b band = broadenMask(lines, width, blur);
+      const double measured = test::straightBandWidth(band, point, angle, 70, width + 10);
+      const bool axis = std::fmod(angle, 90.0) == 0.0;
+      // Axis: the count of rows per column is an integer; 0.02 covers the cut at the window ends.
+      const double allowed = axis ? 0.02 : std::max(1.0 / std::sqrt(2.0), 0.04 * width);
+      EXPECT_NEAR(measured, width, allowed) << "line at " << angle << " degrees";
+    }
+  }
+}
+
+TEST(Broadening, LineTouchingOneBorderLeavesTheOppositeBorderUntouched) {
+  cv::Mat1b lines(64, 100, std::uint8_t(0));
+  lines.col(0).setTo(255);
+  FftGaussianBlur blur;
+  const cv::Mat1b band = broadenMask(lines, 40, blur);
+  EXPECT_EQ(cv::countNonZero(band.col(99)), 0);
+  EXPECT_EQ(cv::countNonZero(band.colRange(30, 100)), 0) << "the band ends about W/2 from x = 0";
+  EXPECT_EQ(cv::countNonZero(band.col(10)), 64);
+}
+
+TEST(Broadening, WidthOneIsTheLineItself) {
+  const cv::Mat1b lines = test::silhouettePixels({80, 80}, test::discShape({40.2, 39.7}, 25));
+  FftGaussianBlur blur;
+  const cv::Mat1b band = broadenMask(lines, 1, blur);
+  EXPECT_EQ(cv::countNonZero(band != lines), 0);
+}
+
+}  // namespace
+}  // namespace vsil
