@@ -8,12 +8,14 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_parse.h"
+#include "cli/cli_postfx_options.h"
 #include "cli/cli_volume_options.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_file.h"
 #include "io/volume_loader.h"
+#include "postfx/compose.h"
 #include "slicing/gl_context.h"
 #include "slicing/renderer.h"
 
@@ -67,18 +69,8 @@ cv::Mat1w depthImage(const FrameBuffers& frame) {
   return image;
 }
 
-// Lines black on white, FILLED pixels left as background. (Broadening and fills: postfx.)
-cv::Mat simpleComposite(const FrameBuffers& frame) {
-  cv::Mat3b image(frame.state.size(), cv::Vec3b(255, 255, 255));
-  for (int y = 0; y < image.rows; ++y) {
-    for (int x = 0; x < image.cols; ++x) {
-      if (PixelState(frame.state(y, x)) == PixelState::Silhouette) image(y, x) = {0, 0, 0};
-    }
-  }
-  return image;
-}
-
-void run(const RenderOptions& options, const LoadOptions& loadOptions) {
+void run(const RenderOptions& options, const LoadOptions& loadOptions,
+         const PostfxOptions& postfx) {
   const auto start = std::chrono::steady_clock::now();
   RenderSettings settings;
   settings.technique = options.technique;
@@ -107,7 +99,8 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions) {
   const RenderResult result = renderer.render(settings);
 
   const auto postStart = std::chrono::steady_clock::now();
-  const cv::Mat image = simpleComposite(result.frame);
+  FftGaussianBlur blur;
+  const cv::Mat image = composeIllustration(result.frame, postfx, blur);
   const double postfxMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - postStart)
           .count();
@@ -133,7 +126,12 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions) {
                           {"sampling", settings.samplesPerVoxel},
                           {"ra_exponent", settings.rightAngleExponent},
                           {"ra_threshold", settings.rightAngleThreshold},
-                          {"out", options.out}};
+                          {"out", options.out},
+                          {"width_near", postfx.width.near},
+                          {"width_far", postfx.width.far},
+                          {"fill", postfx.fill == FillMode::None   ? "none"
+                                   : postfx.fill == FillMode::Flat ? "flat"
+                                                                   : "shaded"}};
     meta["dataset"] = {{"name", volume.name},
                        {"source", volume.source},
                        {"type", sampleTypeName(volume.type)},
@@ -164,6 +162,7 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions) {
 const CommandRegistration registration(10, [](CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
   auto load = std::make_shared<VolumeOptions>();
+  auto postfx = std::make_shared<PostfxOptions>();
   CLI::App* command = app.add_subcommand("render", "Render one frame of a technique to PNG");
   command->add_option("input", options->input,
                       "Volume file (.nrrd .nhdr .vti .vtk, raw with --dims/--type) or "
@@ -190,7 +189,8 @@ const CommandRegistration registration(10, [](CLI::App& app) {
                       "16-bit PNG: silhouette pixels 1 + round(d*65534), others 0");
   command->add_option("--meta-out", options->metaOut, "JSON with parameters, camera, timings");
   addVolumeOptions(*command, *load);
-  command->callback([options, load] { run(*options, toLoadOptions(*load)); });
+  addPostfxOptions(*command, *postfx);
+  command->callback([options, load, postfx] { run(*options, toLoadOptions(*load), *postfx); });
 });
 
 }  // namespace

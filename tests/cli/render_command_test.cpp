@@ -111,6 +111,7 @@ TEST(RenderCommand, SameCommandTwiceGivesIdenticalBytes) {
 }
 
 struct BadRender {
+  const char* name;
   const char* arguments;
   const char* expected;  // a fragment of the one-line error
 };
@@ -131,14 +132,18 @@ TEST_P(RenderCommandRejects, WithOneLineAndExitTwoAndNoOutput) {
 
 INSTANTIATE_TEST_SUITE_P(
     BadInput, RenderCommandRejects,
-    ::testing::Values(BadRender{"gen:sphere:16 --technique nope", "--technique"},
-                      BadRender{"gen:sphere:16 --size 0x10", "--size"},
-                      BadRender{"gen:sphere:16 --size 12", "--size"},
-                      BadRender{"gen:sphere:16 --view 1", "--view"},
-                      BadRender{"gen:sphere:16 --zoom -1", "--zoom"},
-                      BadRender{"gen:sphere:16 --sampling 0", "--sampling"},
-                      BadRender{"gen:nosuchthing", "nosuchthing"},
-                      BadRender{"/nonexistent/volume.nrrd", "/nonexistent/volume.nrrd"}));
+    ::testing::Values(BadRender{"unknown_technique", "gen:sphere:16 --technique nope", "--technique"},
+                      BadRender{"zero_size", "gen:sphere:16 --size 0x10", "--size"},
+                      BadRender{"size_without_x", "gen:sphere:16 --size 12", "--size"},
+                      BadRender{"view_one_angle", "gen:sphere:16 --view 1", "--view"},
+                      BadRender{"negative_zoom", "gen:sphere:16 --zoom -1", "--zoom"},
+                      BadRender{"zero_sampling", "gen:sphere:16 --sampling 0", "--sampling"},
+                      BadRender{"nan_iso", "gen:sphere:16 --iso nan", "--iso"},
+                      BadRender{"width_below_one", "gen:sphere:16 --width 0.5", "--width"},
+                      BadRender{"unknown_generator", "gen:nosuchthing", "nosuchthing"},
+                      BadRender{"missing_file", "/nonexistent/volume.nrrd",
+                                "/nonexistent/volume.nrrd"}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace vsil
