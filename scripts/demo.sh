@@ -4,5 +4,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/bootstrap.sh
 mkdir -p out
-./build/vsil render --out out/demo.png --meta-out out/demo.json
+./build/vsil render --fill shaded --zoom 2 --width 3 --out out/demo.png --meta-out out/demo.json
 echo "demo image: $(pwd)/out/demo.png"
