@@ -181,4 +181,25 @@ void RenderTarget::bindForDrawing() const {
   VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
 }
 
+EmptyFramebuffer::EmptyFramebuffer(glm::ivec2 size) : size_(size) {
+  framebuffer_ = createFramebuffer();
+  VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
+  VSIL_GL(glFramebufferParameteri(GL_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_WIDTH, size.x));
+  VSIL_GL(glFramebufferParameteri(GL_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_HEIGHT, size.y));
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    throw GlError("EmptyFramebuffer is incomplete (status " + std::to_string(status) + ")");
+  }
+  VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+}
+
+void EmptyFramebuffer::bindForDrawing() const {
+  VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
+}
+
+void bindImage(GLuint unit, const RenderTarget& target) {
+  VSIL_GL(glBindImageTexture(unit, target.texture(), 0, GL_FALSE, 0, GL_READ_WRITE,
+                             target.internalFormat()));
+}
+
 }  // namespace vsil::gl

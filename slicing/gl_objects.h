@@ -113,4 +113,20 @@ class RenderTarget {
   RenderbufferName depth_;
 };
 
+// A framebuffer with no attachments, for passes whose only outputs are image stores: it sets
+// the raster size and nothing else.
+class EmptyFramebuffer {
+ public:
+  explicit EmptyFramebuffer(glm::ivec2 size);
+  glm::ivec2 size() const { return size_; }
+  void bindForDrawing() const;
+
+ private:
+  glm::ivec2 size_;
+  FramebufferName framebuffer_;
+};
+
+// Binds `target`'s texture to image unit `unit` for read-write image load/store.
+void bindImage(GLuint unit, const RenderTarget& target);
+
 }  // namespace vsil::gl

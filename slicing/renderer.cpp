@@ -110,12 +110,10 @@ RenderResult Renderer::render(const RenderSettings& settings) {
     slice.firstVertex = GLint(vertices.size());
     slice.vertexCount = GLsizei(plan.slices[k].polygonVoxel.size());
     for (const auto& p : plan.slices[k].polygonVoxel) vertices.emplace_back(p);
-    slice.footprintBounds = polygonPixelBounds(result.view, plan.slices[k].polygonVoxel);
-    PixelRect change = slice.footprintBounds;
+    slice.recentBounds[0] = polygonPixelBounds(result.view, plan.slices[k].polygonVoxel);
     for (std::size_t back = 1; back <= 2 && back <= k; ++back) {
-      change = change.united(slices[k - back].footprintBounds);
+      slice.recentBounds[back] = slices[k - back].recentBounds[0];
     }
-    slice.changeBounds = change.grown(1, result.view.viewport);
   }
 
   gl::ScopedState restoreState;

@@ -18,12 +18,19 @@ namespace gl {
 class GlContext;
 }
 
+// How the silhouette technique runs its per-slice passes. Both give the same pixels.
+//  Fast:  footprint, then contour and decision table fused, updating the intermediate record in
+//         place (image load/store); final pixels (Filled, Silhouette) are skipped.
+//  Paper: Nagy–Klein's three passes (footprint, contour, decision) over ping-pong targets.
+enum class SilhouettePipeline { Fast, Paper };
+
 struct RenderSettings {
   std::string technique = "silhouette";  // silhouette | rightangle
   glm::ivec2 size{512, 512};
   float iso = 0.5f;  // in the data's own units
   CameraSpec camera;
   double samplesPerVoxel = 1.0;  // slices per voxel along the view direction
+  SilhouettePipeline silhouettePipeline = SilhouettePipeline::Fast;
   // rightangle: a first hit is a line pixel where (1 - |n·v|)^exponent > threshold.
   double rightAngleExponent = 8.0;
   double rightAngleThreshold = 0.3;

@@ -6,38 +6,44 @@ namespace vsil {
 
 void RightAngleTechnique::beginFrame(const FrameContext& frame) {
   const glm::ivec2 size = frame.view->viewport;
-  if (!target_ || target_->size() != size) {
-    target_.reset();
-    target_.emplace(size, GL_RGBA32F, /*withDepth=*/true);
+  if (!targets_ || targets_->result.size() != size) {
+    targets_.reset();
+    targets_.emplace(Targets{gl::RenderTarget(size, GL_RGBA32F),
+                             gl::RenderTarget(size, GL_RGBA32F), gl::EmptyFramebuffer(size)});
   }
   if (!program_) program_.emplace("slice.vert", "rightangle.frag");
-  target_->bindForDrawing();
+  if (!finish_) finish_.emplace("screen.vert", "finish.frag", "#define RIGHT_ANGLE_LINES 1");
   glDisable(GL_SCISSOR_TEST);
   const GLfloat zero[4] = {0, 0, 0, 0};
-  const GLfloat farDepth = 1.0f;
+  targets_->result.bindForDrawing();
   VSIL_GL(glClearBufferfv(GL_COLOR, 0, zero));
-  VSIL_GL(glClearBufferfv(GL_DEPTH, 0, &farDepth));
+  targets_->imageOnly.bindForDrawing();
   program_->use();
   setSliceUniforms(*program_, frame, nullptr);
-  program_->set("rightAngleExponent", float(frame.settings->rightAngleExponent));
-  program_->set("rightAngleThreshold", float(frame.settings->rightAngleThreshold));
+  program_->set("resultImage", 0);
+  program_->set("resultTexture", 1);
+  gl::bindImage(0, targets_->result);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, targets_->result.texture());
+  glActiveTexture(GL_TEXTURE0);
 }
 
 void RightAngleTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
   if (slice.vertexCount == 0) return;
-  // Slices come front to back and each lies deeper than the last: the depth test keeps the
-  // first hit and rejects the samples behind it early.
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
   program_->set("sliceEyeDistance", float(slice.slice->eyeDistance));
   program_->set("sliceDepth", float(slice.slice->depth));
   glBindVertexArray(frame.sliceVertexArray);
   VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
+  // The next slice's fetches see which pixels already have their first hit.
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void RightAngleTechnique::endFrame(const FrameContext& frame) {
+  finishRecords(*finish_, frame, targets_->result, targets_->finished);
 }
 
 FrameBuffers RightAngleTechnique::readBack(const FrameContext&) {
-  return frameFromStateImage(readTargetFlipped(*target_, 4));
+  return frameFromStateImage(readTargetFlipped(targets_->finished, 4));
 }
 
 FrameBuffers frameFromStateImage(const cv::Mat& stateDepthShade) {

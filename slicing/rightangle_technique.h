@@ -1,6 +1,7 @@
 #pragma once
 // The right-angle baseline (RA): front-to-back iso-surface slicing; the first hit along each
-// ray is a line pixel where (1 - |∇f_n·V|)^k > ε (gradients by central differences).
+// ray is a line pixel where (1 - |∇f_n·V|)^k > ε (gradients by central differences). Slices
+// record the first hit in place; the line test and shade run once per pixel at the end.
 #include <optional>
 
 #include "slicing/technique.h"
@@ -11,12 +12,18 @@ class RightAngleTechnique : public Technique {
  public:
   void beginFrame(const FrameContext& frame) override;
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
-  void endFrame(const FrameContext&) override {}
+  void endFrame(const FrameContext& frame) override;
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:
-  std::optional<gl::RenderTarget> target_;  // RGBA32F (state, depth, shade, 0) + depth buffer
+  struct Targets {
+    gl::RenderTarget result;    // RGBA32F records (state, depth, first-hit eye distance, 0)
+    gl::RenderTarget finished;  // RGBA32F (state, depth, shade, 0)
+    gl::EmptyFramebuffer imageOnly;
+  };
+  std::optional<Targets> targets_;
   std::optional<gl::Program> program_;
+  std::optional<gl::Program> finish_;
 };
 
 // Splits an RGBA32F (state, depth, shade, 0) image into FrameBuffers: depth NaN where EMPTY,

@@ -18,6 +18,12 @@ std::unique_ptr<Technique> makeTechnique(const std::string& name) {
                    "' (known: silhouette, rightangle)");
 }
 
+PixelRect SliceContext::recentUnion(int count, int margin, glm::ivec2 viewport) const {
+  PixelRect rect;
+  for (int i = 0; i < count; ++i) rect = rect.united(recentBounds[std::size_t(i)]);
+  return rect.grown(margin, viewport);
+}
+
 void setSliceUniforms(gl::Program& program, const FrameContext& frame, const Slice* slice) {
   const View& view = *frame.view;
   program.set("volumeTexture", 0);
@@ -34,6 +40,22 @@ void setSliceUniforms(gl::Program& program, const FrameContext& frame, const Sli
     program.set("sliceEyeDistance", float(slice->eyeDistance));
     program.set("sliceDepth", float(slice->depth));
   }
+}
+
+void finishRecords(gl::Program& finish, const FrameContext& frame, const gl::RenderTarget& record,
+                   const gl::RenderTarget& output) {
+  glDisable(GL_SCISSOR_TEST);
+  output.bindForDrawing();
+  finish.use();
+  setSliceUniforms(finish, frame, nullptr);
+  finish.set("recordTexture", 1);
+  finish.set("rightAngleExponent", float(frame.settings->rightAngleExponent));
+  finish.set("rightAngleThreshold", float(frame.settings->rightAngleThreshold));
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, record.texture());
+  glActiveTexture(GL_TEXTURE0);
+  glBindVertexArray(frame.screenVertexArray);
+  VSIL_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
 }
 
 cv::Mat readTargetFlipped(const gl::RenderTarget& target, int channels) {

@@ -2,6 +2,7 @@
 // A technique is one paper's method expressed as passes over the shared slicing loop:
 // the Renderer walks the slices front to back and calls drawSlice for each; the technique owns
 // its render targets and programs. New techniques (illustrate, mip, semantic) plug in here.
+#include <array>
 #include <memory>
 #include <string>
 
@@ -29,10 +30,12 @@ struct SliceContext {
   const Slice* slice = nullptr;
   GLint firstVertex = 0;
   GLsizei vertexCount = 0;      // 0 when the plane misses the box
-  PixelRect footprintBounds;    // pixels this slice's polygon may cover
-  // Pixels whose state may change at this slice or may differ between ping-pong targets:
-  // the union of this and the two previous slices' bounds, grown by one pixel.
-  PixelRect changeBounds;
+  // Pixels the polygons of this slice ([0]), the previous ([1]) and the one before ([2]) may
+  // cover; empty where there is no such slice.
+  std::array<PixelRect, 3> recentBounds;
+
+  // The union of the bounds of the last `count` slices (1 to 3), grown by `margin` pixels.
+  PixelRect recentUnion(int count, int margin, glm::ivec2 viewport) const;
 };
 
 class Technique {
@@ -50,6 +53,11 @@ std::unique_ptr<Technique> makeTechnique(const std::string& name);
 
 // Uniforms every slice shader reads (common.glsl): the volume, the camera and this slice.
 void setSliceUniforms(gl::Program& program, const FrameContext& frame, const Slice* slice);
+
+// The last pass of a frame: shades the first hit recorded in `record` (state, depth, first-hit
+// eye distance, 0) and writes (state, depth, shade, 0) into `output` (see finish.frag).
+void finishRecords(gl::Program& finish, const FrameContext& frame, const gl::RenderTarget& record,
+                   const gl::RenderTarget& output);
 
 // GL texture rows run bottom-up; FrameBuffers rows top-down. Reads the target's colour
 // attachment as floats with `channels` channels (1 or 4) and flips it.

@@ -19,12 +19,15 @@ uniform float sliceEyeDistance;       // -z_eye of this slice's plane
 uniform float sliceDepth;             // its normalized depth d
 
 #ifdef VSIL_FRAGMENT_SHADER
-// The eye-space point of this pixel's centre on the slice plane.
-vec3 slicePointEye() {
+// The eye-space point of this pixel's centre on the plane at eye distance `eyeDistance`.
+vec3 eyePointAt(float eyeDistance) {
   vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
-  float scale = orthographic != 0 ? 1.0 : sliceEyeDistance;
-  return vec3(ndc * halfExtent * scale, -sliceEyeDistance);
+  float scale = orthographic != 0 ? 1.0 : eyeDistance;
+  return vec3(ndc * halfExtent * scale, -eyeDistance);
 }
+
+// ... on this slice's plane.
+vec3 slicePointEye() { return eyePointAt(sliceEyeDistance); }
 
 #endif
 
@@ -52,4 +55,52 @@ float facingRatio(vec3 voxel, vec3 eye) {
   if (length2 <= 0.0) return 1.0;
   vec3 toEye = orthographic != 0 ? vec3(0.0, 0.0, 1.0) : -normalize(eye);
   return abs(dot(normalEye * inversesqrt(length2), toEye));
+}
+
+// Nagy–Klein Table 2: the intermediate state t (rows) combined with this slice's contour value
+// c (columns EMPTY, FILLED, CONTOUR, and SILHOUETTE, which c never is). The only copy in GLSL.
+const uint decisionTable[16] = uint[16](
+    STATE_EMPTY, STATE_FILLED, STATE_CONTOUR, STATE_EMPTY,                    // t = EMPTY
+    STATE_FILLED, STATE_FILLED, STATE_FILLED, STATE_FILLED,                   // t = FILLED
+    STATE_SILHOUETTE, STATE_FILLED, STATE_CONTOUR, STATE_CONTOUR,             // t = CONTOUR
+    STATE_SILHOUETTE, STATE_SILHOUETTE, STATE_SILHOUETTE, STATE_SILHOUETTE);  // t = SILHOUETTE
+
+uint decide(uint t, uint c) { return decisionTable[t * 4u + c]; }
+
+// FILLED and SILHOUETTE never change again.
+bool isFinal(uint state) { return state == STATE_FILLED || state == STATE_SILHOUETTE; }
+
+// The contour value of a pixel from a footprint (0 EMPTY, 1 FILLED): STATE_CONTOUR for a
+// FILLED pixel whose 8-neighbourhood is not all FILLED; pixels beyond the image count as EMPTY.
+uint contourAt(usampler2D footprint, ivec2 pixel) {
+  ivec2 size = textureSize(footprint, 0);
+  if (texelFetch(footprint, pixel, 0).r == 0u) return STATE_EMPTY;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 neighbour = pixel + ivec2(dx, dy);
+      if (any(lessThan(neighbour, ivec2(0))) || any(greaterThanEqual(neighbour, size)) ||
+          texelFetch(footprint, neighbour, 0).r == 0u) {
+        return STATE_CONTOUR;
+      }
+    }
+  }
+  return STATE_FILLED;
+}
+
+// One decision for this pixel: the record t = (state, depth, first-hit eye distance, 0) and
+// this slice's c give t'. depth: for FILLED the first hit's normalized depth; for SILHOUETTE
+// the middle of the run of CONTOUR samples that ended in the detection, where the view ray
+// grazes the surface. The shade is computed once per pixel after the last slice (finish.frag):
+// llvmpipe runs both sides of a branch, so per-slice gradients would cost every pixel.
+vec4 decideRecord(vec4 t, uint c, float previousSliceDepth) {
+  uint state = uint(t.r);
+  uint next = decide(state, c);
+  vec4 result = vec4(float(next), t.g, t.b, 0.0);
+  if (state == STATE_EMPTY && next != STATE_EMPTY) {
+    result.g = sliceDepth;
+    result.b = sliceEyeDistance;
+  } else if (state == STATE_CONTOUR && next == STATE_SILHOUETTE) {
+    result.g = 0.5 * (t.g + previousSliceDepth);
+  }
+  return result;
 }
