@@ -145,7 +145,7 @@ FormatInfo uploadFormat(GLenum internalFormat) {
 
 }  // namespace
 
-RenderTarget::RenderTarget(glm::ivec2 size, GLenum internalFormat, bool withDepth)
+RenderTarget::RenderTarget(glm::ivec2 size, GLenum internalFormat, bool withDepthStencil)
     : size_(size), internalFormat_(internalFormat) {
   texture_ = createTexture();
   const FormatInfo info = uploadFormat(internalFormat);
@@ -161,12 +161,12 @@ RenderTarget::RenderTarget(glm::ivec2 size, GLenum internalFormat, bool withDept
   VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
   VSIL_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                                  texture_.id(), 0));
-  if (withDepth) {
-    depth_ = createRenderbuffer();
-    VSIL_GL(glBindRenderbuffer(GL_RENDERBUFFER, depth_.id()));
-    VSIL_GL(glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, size.x, size.y));
-    VSIL_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
-                                      depth_.id()));
+  if (withDepthStencil) {
+    depthStencil_ = createRenderbuffer();
+    VSIL_GL(glBindRenderbuffer(GL_RENDERBUFFER, depthStencil_.id()));
+    VSIL_GL(glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, size.x, size.y));
+    VSIL_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT,
+                                      GL_RENDERBUFFER, depthStencil_.id()));
   }
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
@@ -181,11 +181,16 @@ void RenderTarget::bindForDrawing() const {
   VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
 }
 
-EmptyFramebuffer::EmptyFramebuffer(glm::ivec2 size) : size_(size) {
+EmptyFramebuffer::EmptyFramebuffer(glm::ivec2 size, GLuint depthStencilRenderbuffer)
+    : size_(size) {
   framebuffer_ = createFramebuffer();
   VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
   VSIL_GL(glFramebufferParameteri(GL_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_WIDTH, size.x));
   VSIL_GL(glFramebufferParameteri(GL_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_HEIGHT, size.y));
+  if (depthStencilRenderbuffer != 0) {
+    VSIL_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT,
+                                      GL_RENDERBUFFER, depthStencilRenderbuffer));
+  }
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     throw GlError("EmptyFramebuffer is incomplete (status " + std::to_string(status) + ")");

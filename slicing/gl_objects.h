@@ -95,14 +95,15 @@ class Program {
   std::unordered_map<std::string, GLint> locations_;
 };
 
-// A 2D texture with a framebuffer that renders into it (and an optional depth buffer).
+// A 2D texture with a framebuffer that renders into it (and an optional depth-stencil buffer).
 class RenderTarget {
  public:
-  RenderTarget(glm::ivec2 size, GLenum internalFormat, bool withDepth = false);
+  RenderTarget(glm::ivec2 size, GLenum internalFormat, bool withDepthStencil = false);
   GLuint texture() const { return texture_.id(); }
   GLuint framebuffer() const { return framebuffer_.id(); }
   glm::ivec2 size() const { return size_; }
   GLenum internalFormat() const { return internalFormat_; }
+  GLuint depthStencil() const { return depthStencil_.id(); }  // 0 without one
   void bindForDrawing() const;
 
  private:
@@ -110,14 +111,15 @@ class RenderTarget {
   GLenum internalFormat_;
   TextureName texture_;
   FramebufferName framebuffer_;
-  RenderbufferName depth_;
+  RenderbufferName depthStencil_;
 };
 
-// A framebuffer with no attachments, for passes whose only outputs are image stores: it sets
-// the raster size and nothing else.
+// A framebuffer without colour attachments, for passes whose only outputs are image stores:
+// it sets the raster size and, optionally, shares another target's depth-stencil buffer so
+// the pass can be limited by the stencil test.
 class EmptyFramebuffer {
  public:
-  explicit EmptyFramebuffer(glm::ivec2 size);
+  explicit EmptyFramebuffer(glm::ivec2 size, GLuint depthStencilRenderbuffer = 0);
   glm::ivec2 size() const { return size_; }
   void bindForDrawing() const;
 

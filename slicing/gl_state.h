@@ -1,5 +1,6 @@
 #pragma once
-// Scoped GL state: a pass changes viewport, scissor, blending, depth test and bindings through
+// Scoped GL state: a pass changes viewport, scissor, blending, depth and stencil tests and
+// bindings through
 // this guard, which puts back what it found when it leaves scope. No pass leaks state.
 #include <array>
 
@@ -26,6 +27,7 @@ class ScopedState {
     glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask_);
     scissorTest_ = glIsEnabled(GL_SCISSOR_TEST);
     depthTest_ = glIsEnabled(GL_DEPTH_TEST);
+    stencilTest_ = glIsEnabled(GL_STENCIL_TEST);
     blend_ = glIsEnabled(GL_BLEND);
   }
   ~ScopedState() {
@@ -42,6 +44,7 @@ class ScopedState {
     glBlendEquationSeparate(GLenum(blendEquationRgb_), GLenum(blendEquationAlpha_));
     setEnabled(GL_SCISSOR_TEST, scissorTest_);
     setEnabled(GL_DEPTH_TEST, depthTest_);
+    setEnabled(GL_STENCIL_TEST, stencilTest_);
     setEnabled(GL_BLEND, blend_);
   }
   ScopedState(const ScopedState&) = delete;
@@ -61,7 +64,8 @@ class ScopedState {
   GLint drawFramebuffer_ = 0, readFramebuffer_ = 0, program_ = 0, vertexArray_ = 0;
   GLint depthFunc_ = 0, blendSrcRgb_ = 0, blendDstRgb_ = 0, blendSrcAlpha_ = 0, blendDstAlpha_ = 0;
   GLint blendEquationRgb_ = 0, blendEquationAlpha_ = 0;
-  GLboolean depthMask_ = GL_TRUE, scissorTest_ = GL_FALSE, depthTest_ = GL_FALSE, blend_ = GL_FALSE;
+  GLboolean depthMask_ = GL_TRUE, scissorTest_ = GL_FALSE, depthTest_ = GL_FALSE;
+  GLboolean stencilTest_ = GL_FALSE, blend_ = GL_FALSE;
 };
 
 }  // namespace vsil::gl

@@ -22,10 +22,12 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
   const glm::ivec2 size = frame.view->viewport;
   if (!targets_ || targets_->footprint.size() != size) {
     targets_.reset();
-    targets_.emplace(Targets{gl::RenderTarget(size, GL_R8UI), gl::RenderTarget(size, GL_R8UI),
+    gl::RenderTarget footprint(size, GL_R8UI, /*withDepthStencil=*/true);
+    const GLuint stencil = footprint.depthStencil();
+    targets_.emplace(Targets{std::move(footprint), gl::RenderTarget(size, GL_R8UI),
                              {gl::RenderTarget(size, GL_RGBA32F),
                               gl::RenderTarget(size, GL_RGBA32F)},
-                             gl::EmptyFramebuffer(size)});
+                             gl::EmptyFramebuffer(size, stencil)});
   }
   if (!programs_) programs_.emplace();
   pipeline_ = frame.settings->silhouettePipeline;
@@ -44,27 +46,28 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
 
 void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
   const glm::ivec2 viewport = frame.view->viewport;
-  const bool paper = pipeline_ == SilhouettePipeline::Paper;
-  // Pixels whose record may change here: this polygon (c != EMPTY) and the previous one
-  // (contours there meet c = EMPTY). The ping-pong targets must also agree outside the pass,
-  // which needs the slice before that too. One pixel more for the contour's neighbourhood.
-  const PixelRect bounds = slice.recentUnion(paper ? 3 : 2, 1, viewport);
-  if (slice.vertexCount == 0) {
-    // The plane misses the box: every c is EMPTY.
-    decide(frame, slice.slice, bounds.empty() ? wholeImage(viewport) : bounds, true);
-  } else {
-    drawFootprint(frame, slice, bounds);
-    if (paper) {
-      // Contour of the footprint into its own target.
-      targets_->contour.bindForDrawing();
-      programs_->contour.use();
-      programs_->contour.set("footprintTexture", 1);
-      glActiveTexture(GL_TEXTURE1);
-      glBindTexture(GL_TEXTURE_2D, targets_->footprint.texture());
-      glBindVertexArray(frame.screenVertexArray);
-      VSIL_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
+  if (pipeline_ == SilhouettePipeline::Fast) {
+    if (slice.vertexCount > 0) {
+      // The in-place pass reads footprints within one pixel of this polygon.
+      drawFootprint(frame, slice, slice.recentUnion(1, 2, viewport));
+      decideInPlace(frame, slice);
     }
-    decide(frame, slice.slice, bounds, false);
+  } else {
+    // Pixels whose record may change here: this polygon (c != EMPTY) and the previous one
+    // (contours there meet c = EMPTY); the ping-pong targets must also agree outside the pass,
+    // which needs the slice before that too. One pixel more for the contour's neighbourhood.
+    const PixelRect bounds = slice.recentUnion(3, 1, viewport);
+    if (!bounds.empty()) {
+      if (slice.vertexCount > 0) {
+        drawFootprint(frame, slice, bounds);
+      } else {  // the plane misses the box: every footprint pixel EMPTY
+        scissorTo(bounds, viewport);
+        targets_->footprint.bindForDrawing();
+        VSIL_GL(glClearBufferuiv(GL_COLOR, 0, kZeroU));
+      }
+      contourPaper(frame, bounds);
+      decidePaper(frame, slice.slice, bounds);
+    }
   }
   previousSliceDepth_ = slice.slice->depth;
 }
@@ -75,23 +78,33 @@ void SilhouetteTechnique::drawFootprint(const FrameContext& frame, const SliceCo
   scissorTo(clearBounds, frame.view->viewport);
   targets_->footprint.bindForDrawing();
   VSIL_GL(glClearBufferuiv(GL_COLOR, 0, kZeroU));
+  VSIL_GL(glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0));
+  // FILLED fragments (not discarded) set the stencil to 1.
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_ALWAYS, 1, 0xFF);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  glStencilMask(0xFF);
   programs_->footprint.use();
   setSliceUniforms(programs_->footprint, frame, slice.slice);
   glBindVertexArray(frame.sliceVertexArray);
   VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
+  glDisable(GL_STENCIL_TEST);
 }
 
-void SilhouetteTechnique::decide(const FrameContext& frame, const Slice* slice,
-                                 const PixelRect& bounds, bool emptySlice) {
-  if (pipeline_ == SilhouettePipeline::Paper) {
-    decidePaper(frame, slice, bounds, emptySlice);
-  } else {
-    decideInPlace(frame, slice, bounds, emptySlice);
-  }
+void SilhouetteTechnique::contourPaper(const FrameContext& frame, const PixelRect& bounds) {
+  scissorTo(bounds, frame.view->viewport);
+  targets_->contour.bindForDrawing();
+  programs_->contour.use();
+  programs_->contour.set("footprintTexture", 1);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, targets_->footprint.texture());
+  glActiveTexture(GL_TEXTURE0);
+  glBindVertexArray(frame.screenVertexArray);
+  VSIL_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
 }
 
 void SilhouetteTechnique::decidePaper(const FrameContext& frame, const Slice* slice,
-                                      const PixelRect& bounds, bool emptySlice) {
+                                      const PixelRect& bounds) {
   scissorTo(bounds, frame.view->viewport);
   const int next = 1 - current_;
   targets_->intermediate[next].bindForDrawing();
@@ -100,29 +113,29 @@ void SilhouetteTechnique::decidePaper(const FrameContext& frame, const Slice* sl
   setSliceUniforms(program, frame, slice);
   program.set("contourTexture", 1);
   program.set("intermediateTexture", 2);
-  program.set("emptySlice", emptySlice ? 1 : 0);
-  program.set("previousSliceDepth", float(previousSliceDepth_));
+  program.set("emptySlice", slice ? 0 : 1);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, targets_->contour.texture());
   glActiveTexture(GL_TEXTURE2);
   glBindTexture(GL_TEXTURE_2D, targets_->intermediate[current_].texture());
+  glActiveTexture(GL_TEXTURE0);
   glBindVertexArray(frame.screenVertexArray);
   VSIL_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
-  glActiveTexture(GL_TEXTURE0);
   current_ = next;
 }
 
-void SilhouetteTechnique::decideInPlace(const FrameContext& frame, const Slice* slice,
-                                        const PixelRect& bounds, bool emptySlice) {
-  scissorTo(bounds, frame.view->viewport);
-  targets_->imageOnly.bindForDrawing();
+void SilhouetteTechnique::decideInPlace(const FrameContext& frame, const SliceContext& slice) {
+  glDisable(GL_SCISSOR_TEST);
+  targets_->stencilOnly.bindForDrawing();
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_EQUAL, 1, 0xFF);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   gl::Program& program = programs_->decisionInPlace;
   program.use();
-  setSliceUniforms(program, frame, slice);
+  setSliceUniforms(program, frame, slice.slice);
   program.set("intermediateImage", 0);
   program.set("footprintTexture", 1);
   program.set("intermediateTexture", 2);
-  program.set("emptySlice", emptySlice ? 1 : 0);
   program.set("previousSliceDepth", float(previousSliceDepth_));
   gl::bindImage(0, targets_->intermediate[0]);
   glActiveTexture(GL_TEXTURE1);
@@ -130,21 +143,20 @@ void SilhouetteTechnique::decideInPlace(const FrameContext& frame, const Slice* 
   glActiveTexture(GL_TEXTURE2);
   glBindTexture(GL_TEXTURE_2D, targets_->intermediate[0].texture());
   glActiveTexture(GL_TEXTURE0);
-  glBindVertexArray(frame.screenVertexArray);
-  VSIL_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
+  glBindVertexArray(frame.sliceVertexArray);
+  VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
+  glDisable(GL_STENCIL_TEST);
   // The next slice's fetches see what this one stored.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void SilhouetteTechnique::endFrame(const FrameContext& frame) {
-  // The extra empty slice, over the whole image: contours reaching the back become silhouettes.
-  Slice behind;
-  if (!frame.plan->slices.empty()) {
-    behind = Slice{frame.plan->slices.back().eyeDistance + frame.plan->stepEye,
-                   frame.plan->slices.back().depth, {}};
+  if (pipeline_ == SilhouettePipeline::Paper) {
+    // The extra empty slice, over the whole image: contours at the back become silhouettes.
+    const PixelRect all = wholeImage(frame.view->viewport);
+    decidePaper(frame, nullptr, all);
   }
-  decide(frame, &behind, wholeImage(frame.view->viewport), true);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  // (The fast pipeline's finishing pass turns remaining contours into silhouettes itself.)
   finishRecords(programs_->finish, frame, targets_->intermediate[current_],
                 targets_->intermediate[1 - current_]);
   current_ = 1 - current_;

@@ -4,8 +4,10 @@
 // record; one extra empty slice after the last turns contours at the back into silhouettes.
 // Two pipelines give the same pixels (RenderSettings::silhouettePipeline):
 //  Paper: three passes, the intermediate record in ping-pong targets, as the paper draws it.
-//  Fast:  footprint, then contour + decision fused into one pass that updates the record in
-//         place with image load/store, skipping pixels that are already final.
+//  Fast:  the footprint pass also marks FILLED pixels in the stencil; one pass fuses contour
+//         and decision, runs only on those pixels (early stencil test) and updates the record
+//         in place; detection (CONTOUR meeting an empty slice) is applied lazily
+//         (decision_inplace.frag), the extra empty slice by the finishing pass.
 #include <array>
 #include <optional>
 
@@ -23,26 +25,26 @@ class SilhouetteTechnique : public Technique {
  private:
   void drawFootprint(const FrameContext& frame, const SliceContext& slice,
                      const PixelRect& clearBounds);
-  void decidePaper(const FrameContext& frame, const Slice* slice, const PixelRect& bounds,
-                   bool emptySlice);
-  void decideInPlace(const FrameContext& frame, const Slice* slice, const PixelRect& bounds,
-                     bool emptySlice);
-  void decide(const FrameContext& frame, const Slice* slice, const PixelRect& bounds,
-              bool emptySlice);
+  // Paper pipeline: contour pass, then the decision pass into the other ping-pong target over
+  // `bounds`; `slice` null means the extra empty slice (every c EMPTY).
+  void contourPaper(const FrameContext& frame, const PixelRect& bounds);
+  void decidePaper(const FrameContext& frame, const Slice* slice, const PixelRect& bounds);
+  void decideInPlace(const FrameContext& frame, const SliceContext& slice);
 
   struct Targets {
-    gl::RenderTarget footprint;  // R8UI: 0 EMPTY, 1 FILLED
-    gl::RenderTarget contour;    // R8UI: EMPTY, FILLED, CONTOUR (paper pipeline)
-    // RGBA32F records (state, depth, first-hit eye distance, 0): ping-pong (paper) or [0] in
-    // place (fast); the finished frame (state, depth, shade, 0) goes to the other one.
+    // R8UI: 0 EMPTY, 1 FILLED; its stencil marks FILLED pixels for the fast pipeline.
+    gl::RenderTarget footprint;
+    gl::RenderTarget contour;  // R8UI: EMPTY, FILLED, CONTOUR (paper pipeline)
+    // RGBA32F records (common.glsl): ping-pong (paper) or [0] updated in place (fast); the
+    // finished frame (state, depth, shade, 0) goes to the other one.
     std::array<gl::RenderTarget, 2> intermediate;
-    gl::EmptyFramebuffer imageOnly;  // raster size for the in-place pass
+    gl::EmptyFramebuffer stencilOnly;  // the footprint's stencil, no colour: the in-place pass
   };
   struct Programs {
     gl::Program footprint{"slice.vert", "footprint.frag"};
     gl::Program contour{"screen.vert", "contour.frag"};
     gl::Program decision{"screen.vert", "decision.frag"};
-    gl::Program decisionInPlace{"screen.vert", "decision_inplace.frag"};
+    gl::Program decisionInPlace{"slice.vert", "decision_inplace.frag"};
     gl::Program finish{"screen.vert", "finish.frag"};
   };
   std::optional<Targets> targets_;

@@ -87,20 +87,23 @@ uint contourAt(usampler2D footprint, ivec2 pixel) {
   return STATE_FILLED;
 }
 
-// One decision for this pixel: the record t = (state, depth, first-hit eye distance, 0) and
-// this slice's c give t'. depth: for FILLED the first hit's normalized depth; for SILHOUETTE
-// the middle of the run of CONTOUR samples that ended in the detection, where the view ray
-// grazes the surface. The shade is computed once per pixel after the last slice (finish.frag):
-// llvmpipe runs both sides of a branch, so per-slice gradients would cost every pixel.
-vec4 decideRecord(vec4 t, uint c, float previousSliceDepth) {
+// Records t = (state, depth, first-hit eye distance, depth of the latest CONTOUR sample).
+// depth: for FILLED the first hit's normalized depth; for SILHOUETTE the middle of the run of
+// CONTOUR samples that ended in the detection, where the view ray grazes the surface. The shade
+// is computed once per pixel after the last slice (finish.frag): llvmpipe runs both sides of a
+// branch, so per-slice gradients would cost every pixel.
+float silhouetteDepth(vec4 t) { return 0.5 * (t.g + t.a); }
+
+// Applies one slice's contour value c to the record t (the decision table, with the depths).
+vec4 decideRecord(vec4 t, uint c) {
   uint state = uint(t.r);
   uint next = decide(state, c);
-  vec4 result = vec4(float(next), t.g, t.b, 0.0);
+  vec4 result = vec4(float(next), t.g, t.b, t.a);
   if (state == STATE_EMPTY && next != STATE_EMPTY) {
     result.g = sliceDepth;
     result.b = sliceEyeDistance;
-  } else if (state == STATE_CONTOUR && next == STATE_SILHOUETTE) {
-    result.g = 0.5 * (t.g + previousSliceDepth);
   }
+  if (next == STATE_CONTOUR) result.a = sliceDepth;
+  if (state == STATE_CONTOUR && next == STATE_SILHOUETTE) result.g = silhouetteDepth(t);
   return result;
 }

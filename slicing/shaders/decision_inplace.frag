@@ -1,17 +1,20 @@
 // decision_inplace.frag (fast pipeline, pass 2 of 2): contour and decision table fused, the
-// intermediate record updated in place.
-// In:  footprintTexture (0 EMPTY, 1 FILLED) of this slice; emptySlice != 0 for the extra
-//      slice behind the volume (every c EMPTY).
-// In/out: the intermediate record t = (state, depth, shade, 0), read through
-//      intermediateTexture and written through intermediateImage (the same texture). Each pixel
-//      reads and writes only its own record, so no ping-pong is needed, and only records that
-//      change are stored; FILLED and SILHOUETTE pixels are final and cost one fetch. (Reads go
-//      through the sampler because llvmpipe's imageLoad costs ten times a texelFetch; a
-//      texture-fetch barrier between slices makes the stores visible.) No colour output.
+// record updated in place, run only where this slice's footprint is FILLED.
+// In:  footprintTexture (0 EMPTY, 1 FILLED); the stencil, set to 1 by the footprint pass where
+//      FILLED, limits the pass to those pixels before the shader runs (early tests).
+// In/out: the record t (common.glsl), read through intermediateTexture and written through
+//      intermediateImage (the same texture). Each pixel reads and writes only its own record,
+//      so no ping-pong is needed. (Reads go through the sampler because llvmpipe's imageLoad
+//      costs far more than a texelFetch; a texture-fetch barrier between slices makes the
+//      stores visible.) No colour output.
+// Pixels that are not FILLED on a slice are not visited, so c = EMPTY is never applied here.
+// The table's only effect of c = EMPTY is detection (CONTOUR -> SILHOUETTE); it is applied
+// lazily instead: a CONTOUR record whose latest contour sample is not the previous slice met
+// an empty slice since, and is a silhouette. finish.frag does the same for what remains.
+layout(early_fragment_tests) in;
 uniform sampler2D intermediateTexture;
 layout(rgba32f) uniform writeonly restrict image2D intermediateImage;
 uniform usampler2D footprintTexture;
-uniform int emptySlice;
 uniform float previousSliceDepth;
 
 void main() {
@@ -19,7 +22,10 @@ void main() {
   vec4 t = texelFetch(intermediateTexture, pixel, 0);
   uint state = uint(t.r);
   if (isFinal(state)) return;
-  uint c = emptySlice != 0 ? STATE_EMPTY : contourAt(footprintTexture, pixel);
-  if (decide(state, c) == state) return;  // EMPTY stays EMPTY, CONTOUR propagates
-  imageStore(intermediateImage, pixel, decideRecord(t, c, previousSliceDepth));
+  if (state == STATE_CONTOUR && t.a != previousSliceDepth) {
+    imageStore(intermediateImage, pixel,
+               vec4(float(STATE_SILHOUETTE), silhouetteDepth(t), t.b, t.a));
+    return;
+  }
+  imageStore(intermediateImage, pixel, decideRecord(t, contourAt(footprintTexture, pixel)));
 }
