@@ -48,6 +48,14 @@ std::size_t complexCount(cv::Size padded) {
 struct FftGaussianBlur::Plans {
   fftwf_plan forward = nullptr;   // real (height x width) -> half spectrum
   fftwf_plan backward = nullptr;  // half spectrum -> real, unnormalized
+  // Work arrays of finished blur() calls, kept for the next ones (allocating and faulting in a
+  // few MB per call cost about as much as a transform). Guarded by the owner's mutex_.
+  struct Work {
+    Work(std::size_t realCount, std::size_t complexCount) : real(realCount), spectrum(complexCount) {}
+    FftwArray<float> real;
+    FftwArray<fftwf_complex> spectrum;
+  };
+  std::vector<std::unique_ptr<Work>> idle;
   ~Plans() {
     std::lock_guard lock(fftwPlannerMutex());
     if (forward) fftwf_destroy_plan(forward);
@@ -98,21 +106,30 @@ FftGaussianBlur::FftGaussianBlur() : FftGaussianBlur(Options{}) {}
 FftGaussianBlur::FftGaussianBlur(Options options) : options_(options) {}
 FftGaussianBlur::~FftGaussianBlur() = default;
 
-cv::Size FftGaussianBlur::paddedSize(cv::Size size, double sigma, cv::Point2d shift) {
-  // The kernel's reach on each side: enough that no output pixel inside the image receives
-  // anything from the periodic copies of the image.
-  const int reach = gaussianReach(sigma, shift);
-  return {fftFriendlySize(size.width + 2 * reach), fftFriendlySize(size.height + 2 * reach)};
+int fftPaddedLength(int n) {
+  for (int candidate = std::max(n, 2);; ++candidate) {
+    if (candidate % 2 != 0) continue;  // r2c/c2r run fastest on even lengths
+    int rest = candidate;
+    for (int p : {2, 3, 5}) {
+      while (rest % p == 0) rest /= p;
+    }
+    if (rest == 1) return candidate;
+  }
 }
 
-int FftGaussianBlur::threadsFor(cv::Size padded) const {
+cv::Size FftGaussianBlur::paddedSize(cv::Size size, double sigma, cv::Point2d shift) {
+  // Output pixel x reads input x - dx for |dx| <= reach; with period P the wrapped reads land at
+  // P - reach .. P - 1, which are padding (zeros) when P >= n + reach. One reach is enough.
+  const int reach = gaussianReach(sigma, shift);
+  return {fftPaddedLength(size.width + reach), fftPaddedLength(size.height + reach)};
+}
+
+int FftGaussianBlur::threadsFor(cv::Size /*padded*/) const {
   if (options_.threads > 0) return options_.threads;
-  // PERF-NOTES: a second thread did not help at 512². Two threads are used from a padded
-  // 1000² on, where the transforms are long enough to amortise waking a thread; this threshold
-  // is not yet confirmed by bench/ (compare FftGaussianBlur::Options{1} and {2} at 1024²).
-  const double pixels = double(padded.width) * padded.height;
-  const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
-  return pixels >= 1000.0 * 1000.0 ? std::min(cores, 2) : 1;
+  // One thread. Measured with vsil_fft_table --threads 1 / 2 at 1024² on the 2-core machine
+  // (shared, load ~4.6; two alternating runs): two threads were never faster (sigma 8: 6.9 and
+  // 9.3 ms with one, 7.4 and 8.9 ms with two; sigma 32: 13.7/15.2 vs 19.9/17.0 ms).
+  return 1;
 }
 
 const FftGaussianBlur::Plans& FftGaussianBlur::plansFor(cv::Size padded) {
@@ -185,24 +202,41 @@ cv::Mat1f FftGaussianBlur::blur(const cv::Mat1f& image, double sigma, cv::Point2
   }
 
   const std::size_t realCount = std::size_t(padded.width) * padded.height;
-  FftwArray<float> real(realCount);
-  FftwArray<fftwf_complex> spectrum(complexCount(padded));
-  // The image in the top-left corner, zeros elsewhere: the padding on the right and bottom is
-  // at least twice the kernel's reach, so no periodic copy reaches into the image.
-  std::fill_n(real.data, realCount, 0.0f);
-  for (int y = 0; y < image.rows; ++y) {
-    std::copy_n(image[y], image.cols, real.data + std::size_t(y) * padded.width);
+  std::unique_ptr<Plans::Work> work;
+  {
+    std::lock_guard lock(mutex_);
+    auto& idle = plans_[{padded.width, padded.height}]->idle;
+    if (!idle.empty()) {
+      work = std::move(idle.back());
+      idle.pop_back();
+    }
   }
-  fftwf_execute_dft_r2c(plans->forward, real.data, spectrum.data);
+  if (!work) work = std::make_unique<Plans::Work>(realCount, complexCount(padded));
+  float* const real = work->real.data;
+  fftwf_complex* const spectrum = work->spectrum.data;
+  // The image in the top-left corner, zeros elsewhere (every element is written: the array
+  // holds the previous call's output). The padding on the right and bottom is at least the
+  // kernel's reach, so no periodic copy reaches into the image.
+  for (int y = 0; y < image.rows; ++y) {
+    float* row = real + std::size_t(y) * padded.width;
+    std::copy_n(image[y], image.cols, row);
+    std::fill(row + image.cols, row + padded.width, 0.0f);
+  }
+  std::fill(real + std::size_t(image.rows) * padded.width, real + realCount, 0.0f);
+  fftwf_execute_dft_r2c(plans->forward, real, spectrum);
   const std::complex<float>* kernel = kernelSpectrum->data();
-  auto* values = reinterpret_cast<std::complex<float>*>(spectrum.data);
+  auto* values = reinterpret_cast<std::complex<float>*>(spectrum);
   const std::size_t count = complexCount(padded);
   for (std::size_t i = 0; i < count; ++i) values[i] *= kernel[i];
-  fftwf_execute_dft_c2r(plans->backward, spectrum.data, real.data);
+  fftwf_execute_dft_c2r(plans->backward, spectrum, real);
 
   cv::Mat1f out(image.size());
   for (int y = 0; y < image.rows; ++y) {
-    std::copy_n(real.data + std::size_t(y) * padded.width, image.cols, out[y]);
+    std::copy_n(real + std::size_t(y) * padded.width, image.cols, out[y]);
+  }
+  {
+    std::lock_guard lock(mutex_);
+    plans_[{padded.width, padded.height}]->idle.push_back(std::move(work));
   }
   return out;
 }

@@ -4,8 +4,8 @@
 // around from one border to the other: the result equals the direct (spatial) convolution of
 // the image, taken as zero outside, with the sampled Gaussian kernel.
 //
-// One FftGaussianBlur owns a small cache of FFTW plans (per padded size) and of kernel spectra
-// (per padded size, sigma and shift). Plans are made on one thread at a time (FFTW's planner is
+// One FftGaussianBlur owns a small cache of FFTW plans and reusable work arrays (per padded
+// size) and of kernel spectra (per padded size, sigma and shift). Plans are made on one thread at a time (FFTW's planner is
 // not thread safe) with FFTW_ESTIMATE, so the output bytes are the same on every run; blur()
 // itself may be called from several threads.
 #include <complex>
@@ -35,11 +35,15 @@ cv::Mat1f sampledGaussianKernel(double sigma, cv::Point2d shift = {});
 
 // Smallest n' >= n whose prime factors are all 2, 3, 5 or 7 (sizes FFTW transforms fast).
 int fftFriendlySize(int n);
+// The padded length blur() uses: smallest even n' >= n with prime factors 2, 3 and 5 only
+// (measured on bench/: factors of 7 and odd lengths cost up to 2x in r2c/c2r).
+int fftPaddedLength(int n);
 
 class FftGaussianBlur {
  public:
   struct Options {
-    // Threads for one transform. 0: automatic (two from a padded 1000² on, else one). A given
+    // Threads for one transform. 0: automatic (one; a second did not pay at 1024² on two
+    // cores, see gaussian_fft.cpp). A given
     // setting always gives the same bytes; different settings may differ in the last bits.
     int threads = 0;
   };

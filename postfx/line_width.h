@@ -1,13 +1,19 @@
 #pragma once
 // Line-width measurement on finished images (vsil measure-width). The width at a point of a
-// line's centre is the sum of its distances to the two sides: per medial-axis pixel p (the
-// morphological skeleton of the line mask), DT(p) + DT(p + n), where DT is OpenCV's exact
-// Euclidean distance to the nearest non-line pixel centre and n the unit step away from that
-// nearest pixel. On a band whose centre falls on p this is 2·DT(p) - 1 + 1 = the number of
-// pixels across; when the centre falls between two pixels the far sample supplies the missing
-// half pixel, so even and odd widths are both measured exactly on axis-aligned bands. On oblique
-// lines the nearest non-line pixel centre lies a little farther than the band edge, and the
-// estimate reads low by 0.3-0.6 px (measured on broadened circles, tests/postfx/line_width_test).
+// line's centre is twice its distance to the line's edge, sampled on the medial axis:
+//  - edge: the 0.5 level of the line mask smoothed by a Gaussian of 0.7 px, bilinearly
+//    interpolated on a 4x finer grid (exactly halfway between line and non-line pixel centres on
+//    axis bands; the smoothing flattens the pixel stairs of oblique edges, whose inward teeth
+//    would otherwise make a nearest-distance measure read low);
+//  - distance: OpenCV's exact Euclidean transform (DIST_L2, DIST_MASK_PRECISE) on that grid;
+//  - medial axis: the ridge of the distance map, one sample per line pixel whose own area holds
+//    (within 1/4 px) the largest distance of its 3x3 neighbourhood; its width is twice that
+//    largest distance, so the ridge is found wherever it passes between pixel centres and no
+//    skeleton spurs enter the statistics.
+// Measured on straight bands of known area width at 10 angles (tests/postfx/line_width_test):
+// within ±0.25 px for widths 2..21, exact on axis-aligned bands. Limits: one-pixel lines
+// (W = 1) read 0.5 px (the smoothing thins them), line ends and junctions give their own
+// (smaller, larger) values, and the image border counts as outside.
 #include <optional>
 #include <vector>
 
@@ -40,6 +46,7 @@ struct DepthBin {
 // with the colour's grey value. Alpha is ignored.
 cv::Mat1b lineMaskFromImage(const cv::Mat& image, const Rgba& lineColor, int tolerance = 40);
 
+// One sample per medial pixel of the non-zero pixels of lineMask.
 std::vector<LineWidthSample> measureLineWidths(const cv::Mat1b& lineMask);
 
 WidthStatistics summarizeWidths(std::vector<double> widths, double binWidth = 1.0);

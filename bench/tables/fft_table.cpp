@@ -42,7 +42,7 @@ double medianMs(int repetitions, Work&& work) {
 
 std::vector<FftTableRow> measureFftTable(const FftTableSpec& spec) {
   std::vector<FftTableRow> rows;
-  FftGaussianBlur blur;
+  FftGaussianBlur blur(FftGaussianBlur::Options{spec.threads});
   for (int size : spec.sizes) {
     const cv::Mat1f image = lineImage(size);
     for (double sigma : spec.sigmas) {

@@ -22,6 +22,7 @@ struct FftTableSpec {
   std::vector<int> sizes{512, 1024};
   std::vector<double> sigmas{1, 2, 4, 8, 16, 32};
   int repetitions = 15;  // the median of these is reported
+  int threads = 0;       // FftGaussianBlur::Options::threads (0: automatic)
 };
 
 std::vector<FftTableRow> measureFftTable(const FftTableSpec& spec = {});

@@ -91,9 +91,12 @@ TEST(FftGaussianBlur, KernelSumsToOne) {
 TEST(FftGaussianBlur, PaddedSizeHasSmallPrimesAndRoomForTheKernel) {
   const cv::Size padded = FftGaussianBlur::paddedSize({509, 257}, 4.0);
   const int reach = gaussianReach(4.0);
-  EXPECT_GE(padded.width, 509 + 2 * reach);
-  EXPECT_GE(padded.height, 257 + 2 * reach);
+  // One reach of zeros is enough (gaussian_fft.cpp, paddedSize); even, 5-smooth lengths.
+  EXPECT_GE(padded.width, 509 + reach);
+  EXPECT_GE(padded.height, 257 + reach);
   EXPECT_EQ(fftFriendlySize(padded.width), padded.width);
+  EXPECT_EQ(padded.width % 2, 0);
+  EXPECT_EQ(fftPaddedLength(1031), 1080);  // 2³·3³·5
   EXPECT_EQ(fftFriendlySize(1031), 1050);  // 1031 is prime; 1050 = 2·3·5²·7
 }
 
