@@ -9,8 +9,8 @@
 namespace vsil::bench {
 namespace {
 
-constexpr int kPanelHeight = 420;
-constexpr int kLeft = 70, kRight = 20, kTop = 50, kBottom = 110;
+constexpr int kPanelHeight = 520;
+constexpr int kLeft = 70, kRight = 20, kTop = 70, kBottom = 170;
 constexpr int kBarWidth = 9, kGroupGap = 14;
 constexpr auto kFont = cv::FONT_HERSHEY_SIMPLEX;
 
@@ -32,10 +32,15 @@ std::string ascii(const std::string& text) {
   return out;
 }
 
+cv::Scalar colorOf(const PlotSpec& plot, int series) {
+  const int index = plot.series[series].color >= 0 ? plot.series[series].color : series;
+  return kColors[index % 6];
+}
+
 cv::Mat drawPanel(const PlotSpec& plot) {
   const int seriesCount = int(plot.series.size());
   const int groupWidth = seriesCount * kBarWidth + kGroupGap;
-  const int width = std::max(480, kLeft + kRight + int(plot.groups.size()) * groupWidth);
+  const int width = std::max(640, kLeft + kRight + int(plot.groups.size()) * groupWidth);
   cv::Mat3b image(kPanelHeight, width, cv::Vec3b(255, 255, 255));
   const int plotBottom = kPanelHeight - kBottom, plotHeight = plotBottom - kTop;
 
@@ -73,7 +78,7 @@ cv::Mat drawPanel(const PlotSpec& plot) {
     std::snprintf(label, sizeof label, "%g", tick);
     cv::putText(image, label, {8, y + 4}, kFont, 0.4, {60, 60, 60}, 1, cv::LINE_AA);
   }
-  cv::putText(image, ascii(plot.valueLabel) + (plot.logScale ? " (log)" : ""), {8, kTop - 12},
+  cv::putText(image, ascii(plot.valueLabel) + (plot.logScale ? " (log)" : ""), {8, kTop - 6},
               kFont, 0.4, {60, 60, 60}, 1, cv::LINE_AA);
   cv::line(image, {kLeft, plotBottom}, {width - kRight, plotBottom}, {0, 0, 0}, 1);
 
@@ -83,7 +88,7 @@ cv::Mat drawPanel(const PlotSpec& plot) {
       const double v = g < plot.values.size() && s < int(plot.values[g].size())
                            ? plot.values[g][s] : NAN;
       const int x = x0 + s * kBarWidth;
-      const cv::Scalar color = kColors[s % 6];
+      const cv::Scalar color = colorOf(plot, s);
       if (!(std::isfinite(v) && v > 0)) {
         cv::putText(image, "x", {x + 1, plotBottom - 3}, kFont, 0.3, color, 1, cv::LINE_AA);
         continue;
@@ -113,17 +118,17 @@ cv::Mat drawPanel(const PlotSpec& plot) {
       rotated(cv::Rect(0, 0, target.width, target.height)).copyTo(image(target));
     }
   }
-  // Legend.
-  int lx = kLeft + 330;
+  // Legend, one line under the title.
+  int lx = kLeft;
   for (int s = 0; s < seriesCount; ++s) {
-    const cv::Rect box(lx, 16, 10, 10);
+    const cv::Rect box(lx, 38, 10, 10);
     if (plot.series[s].reference) {
-      cv::rectangle(image, box, kColors[s % 6], 1);
+      cv::rectangle(image, box, colorOf(plot, s), 1);
     } else {
-      cv::rectangle(image, box, kColors[s % 6], cv::FILLED);
+      cv::rectangle(image, box, colorOf(plot, s), cv::FILLED);
     }
     const std::string name = ascii(plot.series[s].name);
-    cv::putText(image, name, {lx + 14, 26}, kFont, 0.4, {0, 0, 0}, 1, cv::LINE_AA);
+    cv::putText(image, name, {lx + 14, 48}, kFont, 0.4, {0, 0, 0}, 1, cv::LINE_AA);
     int baseline = 0;
     lx += 24 + cv::getTextSize(name, kFont, 0.4, 1, &baseline).width;
   }

@@ -21,6 +21,7 @@ struct PlotSpec {
   struct Series {
     std::string name;
     bool reference = false;  // drawn hatched: numbers quoted from a paper, not measured here
+    int color = -1;          // palette index; -1: the series' own index
   };
   std::vector<Series> series;
   std::vector<std::string> groups;

@@ -506,8 +506,8 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
   table.plot.title = "nk3: frames per second (ours solid, paper hatched)";
   table.plot.valueLabel = "fps";
   table.plot.logScale = true;
-  table.plot.series = {{"RA", false}, {"OPS", false}, {"BS", false},
-                       {"RA paper", true}, {"OPS paper", true}, {"BS paper", true}};
+  table.plot.series = {{"RA", false, 0},  {"RA paper", true, 0}, {"OPS", false, 1},
+                       {"OPS paper", true, 1}, {"BS", false, 2}, {"BS paper", true, 2}};
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const Nk3Line& l : lines) {
     const auto& p = l.paper;
@@ -517,8 +517,8 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
                  p ? formatFps(p->bs) : "–", p ? formatRatio(p->raOverOps) : "–", l.check});
     table.plot.groups.push_back(l.dataset + " " + l.window);
     auto measured = [&](int i) { return l.fps[i] > 0 ? l.fps[i] : nan; };
-    table.plot.values.push_back({measured(0), measured(1), measured(2), p ? p->ra : nan,
-                                 p ? p->ops : nan, p ? p->bs : nan});
+    table.plot.values.push_back({measured(0), p ? p->ra : nan, measured(1), p ? p->ops : nan,
+                                 measured(2), p ? p->bs : nan});
   }
   table.text = text.plain();
   table.markdown = text.markdown();
