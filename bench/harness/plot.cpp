@@ -10,7 +10,7 @@ namespace vsil::bench {
 namespace {
 
 constexpr int kPanelHeight = 520;
-constexpr int kLeft = 70, kRight = 20, kTop = 70, kBottom = 170;
+constexpr int kLeft = 70, kRight = 20, kTop = 84, kBottom = 170;
 constexpr int kBarWidth = 9, kGroupGap = 14;
 constexpr auto kFont = cv::FONT_HERSHEY_SIMPLEX;
 
@@ -78,7 +78,7 @@ cv::Mat drawPanel(const PlotSpec& plot) {
     std::snprintf(label, sizeof label, "%g", tick);
     cv::putText(image, label, {8, y + 4}, kFont, 0.4, {60, 60, 60}, 1, cv::LINE_AA);
   }
-  cv::putText(image, ascii(plot.valueLabel) + (plot.logScale ? " (log)" : ""), {8, kTop - 6},
+  cv::putText(image, ascii(plot.valueLabel) + (plot.logScale ? " (log)" : ""), {8, kTop - 16},
               kFont, 0.4, {60, 60, 60}, 1, cv::LINE_AA);
   cv::line(image, {kLeft, plotBottom}, {width - kRight, plotBottom}, {0, 0, 0}, 1);
 

@@ -31,43 +31,37 @@ int lineCount(const std::string& text) {
   return int(std::count(text.begin(), text.end(), '\n'));
 }
 
-// The small nk3 run the tests share: two small datasets, 64² windows, two frames.
+// The small nk3 run of the tests below: two small datasets, 64² windows, two frames. Each test
+// runs it in its own scratch folder (ctest runs the tests in parallel processes).
 class Nk3Run : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new std::filesystem::path(test::scratchDir());
-    result_ = new test::CommandResult(test::runVsil(
-        "bench --table nk3 --datasets " + datasetsDir() +
-        " --only neghip,hydrogen_atom --sizes 64 --frames 2 --warmup 0 --json " +
-        (*dir_ / "nk3.json").string() + " --markdown " + (*dir_ / "nk3.md").string() +
-        " --plot " + (*dir_ / "nk3.png").string()));
+  void SetUp() override {
+    dir_ = test::scratchDir();
+    result_ = test::runVsil("bench --table nk3 --datasets " + datasetsDir() +
+                            " --only neghip,hydrogen_atom --sizes 64 --frames 2 --warmup 0 --json " +
+                            (dir_ / "nk3.json").string() + " --markdown " +
+                            (dir_ / "nk3.md").string() + " --plot " + (dir_ / "nk3.png").string());
   }
-  static void TearDownTestSuite() {
-    delete result_;
-    delete dir_;
-  }
-  static std::filesystem::path* dir_;
-  static test::CommandResult* result_;
+  std::filesystem::path dir_;
+  test::CommandResult result_;
 };
-std::filesystem::path* Nk3Run::dir_ = nullptr;
-test::CommandResult* Nk3Run::result_ = nullptr;
 
 TEST_F(Nk3Run, SucceedsAndPrintsTheMachineAndTheTable) {
-  ASSERT_EQ(result_->exitCode, 0) << result_->err;
-  const std::string& out = result_->out;
+  ASSERT_EQ(result_.exitCode, 0) << result_.err;
+  const std::string& out = result_.out;
   EXPECT_NE(out.find("machine: "), std::string::npos) << out;
   EXPECT_NE(out.find("llvmpipe"), std::string::npos) << "GL renderer in the header\n" << out;
   EXPECT_NE(out.find("LP_NUM_THREADS="), std::string::npos) << out;
   EXPECT_NE(out.find("neghip"), std::string::npos) << out;
   EXPECT_NE(out.find("hydrogen_atom"), std::string::npos) << out;
   EXPECT_EQ(out.find("bonsai"), std::string::npos) << "--only leaves bonsai out\n" << out;
-  EXPECT_NE(result_->err.find("[1/2]"), std::string::npos) << "progress on stderr\n"
-                                                            << result_->err;
+  EXPECT_NE(result_.err.find("[1/2]"), std::string::npos) << "progress on stderr\n"
+                                                            << result_.err;
 }
 
 TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
-  ASSERT_EQ(result_->exitCode, 0) << result_->err;
-  const auto document = nlohmann::json::parse(slurp(*dir_ / "nk3.json"));
+  ASSERT_EQ(result_.exitCode, 0) << result_.err;
+  const auto document = nlohmann::json::parse(slurp(dir_ / "nk3.json"));
   for (const char* key : {"cpu", "hardware_threads", "gl_renderer", "gl_version",
                           "lp_num_threads", "vsil_version", "build_type", "date_utc"}) {
     EXPECT_TRUE(document["machine"].contains(key)) << key;
@@ -103,11 +97,11 @@ TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
 }
 
 TEST_F(Nk3Run, WritesMarkdownAndPlot) {
-  ASSERT_EQ(result_->exitCode, 0) << result_->err;
-  const std::string markdown = slurp(*dir_ / "nk3.md");
+  ASSERT_EQ(result_.exitCode, 0) << result_.err;
+  const std::string markdown = slurp(dir_ / "nk3.md");
   EXPECT_NE(markdown.find("| dataset |"), std::string::npos) << markdown;
   EXPECT_NE(markdown.find("| neghip |"), std::string::npos) << markdown;
-  const cv::Mat plot = cv::imread((*dir_ / "nk3.png").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat plot = cv::imread((dir_ / "nk3.png").string(), cv::IMREAD_UNCHANGED);
   ASSERT_FALSE(plot.empty());
   EXPECT_GT(plot.cols, 100);
   EXPECT_GT(plot.rows, 100);
