@@ -7,6 +7,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "harness/timing_stats.h"
 #include "postfx/gaussian_fft.h"
 
 namespace vsil::bench {
@@ -26,7 +27,7 @@ cv::Mat1f lineImage(int size) {
 }
 
 template <typename Work>
-double medianMs(int repetitions, Work&& work) {
+TimingStats timeMs(int repetitions, Work&& work) {
   std::vector<double> times;
   for (int i = 0; i < repetitions; ++i) {
     const auto start = std::chrono::steady_clock::now();
@@ -34,8 +35,7 @@ double medianMs(int repetitions, Work&& work) {
     const auto end = std::chrono::steady_clock::now();
     times.push_back(std::chrono::duration<double, std::milli>(end - start).count());
   }
-  std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-  return times[times.size() / 2];
+  return summarize(times);
 }
 
 }  // namespace
@@ -49,10 +49,17 @@ std::vector<FftTableRow> measureFftTable(const FftTableSpec& spec) {
       FftTableRow row{size, sigma};
       cv::Mat1f fft, spatial;
       fft = blur.blur(image, sigma);  // warm: plans and spectrum made once, outside the timing
-      row.fftMs = medianMs(spec.repetitions, [&] { fft = blur.blur(image, sigma); });
-      row.spatialMs = medianMs(spec.repetitions, [&] {
+      const TimingStats fftTimes =
+          timeMs(spec.repetitions, [&] { fft = blur.blur(image, sigma); });
+      const TimingStats spatialTimes = timeMs(spec.repetitions, [&] {
         cv::GaussianBlur(image, spatial, cv::Size(), sigma, sigma, cv::BORDER_CONSTANT);
       });
+      row.fftMs = fftTimes.msMedian;
+      row.fftMinMs = fftTimes.msMin;
+      row.fftMaxMs = fftTimes.msMax;
+      row.spatialMs = spatialTimes.msMedian;
+      row.spatialMinMs = spatialTimes.msMin;
+      row.spatialMaxMs = spatialTimes.msMax;
       row.ratio = row.fftMs / row.spatialMs;
       cv::Mat1f difference = cv::abs(fft - spatial);
       cv::minMaxLoc(difference, nullptr, &row.maxDifference);

@@ -1,0 +1,164 @@
+#include "harness/run_bench.h"
+
+#include <algorithm>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/image_file.h"
+#include "harness/machine_info.h"
+#include "harness/plot.h"
+#include "harness/table_registry.h"
+
+namespace vsil::bench {
+namespace {
+
+void checkOutputFolder(const std::string& flag, const std::filesystem::path& path) {
+  if (path.empty()) return;
+  const auto folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(folder)) {
+    throwInputError(flag + " " + path.string(), "folder " + folder.string() + " does not exist");
+  }
+}
+
+std::string joined(const std::vector<std::string>& items, const std::string& separator) {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : separator) + item;
+  return out;
+}
+
+std::string markdownReport(const MachineInfo& machine, const std::vector<TableResult>& tables) {
+  std::string out = "# vsil bench\n\n";
+  out += "- CPU: " + machine.cpuModel + ", " + std::to_string(machine.hardwareThreads) +
+         " hardware threads\n";
+  out += "- GL: " + machine.glRenderer + ", " + machine.glVersion + "\n";
+  out += "- LP_NUM_THREADS: " + machine.lpNumThreads + "\n";
+  out += "- vsil " + machine.vsilVersion + " (" + machine.buildType + "), " + machine.dateUtc +
+         "\n";
+  for (const auto& table : tables) {
+    out += "\n## " + table.name + ": " + table.title + "\n\n" + table.markdown + "\n";
+    for (const auto& note : table.notes) out += "- " + note + "\n";
+    for (const auto& failure : table.failures) out += "- **check failed**: " + failure + "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+BenchOptions validateOptions(BenchOptions options) {
+  if (options.tables.empty()) {
+    for (const auto& table : tableRegistry()) {
+      if (table.run) options.tables.push_back(table.name);
+    }
+  }
+  std::vector<std::string> unique;
+  std::set<std::string> datasets;
+  for (const auto& name : options.tables) {
+    const TableDefinition& table = implementedTable(name);
+    if (std::find(unique.begin(), unique.end(), name) == unique.end()) unique.push_back(name);
+    datasets.insert(table.datasets.begin(), table.datasets.end());
+  }
+  options.tables = unique;
+  for (const auto& name : options.only) {
+    if (datasets.empty()) {
+      throw InputError("--only: the selected tables (" + joined(options.tables, ", ") +
+                       ") have no datasets");
+    }
+    if (!datasets.count(name)) {
+      throw InputError("--only: unknown dataset '" + name + "' (known: " +
+                       joined({datasets.begin(), datasets.end()}, ", ") + ")");
+    }
+  }
+  for (int size : options.sizes) {
+    if (size < 16 || size > 4096) {
+      throw InputError("--sizes: " + std::to_string(size) + " is outside 16..4096");
+    }
+  }
+  if (options.frames < 1 || options.frames > 100000) {
+    throw InputError("--frames: " + std::to_string(options.frames) + " is outside 1..100000");
+  }
+  if (options.warmup < 0 || options.warmup > 100000) {
+    throw InputError("--warmup: " + std::to_string(options.warmup) + " is outside 0..100000");
+  }
+  if (options.datasetsDir.empty()) {
+#ifdef VSIL_SOURCE_DIR
+    const std::filesystem::path beside = std::filesystem::path(VSIL_SOURCE_DIR) / ".." / "shared" / "datasets";
+#else
+    const std::filesystem::path beside;
+#endif
+    options.datasetsDir = "../shared/datasets";
+    if (!std::filesystem::is_directory(options.datasetsDir) && !beside.empty() &&
+        std::filesystem::is_directory(beside)) {
+      options.datasetsDir = beside.lexically_normal();
+    }
+  } else if (!std::filesystem::is_directory(options.datasetsDir)) {
+    throw InputError("--datasets " + options.datasetsDir.string() + ": no such folder");
+  }
+  checkOutputFolder("--json", options.json);
+  checkOutputFolder("--markdown", options.markdown);
+  checkOutputFolder("--plot", options.plot);
+  if (!options.plot.empty() && options.plot.extension() != ".png") {
+    throw InputError("--plot " + options.plot.string() + ": the plot is a PNG (name it .png)");
+  }
+  return options;
+}
+
+BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostream& progressOut,
+                     bool progressIsTerminal) {
+  const MachineInfo machine = collectMachineInfo();
+  out << "vsil bench: " << joined(options.tables, ", ") << "\n" << formatMachineInfo(machine)
+      << std::flush;
+
+  BenchReport report;
+  std::vector<TableResult> tables;
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& name : options.tables) {
+    TableResult table;
+    {
+      Progress progress(progressOut, progressIsTerminal);
+      table = implementedTable(name).run(options, progress);
+    }
+    out << "\n" << table.name << ": " << table.title << "\n" << table.text;
+    for (const auto& note : table.notes) out << "  " << note << "\n";
+    for (const auto& failure : table.failures) out << "  check FAILED: " << failure << "\n";
+    out << std::flush;
+    report.failures.insert(report.failures.end(), table.failures.begin(), table.failures.end());
+    for (const auto& row : table.rows) rows.push_back(row);
+    tables.push_back(std::move(table));
+  }
+
+  if (!options.json.empty()) {
+    nlohmann::json document;
+    document["format"] = "vsil-bench-1";
+    document["machine"] = machineInfoJson(machine);
+    document["settings"] = {{"tables", options.tables},
+                            {"datasets", options.datasetsDir.string()},
+                            {"only", options.only},
+                            {"sizes", options.sizes},
+                            {"frames", options.frames},
+                            {"warmup", options.warmup}};
+    document["tables"] = nlohmann::json::array();
+    for (const auto& table : tables) {
+      document["tables"].push_back({{"name", table.name},
+                                    {"title", table.title},
+                                    {"notes", table.notes},
+                                    {"failures", table.failures}});
+    }
+    document["rows"] = rows;
+    writeFileAtomically(options.json, document.dump(2) + "\n");
+  }
+  if (!options.markdown.empty()) {
+    writeFileAtomically(options.markdown, markdownReport(machine, tables));
+  }
+  if (!options.plot.empty()) {
+    std::vector<const PlotSpec*> plots;
+    for (const auto& table : tables) plots.push_back(&table.plot);
+    const cv::Mat image = drawPlots(plots);
+    if (!image.empty()) writePng(options.plot, image);
+  }
+  return report;
+}
+
+}  // namespace vsil::bench

@@ -1,0 +1,25 @@
+#pragma once
+// The benchmark tables `vsil bench --table NAME` knows. Adding a table is one entry in
+// table_registry.cpp: its name, a description, the datasets --only may name, and its run
+// function (left empty while the technique it measures does not exist yet).
+#include <string>
+#include <vector>
+
+#include "harness/table.h"
+
+namespace vsil::bench {
+
+struct TableDefinition {
+  std::string name;
+  std::string description;
+  std::vector<std::string> datasets;  // names --only accepts for this table (may be empty)
+  TableRun run;                       // empty: not implemented yet
+  std::string missingTechnique;       // when run is empty: why, e.g. "the x technique does not exist yet"
+};
+
+const std::vector<TableDefinition>& tableRegistry();
+
+// Throws InputError "--table NAME: ..." for unknown names and for tables not implemented yet.
+const TableDefinition& implementedTable(const std::string& name);
+
+}  // namespace vsil::bench

@@ -1,0 +1,62 @@
+// vsil bench: the papers' benchmark tables, reproduced on this machine (bench/harness).
+#include <unistd.h>
+
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "harness/run_bench.h"
+
+namespace vsil::cli {
+namespace {
+
+struct BenchFlags {
+  bench::BenchOptions options;
+  std::string datasets;
+};
+
+// A failed self-check: the numbers of that row are not to be trusted. main() reports it as an
+// internal failure (exit 1) after every table has been printed and written.
+class SelfCheckFailed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+void run(BenchFlags flags) {
+  if (!flags.datasets.empty()) flags.options.datasetsDir = flags.datasets;
+  const bench::BenchOptions options = bench::validateOptions(flags.options);
+  const bench::BenchReport report =
+      bench::runBench(options, std::cout, std::cerr, isatty(STDERR_FILENO) == 1);
+  if (!report.failures.empty()) {
+    throw SelfCheckFailed("bench: " + std::to_string(report.failures.size()) +
+                          " self-check(s) failed, first: " + report.failures.front());
+  }
+}
+
+const CommandRegistration registration(40, [](CLI::App& app) {
+  auto flags = std::make_shared<BenchFlags>();
+  auto& o = flags->options;
+  CLI::App* command = app.add_subcommand(
+      "bench", "Reproduce the papers' benchmark tables on this machine (nk3, fft)");
+  command->add_option("--table", o.tables,
+                      "Table(s) to run: nk3, fft (dv1, illustrate, semantic: not yet); "
+                      "default: all implemented")
+      ->delimiter(',');
+  command->add_option("--datasets", flags->datasets,
+                      "Folder with the classic datasets (default ../shared/datasets)");
+  command->add_option("--only", o.only, "Datasets to run, e.g. bonsai,neghip")->delimiter(',');
+  command->add_option("--sizes", o.sizes,
+                      "Square window sides, e.g. 256,512 (default: each table's own)")
+      ->delimiter(',');
+  command->add_option("--frames", o.frames, "Timed frames per case")->capture_default_str();
+  command->add_option("--warmup", o.warmup, "Untimed frames before them")->capture_default_str();
+  command->add_option("--json", o.json, "Write the rows and the machine as JSON");
+  command->add_option("--markdown", o.markdown, "Write the tables as Markdown");
+  command->add_option("--plot", o.plot, "Write a bar chart (PNG)");
+  command->callback([flags] { run(*flags); });
+});
+
+}  // namespace
+}  // namespace vsil::cli

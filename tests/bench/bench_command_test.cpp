@@ -1,0 +1,170 @@
+// `vsil bench` end to end, through the built binary: the JSON rows' schema and consistency, the
+// self-checks, the reports, and one-line errors for bad flags. No assertion on timings: they
+// depend on the machine and its load (performance is measured, never asserted).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "test_support.h"
+
+namespace vsil {
+namespace {
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+std::string datasetsDir() { return test::datasetPath("").parent_path().string(); }
+
+int lineCount(const std::string& text) {
+  return int(std::count(text.begin(), text.end(), '\n'));
+}
+
+// The small nk3 run of the tests below: two small datasets, 64² windows, two frames. Each test
+// runs it in its own scratch folder (ctest runs the tests in parallel processes).
+class Nk3Run : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::scratchDir();
+    result_ = test::runVsil("bench --table nk3 --datasets " + datasetsDir() +
+                            " --only neghip,hydrogen_atom --sizes 64 --frames 2 --warmup 0 --json " +
+                            (dir_ / "nk3.json").string() + " --markdown " +
+                            (dir_ / "nk3.md").string() + " --plot " + (dir_ / "nk3.png").string());
+  }
+  std::filesystem::path dir_;
+  test::CommandResult result_;
+};
+
+TEST_F(Nk3Run, SucceedsAndPrintsTheMachineAndTheTable) {
+  ASSERT_EQ(result_.exitCode, 0) << result_.err;
+  const std::string& out = result_.out;
+  EXPECT_NE(out.find("machine: "), std::string::npos) << out;
+  EXPECT_NE(out.find("llvmpipe"), std::string::npos) << "GL renderer in the header\n" << out;
+  EXPECT_NE(out.find("LP_NUM_THREADS="), std::string::npos) << out;
+  EXPECT_NE(out.find("neghip"), std::string::npos) << out;
+  EXPECT_NE(out.find("hydrogen_atom"), std::string::npos) << out;
+  EXPECT_EQ(out.find("bonsai"), std::string::npos) << "--only leaves bonsai out\n" << out;
+  EXPECT_NE(result_.err.find("[1/2]"), std::string::npos) << "progress on stderr\n"
+                                                            << result_.err;
+}
+
+TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
+  ASSERT_EQ(result_.exitCode, 0) << result_.err;
+  const auto document = nlohmann::json::parse(slurp(dir_ / "nk3.json"));
+  for (const char* key : {"cpu", "hardware_threads", "gl_renderer", "gl_version",
+                          "lp_num_threads", "vsil_version", "build_type", "date_utc"}) {
+    EXPECT_TRUE(document["machine"].contains(key)) << key;
+  }
+  const auto& rows = document["rows"];
+  ASSERT_TRUE(rows.is_array());
+  ASSERT_EQ(rows.size(), 6u) << "2 datasets x 1 size x 3 techniques\n" << rows.dump(1);
+  std::map<std::string, int> perTechnique;
+  for (const auto& row : rows) {
+    SCOPED_TRACE(row.dump());
+    EXPECT_EQ(row["table"], "nk3");
+    const std::string dataset = row["dataset"];
+    EXPECT_TRUE(dataset == "neghip" || dataset == "hydrogen_atom");
+    EXPECT_EQ(row["width"], 64);
+    EXPECT_EQ(row["height"], 64);
+    const std::string technique = row["technique"];
+    EXPECT_TRUE(technique == "ra" || technique == "ops" || technique == "bs");
+    ++perTechnique[technique];
+    EXPECT_EQ(row["frames"], 2);
+    const double median = row["ms_median"], low = row["ms_min"], high = row["ms_max"];
+    EXPECT_GT(low, 0.0);
+    EXPECT_LE(low, median);
+    EXPECT_LE(median, high);
+    // fps is derived from the median alone; 1e-9 relative is double round-off.
+    EXPECT_NEAR(row["fps"].get<double>(), 1000.0 / median, 1e-9 * (1000.0 / median));
+    EXPECT_EQ(row["check"], "ok");
+    EXPECT_GT(row["silhouette_pixels_median"].get<double>(), 0.0);
+    EXPECT_TRUE(row["paper_fps"].is_null()) << "the paper has no 64² column";
+  }
+  EXPECT_EQ(perTechnique["ra"], 2);
+  EXPECT_EQ(perTechnique["ops"], 2);
+  EXPECT_EQ(perTechnique["bs"], 2);
+}
+
+TEST_F(Nk3Run, WritesMarkdownAndPlot) {
+  ASSERT_EQ(result_.exitCode, 0) << result_.err;
+  const std::string markdown = slurp(dir_ / "nk3.md");
+  EXPECT_NE(markdown.find("| dataset |"), std::string::npos) << markdown;
+  EXPECT_NE(markdown.find("| neghip |"), std::string::npos) << markdown;
+  const cv::Mat plot = cv::imread((dir_ / "nk3.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(plot.empty());
+  EXPECT_GT(plot.cols, 100);
+  EXPECT_GT(plot.rows, 100);
+}
+
+TEST(BenchCommand, SkullIsReportedMissingWithThePaperNumbers) {
+  const auto dir = test::scratchDir();
+  const auto result = test::runVsil("bench --table nk3 --datasets " + datasetsDir() +
+                                    " --only skull --json " + (dir / "skull.json").string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.out.find("not available (no stored copy; see ../shared/datasets/README.md)"),
+            std::string::npos)
+      << result.out;
+  const auto rows = nlohmann::json::parse(slurp(dir / "skull.json"))["rows"];
+  ASSERT_EQ(rows.size(), 6u) << "256² and 512², 3 techniques";
+  for (const auto& row : rows) {
+    EXPECT_EQ(row["dataset"], "skull");
+    EXPECT_TRUE(row["missing"].is_string());
+    EXPECT_TRUE(row["fps"].is_null());
+    EXPECT_TRUE(row["paper_fps"].is_number()) << "the paper's Skull numbers are still quoted";
+  }
+}
+
+TEST(BenchCommand, MissingDatasetFolderContentsAreReportedNotFatal) {
+  const auto dir = test::scratchDir();  // empty folder: every dataset is missing
+  const auto result = test::runVsil("bench --table nk3 --datasets " + dir.string() +
+                                    " --only neghip --sizes 64 --frames 1 --warmup 0");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.out.find("not found"), std::string::npos) << result.out;
+}
+
+struct BadFlags {
+  const char* name;
+  const char* arguments;
+  const char* mentions;  // the flag or value the one-line error must name
+};
+
+class BenchBadFlags : public ::testing::TestWithParam<BadFlags> {};
+
+TEST_P(BenchBadFlags, ExitTwoWithOneLine) {
+  const auto result = test::runVsil(std::string("bench ") + GetParam().arguments);
+  EXPECT_EQ(result.exitCode, 2) << result.out << result.err;
+  EXPECT_EQ(lineCount(result.err), 1) << result.err;
+  EXPECT_NE(result.err.find(GetParam().mentions), std::string::npos) << result.err;
+  EXPECT_EQ(result.out, "") << "nothing runs before the flags are checked";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Flags, BenchBadFlags,
+    ::testing::Values(
+        BadFlags{"UnknownTable", "--table nk9", "nk9"},
+        BadFlags{"Dv1NotImplemented", "--table dv1", "not implemented yet"},
+        BadFlags{"IllustrateNotImplemented", "--table illustrate", "not implemented yet"},
+        BadFlags{"UnknownDataset", "--table nk3 --only bonsia", "bonsia"},
+        BadFlags{"OnlyWithoutDatasets", "--table fft --only bonsai", "--only"},
+        BadFlags{"ZeroFrames", "--frames 0", "--frames"},
+        BadFlags{"NegativeWarmup", "--warmup -1", "--warmup"},
+        BadFlags{"TinySize", "--sizes 4", "--sizes"},
+        BadFlags{"SizeNotANumber", "--sizes 256,big", "--sizes"},
+        BadFlags{"MissingDatasetsFolder", "--datasets /nonexistent/vsil", "/nonexistent/vsil"},
+        BadFlags{"JsonInMissingFolder", "--json /nonexistent/vsil/x.json", "--json"},
+        BadFlags{"PlotNotPng", "--plot /tmp/x.jpg", "--plot"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace vsil
