@@ -28,6 +28,7 @@ constexpr const char* kDefaultInput = "gen:spheres:128";
 struct RenderOptions {
   std::string input = kDefaultInput;
   std::string technique = "silhouette";
+  std::string pipeline = "fast";
   std::string size = "512x512";
   std::optional<double> iso;
   std::string view = "30,20";
@@ -81,6 +82,11 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions,
   settings.camera.orthographic = options.orthographic;
   settings.camera.zoom = options.zoom;
   settings.samplesPerVoxel = options.sampling;
+  if (options.pipeline != "fast" && options.pipeline != "paper") {
+    throw InputError("--pipeline: unknown pipeline '" + options.pipeline + "' (known: fast, paper)");
+  }
+  settings.silhouettePipeline =
+      options.pipeline == "paper" ? SilhouettePipeline::Paper : SilhouettePipeline::Fast;
   settings.rightAngleExponent = options.raExponent;
   settings.rightAngleThreshold = options.raThreshold;
   const auto names = Renderer::techniqueNames();
@@ -117,6 +123,7 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions,
     meta["gl_renderer"] = context.renderer();
     meta["parameters"] = {{"input", options.input},
                           {"technique", settings.technique},
+                          {"pipeline", options.pipeline},
                           {"size", {settings.size.x, settings.size.y}},
                           {"iso", settings.iso},
                           {"view", {view.x, view.y}},
@@ -168,6 +175,10 @@ const CommandRegistration registration(10, [](CLI::App& app) {
                       "Volume file (.nrrd .nhdr .vti .vtk, raw with --dims/--type) or "
                       "gen:NAME[:N]; default " + std::string(kDefaultInput));
   command->add_option("--technique", options->technique, "silhouette | rightangle")
+      ->capture_default_str();
+  command->add_option("--pipeline", options->pipeline,
+                      "silhouette: fast (fused in-place passes) or paper (the paper's three "
+                      "passes); same pixels")
       ->capture_default_str();
   command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
   command->add_option("--iso", options->iso,

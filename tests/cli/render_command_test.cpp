@@ -93,6 +93,22 @@ TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
   EXPECT_NEAR(depthSum / silhouettes, centreDepth, 0.02);
 }
 
+TEST(RenderCommand, PaperAndFastPipelinesGiveIdenticalImages) {
+  const auto dir = test::scratchDir();
+  std::string images[2];
+  const char* pipelines[2] = {"fast", "paper"};
+  for (int i = 0; i < 2; ++i) {
+    const auto state = dir / (std::string(pipelines[i]) + ".png");
+    const auto result = test::runVsil("render gen:spheres:64 --size 120x100 --pipeline " +
+                                      std::string(pipelines[i]) + " --out " +
+                                      (dir / "out.png").string() + " --state-out " +
+                                      state.string());
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    images[i] = slurp(state);
+  }
+  EXPECT_EQ(images[0], images[1]);
+}
+
 TEST(RenderCommand, SameCommandTwiceGivesIdenticalBytes) {
   const auto dir = test::scratchDir();
   for (const char* technique : {"silhouette", "rightangle"}) {
@@ -133,6 +149,7 @@ TEST_P(RenderCommandRejects, WithOneLineAndExitTwoAndNoOutput) {
 INSTANTIATE_TEST_SUITE_P(
     BadInput, RenderCommandRejects,
     ::testing::Values(BadRender{"unknown_technique", "gen:sphere:16 --technique nope", "--technique"},
+                      BadRender{"unknown_pipeline", "gen:sphere:16 --pipeline slow", "--pipeline"},
                       BadRender{"zero_size", "gen:sphere:16 --size 0x10", "--size"},
                       BadRender{"size_without_x", "gen:sphere:16 --size 12", "--size"},
                       BadRender{"view_one_angle", "gen:sphere:16 --view 1", "--view"},
