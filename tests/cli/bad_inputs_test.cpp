@@ -28,6 +28,9 @@ struct BadInput {
   std::string stderrPrefix;  // its beginning (for messages that name the machine's memory)
 };
 
+// gtest names cases by `name`; this keeps failure messages readable too.
+void PrintTo(const BadInput& c, std::ostream* out) { *out << c.name << ": vsil " << c.args; }
+
 std::vector<BadInput> loadCases() {
   std::ifstream in(kCorpus / "cases.json");
   const nlohmann::json cases = nlohmann::json::parse(in);
