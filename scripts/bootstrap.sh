@@ -3,7 +3,8 @@
 # builds into build/. Safe to run again: apt-get skips what is installed, cmake rebuilds little.
 # Environment: VSIL_BUILD_DIR (default build), VSIL_CMAKE_ARGS (extra cmake arguments),
 # VSIL_EXTRA_PACKAGES (more Debian packages, e.g. clang for scripts/fuzz.sh), VSIL_SHARED_DIR
-# (the folder holding datasets/, default ../shared beside the checkout), VSIL_BUILD_TYPE.
+# (the folder holding datasets/, default ../shared beside the checkout), VSIL_BUILD_TYPE,
+# VSIL_CONFIGURE_ONLY=1 (install and configure, build nothing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -35,4 +36,4 @@ shared_args=()
 [[ -n ${VSIL_SHARED_DIR:-} ]] && shared_args=(-DVSIL_SHARED_DIR="$VSIL_SHARED_DIR")
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="${VSIL_BUILD_TYPE:-RelWithDebInfo}" \
   "${shared_args[@]}" ${VSIL_CMAKE_ARGS:-} >&2
-cmake --build "$build_dir" -j"$(nproc)" >&2
+[[ ${VSIL_CONFIGURE_ONLY:-0} == 1 ]] || cmake --build "$build_dir" -j"$(nproc)" >&2

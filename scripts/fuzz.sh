@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${VSIL_FUZZ_SECONDS:-60}
 
-VSIL_BUILD_DIR=build-fuzz VSIL_EXTRA_PACKAGES="clang libclang-rt-14-dev" \
+VSIL_CONFIGURE_ONLY=1 VSIL_BUILD_DIR=build-fuzz VSIL_EXTRA_PACKAGES="clang libclang-rt-14-dev" \
   VSIL_CMAKE_ARGS="-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DVSIL_FUZZ=ON \
                    -DVSIL_BUILD_TESTS=OFF -DVSIL_BUILD_BENCH=OFF ${VSIL_CMAKE_ARGS:-}" \
   scripts/bootstrap.sh
@@ -20,6 +20,13 @@ if (($#)); then targets=("$@"); else
 fi
 found=0
 for target in "${targets[@]}"; do
+  # Each binary alone: one that does not build (see its log) is reported and skipped.
+  if ! cmake --build build-fuzz -j"$(nproc)" --target fuzz_"$target" > "build-fuzz/build-$target.log" 2>&1; then
+    echo "fuzz: fuzz_$target does not build with clang, skipped (build-fuzz/build-$target.log)" >&2
+    grep -m3 "error:" "build-fuzz/build-$target.log" >&2 || true
+    found=1
+    continue
+  fi
   corpus=build-fuzz/corpus/$target artifacts=build-fuzz/artifacts/$target
   mkdir -p "$corpus" "$artifacts"
   echo "fuzz: $target for ${seconds}s" >&2
