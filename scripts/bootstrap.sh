@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
 # Installs what vsil needs on Debian bookworm (as root, or with sudo), then configures and
 # builds into build/. Safe to run again: apt-get skips what is installed, cmake rebuilds little.
+# Environment: VSIL_BUILD_DIR (default build), VSIL_CMAKE_ARGS (extra cmake arguments),
+# VSIL_EXTRA_PACKAGES (more Debian packages, e.g. clang for scripts/fuzz.sh), VSIL_SHARED_DIR
+# (the folder holding datasets/, default ../shared beside the checkout), VSIL_BUILD_TYPE,
+# VSIL_CONFIGURE_ONLY=1 (install and configure, build nothing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -14,6 +18,7 @@ packages=(
   libcli11-dev                   # command-line parsing
   libtinyxml2-dev zlib1g-dev     # VTK XML (.vti) files, zlib/gzip payloads
   libgtest-dev libbenchmark-dev  # tests and micro-benchmarks
+  ${VSIL_EXTRA_PACKAGES:-}
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -26,5 +31,9 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE="${VSIL_BUILD_TYPE:-RelWithDebInfo}" ${VSIL_CMAKE_ARGS:-} >&2
-cmake --build build -j"$(nproc)" >&2
+build_dir=${VSIL_BUILD_DIR:-build}
+shared_args=()
+[[ -n ${VSIL_SHARED_DIR:-} ]] && shared_args=(-DVSIL_SHARED_DIR="$VSIL_SHARED_DIR")
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="${VSIL_BUILD_TYPE:-RelWithDebInfo}" \
+  "${shared_args[@]}" ${VSIL_CMAKE_ARGS:-} >&2
+[[ ${VSIL_CONFIGURE_ONLY:-0} == 1 ]] || cmake --build "$build_dir" -j"$(nproc)" >&2

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "slicing/gl_context.h"
 #include "slicing/gl_state.h"
 #include "slicing/technique.h"
@@ -15,8 +16,8 @@ namespace vsil {
 
 namespace {
 
-constexpr int kMaxImageSide = 16384;
-constexpr double kMaxSamplesPerVoxel = 64.0;
+constexpr int kMaxImageSide = limits::kMaxImageSide;
+constexpr double kMaxSamplesPerVoxel = limits::kMaxSamplesPerVoxel;
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -46,6 +47,8 @@ void validate(const RenderSettings& settings) {
 }
 
 }  // namespace
+
+void Renderer::validateSettings(const RenderSettings& settings) { validate(settings); }
 
 struct Renderer::Impl {
   gl::GlContext* context = nullptr;

@@ -64,6 +64,9 @@ class Renderer {
   RenderResult render(const RenderSettings& settings);
 
   static std::vector<std::string> techniqueNames();
+  // The checks render() makes first (size, sampling, zoom, angles, ...; core/limits.h), callable
+  // before any GL work. Throws InputError naming the flag.
+  static void validateSettings(const RenderSettings& settings);
 
  private:
   struct Impl;

@@ -1,5 +1,7 @@
 #include "cli/commands.h"
 
+#include <algorithm>
+
 namespace vsil::cli {
 
 std::vector<RegisteredCommand>& registeredCommands() {
@@ -10,5 +12,21 @@ std::vector<RegisteredCommand>& registeredCommands() {
 CommandRegistration::CommandRegistration(int order, CommandSetup setup) {
   registeredCommands().push_back({order, std::move(setup)});
 }
+
+void setUpApp(CLI::App& app) {
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "vsil 0.1.0");
+  auto commands = registeredCommands();
+  std::stable_sort(commands.begin(), commands.end(),
+                   [](const auto& a, const auto& b) { return a.order < b.order; });
+  for (const auto& command : commands) command.setup(app);
+}
+
+namespace {
+bool validateOnlyFlag = false;
+}
+
+void setValidateOnly(bool on) { validateOnlyFlag = on; }
+bool validateOnly() { return validateOnlyFlag; }
 
 }  // namespace vsil::cli

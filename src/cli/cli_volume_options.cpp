@@ -49,16 +49,20 @@ void addVolumeOptions(CLI::App& command, VolumeOptions& options) {
       ->group(group);
   command
       .add_option("--max-memory", options.maxMemoryMiB,
-                  "refuse volumes needing more than this many MiB in memory (default 4096)")
-      ->check(CLI::PositiveNumber);
+                  "refuse work needing more than this many MiB of memory (default: half the "
+                  "physical memory, " + std::to_string(limits::defaultMemoryBytes() >> 20) + ")");
 }
 
 LoadOptions toLoadOptions(const VolumeOptions& options) {
   LoadOptions load;
-  if (options.maxMemoryMiB < 0 || options.maxMemoryMiB > (1ll << 40)) {
-    throwInputError("--max-memory " + std::to_string(options.maxMemoryMiB), "is out of range");
+  if (options.maxMemoryMiB) {
+    const long long mib = *options.maxMemoryMiB;
+    if (mib < 1 || mib > limits::kMaxMemoryMiBFlag) {
+      throwInputError("--max-memory " + std::to_string(mib),
+                      "must be between 1 and " + std::to_string(limits::kMaxMemoryMiBFlag) + " MiB");
+    }
+    load.limits.maxBytes = std::size_t(mib) << 20;
   }
-  if (options.maxMemoryMiB > 0) load.limits.maxBytes = std::size_t(options.maxMemoryMiB) << 20;
 
   const bool raw = !options.dims.empty() || !options.type.empty();
   if (!raw) {

@@ -5,6 +5,7 @@
 //   auto options = std::make_shared<VolumeOptions>();
 //   addVolumeOptions(*command, *options);
 //   command->callback([options, ...] { Volume v = loadVolume(path, toLoadOptions(*options)); });
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -18,7 +19,7 @@ struct VolumeOptions {
   std::string type;            // --type uint8|uint16|int16|float32 (raw files)
   std::string spacing;         // --spacing a,b,c (raw files; default 1,1,1)
   std::string endian;          // --endian little|big (raw files; default little)
-  long long maxMemoryMiB = 0;  // --max-memory MiB; 0 keeps VolumeLimits' default
+  std::optional<long long> maxMemoryMiB;  // --max-memory MiB; unset keeps VolumeLimits' default
 };
 
 // Adds --dims, --type, --spacing, --endian (group "Raw volume layout") and --max-memory.

@@ -21,4 +21,13 @@ struct RegisteredCommand {
 };
 std::vector<RegisteredCommand>& registeredCommands();
 
+// Sets up `app` as the vsil tool: one required subcommand, --version, every registered command.
+void setUpApp(CLI::App& app);
+
+// When on, a command checks its flags and stops before any work (reading files, rendering,
+// writing): the command-line fuzz target (tests/fuzz/fuzz_cli.cpp) parses hostile argument lists
+// this way. Each command's callback calls its checks, then returns if validateOnly().
+void setValidateOnly(bool on);
+bool validateOnly();
+
 }  // namespace vsil::cli

@@ -110,7 +110,9 @@ struct InfoOptions {
 };
 
 void runInfo(const InfoOptions& options) {
-  const Volume volume = loadVolume(options.volume, toLoadOptions(options.load));
+  const LoadOptions load = toLoadOptions(options.load);
+  if (validateOnly()) return;
+  const Volume volume = loadVolume(options.volume, load);
   const Summary summary = summarize(volume);
   // Printed only once everything succeeded: an error leaves stdout empty.
   std::cout << (options.json ? toJson(volume, summary).dump(2) + "\n" : toText(volume, summary));

@@ -1,20 +1,19 @@
 // vsil: volume silhouette illustration. Only this file turns errors into exit statuses:
 // 2 for bad input (files, flags, parameters), 1 for internal failures.
-#include <algorithm>
 #include <exception>
+#include <new>
 #include <iostream>
 
 #include "cli/commands.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
+  // Ctrl-C, SIGTERM, SIGHUP: remove the temporary file of an output being written, then die
+  // of the signal as usual (core/atomic_file.h). Targets are only ever replaced by rename().
+  vsil::installOutputCleanupOnSignals();
   CLI::App app{"vsil: silhouettes and illustrations of volume data, rendered offscreen"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "vsil 0.1.0");
-  auto commands = vsil::cli::registeredCommands();
-  std::stable_sort(commands.begin(), commands.end(),
-                   [](const auto& a, const auto& b) { return a.order < b.order; });
-  for (const auto& command : commands) command.setup(app);
+  vsil::cli::setUpApp(app);
   try {
     app.parse(argc, argv);
     return 0;
@@ -30,6 +29,9 @@ int main(int argc, char** argv) {
   } catch (const vsil::InputError& e) {
     std::cerr << "vsil: " << e.what() << "\n";
     return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "vsil: internal error: out of memory (lower --size or --max-memory)\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "vsil: internal error: " << e.what() << "\n";
     return 1;

@@ -41,6 +41,7 @@ nlohmann::json statisticsJson(const WidthStatistics& stats) {
 
 void run(const MeasureWidthArgs& args) {
   const Rgba color = parseColor(args.lineColor, "--line-color");
+  if (validateOnly()) return;
   const cv::Mat image = readImage(args.image);
   if (image.depth() != CV_8U) throwInputError(args.image, "only 8-bit images are measured");
   const cv::Mat1b mask = lineMaskFromImage(image, color);

@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/image_file.h"
 #include "io/volume_loader.h"
 #include "postfx/compose.h"
@@ -70,9 +71,10 @@ cv::Mat1w depthImage(const FrameBuffers& frame) {
   return image;
 }
 
-void run(const RenderOptions& options, const LoadOptions& loadOptions,
-         const PostfxOptions& postfx) {
-  const auto start = std::chrono::steady_clock::now();
+// The flags checked together, before any file is read: what render() would refuse, the image's
+// share of the memory limit.
+RenderSettings checkedSettings(const RenderOptions& options, const LoadOptions& loadOptions,
+                               const PostfxOptions& postfx) {
   RenderSettings settings;
   settings.technique = options.technique;
   settings.size = parseSize("--size", options.size);
@@ -94,8 +96,46 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions,
     throw InputError("--technique: unknown technique '" + settings.technique +
                      "' (known: silhouette, rightangle)");
   }
+  if (options.iso && !std::isfinite(*options.iso)) throw InputError("--iso: must be a finite number");
+  settings.iso = float(options.iso.value_or(0.0));  // the real default needs the volume
+  Renderer::validateSettings(settings);
+  const double maxWidth = std::max(postfx.width.near, postfx.width.far);
+  if (maxWidth > limits::kMaxLineWidth) {
+    throw InputError("--width: " + std::to_string(int(std::min(maxWidth, 1e9))) +
+                     " pixels is over the limit of " + std::to_string(int(limits::kMaxLineWidth)));
+  }
+  limits::checkMemory("--size " + options.size,
+                      limits::renderImageBytes(settings.size, maxWidth),
+                      loadOptions.limits.maxBytes);
+  return settings;
+}
+
+// Once the volume is known: slices per frame and the whole render's memory.
+void checkVolumeWork(const Volume& volume, const RenderSettings& settings,
+                     const RenderOptions& options, const LoadOptions& loadOptions,
+                     const PostfxOptions& postfx) {
+  const std::int64_t slices = limits::sliceCountBound(volume.dims, settings.samplesPerVoxel);
+  if (slices > limits::kMaxSlices) {
+    throw InputError("--sampling " + std::to_string(settings.samplesPerVoxel) + ": " +
+                     volume.source + " would need up to " + std::to_string(slices) +
+                     " slices per frame, over the limit of " + std::to_string(limits::kMaxSlices));
+  }
+  const double maxWidth = std::max(postfx.width.near, postfx.width.far);
+  const std::uint64_t bytes = limits::renderVolumeBytes(volume.dims) +
+                              limits::renderImageBytes(settings.size, maxWidth);
+  limits::checkMemory("rendering " + volume.source + " at --size " + options.size, bytes,
+                      loadOptions.limits.maxBytes);
+}
+
+void run(const RenderOptions& options, const LoadOptions& loadOptions,
+         const PostfxOptions& postfx) {
+  const auto start = std::chrono::steady_clock::now();
+  RenderSettings settings = checkedSettings(options, loadOptions, postfx);
+  if (validateOnly()) return;
+  const glm::dvec2 view{settings.camera.azimuthDeg, settings.camera.elevationDeg};
 
   const Volume volume = loadVolume(options.input, loadOptions);
+  checkVolumeWork(volume, settings, options, loadOptions, postfx);
   const ValueRange range = valueRange(volume);
   settings.iso = float(options.iso.value_or(0.5 * (double(range.min) + double(range.max))));
 

@@ -8,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/limits.h"
+
 namespace vsil {
 
 // The type of the samples in the file (what the user's --iso units mean). In memory every
@@ -42,10 +44,11 @@ struct ValueRange {
 ValueRange valueRange(const Volume& volume);
 
 // Limits checked before anything is allocated. maxBytes bounds the in-memory volume
-// (4 bytes per sample); maxDimension bounds each axis (the GL 3D texture limit is 2048 here).
+// (4 bytes per sample; default: half the physical memory, core/limits.h); maxDimension bounds
+// each axis (the GL 3D texture limit, 2048).
 struct VolumeLimits {
-  std::size_t maxBytes = std::size_t(4) << 30;  // 4 GiB
-  int maxDimension = 2048;
+  std::size_t maxBytes = limits::defaultMemoryBytes();
+  int maxDimension = limits::kMaxVolumeSide;
 };
 
 // Throws InputError naming `where` when dims are not positive, exceed the limits, or the

@@ -18,7 +18,7 @@ namespace vsil::io {
 namespace {
 
 // A header longer than this is not a header.
-constexpr std::size_t kMaxHeaderBytes = std::size_t(1) << 20;
+constexpr std::size_t kMaxHeaderBytes = limits::kMaxHeaderBytes;
 
 struct NrrdHeader {
   std::map<std::string, std::string> fields;  // field name (lower case, spaces kept) -> value

@@ -1,0 +1,44 @@
+#!/usr/bin/env python3
+"""Writes the bad-input corpus beside this script (committed; run again only to change it).
+Each file is small; cases.json says which command reads it and the exact error it must get."""
+import base64, gzip, os, struct, zlib
+
+here = os.path.dirname(os.path.abspath(__file__))
+
+
+def write(name, data):
+    with open(os.path.join(here, name), 'wb') as f:
+        f.write(data if isinstance(data, bytes) else data.encode())
+
+
+nrrd = 'NRRD0004\ntype: %s\ndimension: 3\nsizes: %s\n%sencoding: %s\n\n'
+write('truncated.nrrd', (nrrd % ('uint8', '4 4 4', '', 'raw')).encode() + bytes(10))
+write('oversized_dims.nrrd', (nrrd % ('uint8', '100000 100000 100000', '', 'raw')).encode() + bytes(8))
+write('huge_number.nrrd', (nrrd % ('uint8', '4 4 99999999999999999999999', '', 'raw')).encode() + bytes(8))
+write('nan_floats.nrrd', (nrrd % ('float', '2 2 2', 'endian: little\n', 'raw')).encode() +
+      struct.pack('<8f', 0, 1, 2, float('nan'), 4, 5, 6, 7))
+write('wrong_magic.nrrd', (nrrd % ('uint8', '2 2 2', '', 'raw')).replace('NRRD0004', 'NRRX0004').encode() + bytes(8))
+# 1 MiB of zeros in ~1 KiB of gzip, for a 64-byte volume: must stop after 65 bytes of output.
+write('gzip_bomb.nrrd', (nrrd % ('uint8', '4 4 4', '', 'gzip')).encode() + gzip.compress(bytes(1 << 20), 9, mtime=0))
+write('empty.nrrd', b'')
+write('unknown_format.xyz', b'some bytes\n')
+
+vti_head = ('<VTKFile type="ImageData" byte_order="LittleEndian" header_type="UInt32"%s>\n'
+            '<ImageData WholeExtent="0 1 0 1 0 1" Spacing="1 1 1"><Piece><PointData>\n')
+vti_tail = '</PointData></Piece></ImageData>\n'
+write('malformed.vti', vti_head % '' + '<DataArray type="UInt8" format="ascii">1 2 3 4 5 6 7 8\n</PointData></Piece>\n')
+packed = zlib.compress(bytes(1 << 20), 9)
+block = struct.pack('<4I', 1, 8, 0, len(packed)) + packed
+write('zlib_bomb.vti', (vti_head % ' compressor="vtkZLibDataCompressor"' +
+                        '<DataArray type="UInt8" format="appended" offset="0"/>\n' + vti_tail +
+                        '<AppendedData encoding="raw">_').encode() + block + b'</AppendedData></VTKFile>\n')
+write('bad_base64.vti', vti_head % '' + '<DataArray type="UInt8" format="binary">CAAAAA**AQIDBAUGBw==</DataArray>\n' + vti_tail + '</VTKFile>\n')
+
+vtk = '# vtk DataFile Version 3.0\nbad\n%s\nDATASET STRUCTURED_POINTS\nDIMENSIONS %s\nPOINT_DATA %s\nSCALARS s %s\nLOOKUP_TABLE default\n'
+write('huge_numbers.vtk', vtk % ('ASCII', '99999999999999999999 1 1', '1', 'float') + '1\n')
+write('truncated.vtk', (vtk % ('BINARY', '4 4 4', '64', 'unsigned_char')).encode() + bytes(20))
+write('inf_floats.vtk', vtk % ('ASCII', '2 1 1', '2', 'float') + '1 inf\n')
+
+os.makedirs(os.path.join(here, 'directory.vti'), exist_ok=True)
+write('directory.vti/README', 'A directory named like a volume: vsil must say it is a directory.\n')
+write('small.raw', bytes(100))
