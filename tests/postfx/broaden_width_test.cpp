@@ -1,6 +1,9 @@
 // Broadened widths measured on CPU-made silhouettes (tests/reference/digital_curves.h): circles
 // and straight lines in many orientations, fixed widths 2..40.
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <vector>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -93,6 +96,61 @@ TEST(Broadening, WidthOneIsTheLineItself) {
   FftGaussianBlur blur;
   const cv::Mat1b band = broadenMask(lines, 1, blur);
   EXPECT_EQ(cv::countNonZero(band != lines), 0);
+}
+
+}  // namespace
+}  // namespace vsil
+
+namespace vsil {
+namespace {
+
+// The orientation sweep behind README's "Line widths" table (not run by ctest; run with
+//   build/tests/vsil_tests_postfx --gtest_also_run_disabled_tests --gtest_filter='*Sweep*'):
+// straight digital lines at 0..180 degrees in 1 degree steps, each width, worst error per width.
+TEST(OrientationSweep, DISABLED_DigitalLinesEveryDegree) {
+  FftGaussianBlur blur;
+  for (int width : {2, 3, 5, 8, 13, 21, 40}) {
+    double worst = 0, worstAngle = 0, worstRatio = 0;
+    int failing = 0;
+    for (int degree = 0; degree <= 180; ++degree) {
+      const cv::Point2d point(127.3, 128.6);
+      const cv::Mat1b lines =
+          test::silhouettePixels({256, 256}, test::halfPlaneShape(point, degree));
+      const cv::Mat1b band = broadenMask(lines, width, blur);
+      const double error =
+          test::straightBandWidth(band, point, degree, 70, width + 10) - width;
+      if (std::abs(error) > std::abs(worst)) worst = error, worstAngle = degree;
+      worstRatio = std::max(worstRatio, std::abs(error) / widthTolerance(width));
+      failing += std::abs(error) > widthTolerance(width);
+    }
+    std::cout << "sweep W=" << width << " worst error " << std::showpos << std::fixed
+              << std::setprecision(2) << worst << std::noshowpos << " at " << worstAngle
+              << " deg, worst error/tolerance " << worstRatio << ", angles out of tolerance "
+              << failing << "\n";
+  }
+}
+
+// Broadening time at 512² (a circle and two lines, W = 8): median of 41 runs after a warm-up.
+TEST(OrientationSweep, DISABLED_BroadeningTime512) {
+  const cv::Mat1b lines =
+      test::silhouettePixels({512, 512}, test::discShape({256.3, 255.7}, 170)) |
+      test::silhouettePixels({512, 512}, test::halfPlaneShape({100.2, 300.7}, 45)) |
+      test::silhouettePixels({512, 512}, test::halfPlaneShape({300.2, 100.7}, 17));
+  FftGaussianBlur blur;
+  for (int width : {3, 8, 40}) {
+    cv::Mat1b band = broadenMask(lines, width, blur);
+    std::vector<double> ms;
+    for (int i = 0; i < 41; ++i) {
+      const auto start = std::chrono::steady_clock::now();
+      band = broadenMask(lines, width, blur);
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                             start)
+                       .count());
+    }
+    std::sort(ms.begin(), ms.end());
+    std::cout << "broadenMask 512x512 W=" << width << ": median " << ms[ms.size() / 2]
+              << " ms, min " << ms.front() << " ms\n";
+  }
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 // along the line. Neither depends on where the one-pixel outline sits, about half a pixel inside
 // the true surface (slicing/'s outline pixels are filled pixels at the rim), so no correction
 // for that offset enters the measurement.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -140,6 +141,38 @@ TEST_F(RenderedWidths, ExactDiagonalsAreWithinOneDiagonalRow) {
       }
     }
     std::cout << tableRow(m) << "\n";
+  }
+}
+
+}  // namespace
+}  // namespace vsil
+
+namespace vsil {
+namespace {
+
+// The orientation sweep behind README's "Line widths" table (not run by ctest; run with
+//   build/tests/vsil_tests_postfx_gl --gtest_also_run_disabled_tests --gtest_filter='*Sweep*'):
+// the cylinder's two silhouette lines at 0..180 degrees in 1 degree steps, worst error per width.
+TEST_F(RenderedWidths, DISABLED_SweepEveryDegree) {
+  std::vector<double> worst(std::size(kWidths), 0.0), worstAngle(std::size(kWidths), 0.0),
+      worstRatio(std::size(kWidths), 0.0);
+  std::vector<int> failing(std::size(kWidths), 0);
+  for (int degree = 0; degree <= 180; ++degree) {
+    const LineMeasurement m = measureCylinderLines(degree);
+    for (std::size_t i = 0; i < m.widths.size(); ++i) {
+      for (int side = 0; side < 2; ++side) {
+        const double error = m.widths[i][side] - kWidths[i];
+        if (std::abs(error) > std::abs(worst[i])) worst[i] = error, worstAngle[i] = m.imageAngle;
+        worstRatio[i] = std::max(worstRatio[i], std::abs(error) / widthTolerance(kWidths[i]));
+        failing[i] += std::abs(error) > widthTolerance(kWidths[i]);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < worst.size(); ++i) {
+    std::cout << "rendered sweep W=" << kWidths[i] << " worst error " << std::showpos
+              << std::fixed << std::setprecision(2) << worst[i] << std::noshowpos << " at "
+              << worstAngle[i] << " deg, worst error/tolerance " << worstRatio[i]
+              << ", lines out of tolerance " << failing[i] << "\n";
   }
 }
 
