@@ -32,6 +32,33 @@ cv::Mat1f lineDensity(const cv::Mat1b& lineMask) {
   return blurred * (std::sqrt(2.0 * std::numbers::pi) * s / stripBias);
 }
 
+cv::Mat1f diagonalShare(const cv::Mat1b& lineMask, const cv::Mat1f& density) {
+  CV_Assert(lineMask.size() == density.size());
+  cv::Mat1f share(lineMask.size(), 0.0f);
+  const int lastX = lineMask.cols - 1, lastY = lineMask.rows - 1;
+  const double full = std::cos(2 * kDiagonalFullDegrees * std::numbers::pi / 180.0);
+  const double none = std::cos(2 * kDiagonalNoneDegrees * std::numbers::pi / 180.0);
+  for (int y = 0; y < lineMask.rows; ++y) {
+    const int ym = std::max(y - 1, 0), yp = std::min(y + 1, lastY);
+    for (int x = 0; x < lineMask.cols; ++x) {
+      if (!lineMask(y, x)) continue;
+      const int xm = std::max(x - 1, 0), xp = std::min(x + 1, lastX);
+      // Central differences (border pixels repeated), in double.
+      const double m = density(y, x);
+      const double a = double(density(y, xp)) - 2 * m + double(density(y, xm));
+      const double c = double(density(yp, x)) - 2 * m + double(density(ym, x));
+      const double b = 0.25 * (double(density(yp, xp)) - double(density(yp, xm)) -
+                               double(density(ym, xp)) + double(density(ym, xm)));
+      const double norm = std::sqrt((a - c) * (a - c) + 4 * b * b);
+      if (!(norm > 0)) continue;
+      const double cos2Delta = std::abs(2 * b) / norm;  // 1 on a diagonal, 0 on an axis
+      const double t = std::clamp((cos2Delta - none) / (full - none), 0.0, 1.0);
+      share(y, x) = float(t * t * (3 - 2 * t));
+    }
+  }
+  return share;
+}
+
 cv::Mat1b broadenLines(const cv::Mat1f& lineWidths, FftGaussianBlur& blur, double maxWidth) {
   if (lineWidths.empty()) throw std::invalid_argument("broadenLines: empty image");
   const cv::Mat1b lineMask = lineWidths > 0;
@@ -49,7 +76,18 @@ cv::Mat1b broadenLines(const cv::Mat1f& lineWidths, FftGaussianBlur& blur, doubl
       intensity(y, x) = float(perLength / std::max(kMinimumDensity, double(density(y, x))));
     }
   }
-  const cv::Mat1f blurred = blur.blur(intensity, sigma, kBroadeningKernelShift);
+  // The diagonal kernel's part of the intensity (broaden.h); blurSum adds the two blurs.
+  const cv::Mat1f share = diagonalShare(lineMask, density);
+  cv::Mat1f blurred;
+  if (cv::countNonZero(share) == 0) {
+    blurred = blur.blur(intensity, sigma, kBroadeningKernelShift);
+  } else {
+    const cv::Mat1f diagonal = intensity.mul(share);
+    const cv::Mat1f axis = intensity - diagonal;
+    const FftGaussianBlur::ShiftedImage parts[] = {{&axis, kBroadeningKernelShift},
+                                                   {&diagonal, kDiagonalKernelShift}};
+    blurred = blur.blurSum(parts, sigma);
+  }
   cv::Mat1b band = blurred >= float(kLineThreshold);
   return band | lineMask;
 }

@@ -4,13 +4,23 @@
 // line; the image is blurred by one Gaussian through the FFT (gaussian_fft.h) and thresholded
 // once. The result is a bi-level mask (255 = line).
 //
-// The blur kernel is centred a quarter pixel right and down of each pixel, (+1/4, +1/4). A band
-// centred on a pixel row covers an odd number of rows; centred a quarter pixel off, it covers
-// exactly W rows for every integer W, so lines along the pixel axes get their asked integer
-// widths (and non-integer widths within ±0.5 px) instead of the nearest odd number. Lines along
-// the diagonals still step by 0.71 px (one diagonal row). The whole broadened image therefore
-// sits 0.35 px from the one-pixel lines, well below the half pixel by which a footprint's outline
-// pixels already sit inside the true surface.
+// Sub-pixel kernel shifts. A band centred on a row of pixels covers an odd number of rows, one
+// centred halfway between two rows an even number: either way its width steps by two rows. Lines
+// along the pixel axes sit on a row (the one-pixel line itself); lines along a pixel diagonal
+// sit halfway between two diagonal rows (their outline is two diagonal rows wide). A kernel
+// centred a quarter row off either gives the band every row count, so an integer width W comes
+// out exactly W rows wide on an axis. No single shift does that for all four lattice directions
+// at once: a shift (sx, sy) moves a band across by sx, sy (axes) and (sx ∓ sy)/√2 (diagonals),
+// which would need sx, sy and sx ± sy all ≡ 1/4 modulo 1/2. Hence two kernels:
+//  - kBroadeningKernelShift (+1/4, +1/4): a quarter pixel across both axes;
+//  - kDiagonalKernelShift (+1/4, 0): a quarter diagonal row (0.18 px) across both diagonals.
+// Each line pixel's intensity is split between the two by diagonalShare() (1 on lines within
+// kDiagonalFullDegrees of a diagonal, 0 beyond kDiagonalNoneDegrees), the two images are blurred
+// and summed in the spectrum (FftGaussianBlur::blurSum: one more forward transform, only when
+// some pixel has a diagonal share) and thresholded once. Both shifts keep the band within 0.35 px
+// of the one-pixel lines, well below the half pixel by which a footprint's outline pixels already
+// sit inside the true surface; the band of a curve drifts by at most 1/4 px where its share
+// changes.
 #include <opencv2/core.hpp>
 
 #include "core/frame.h"
@@ -20,6 +30,14 @@
 namespace vsil {
 
 inline const cv::Point2d kBroadeningKernelShift{0.25, 0.25};
+inline const cv::Point2d kDiagonalKernelShift{0.25, 0.0};
+// Angles (degrees) between a line and the nearest pixel diagonal up to which it is blurred by the
+// diagonal kernel only, and from which on by the axis kernel only (smoothstep between). Lines a
+// few degrees off a diagonal are made of exact diagonal runs several blur widths long, so they
+// need the diagonal kernel as much as the exact diagonal; the axis kernel must take over before
+// the lattice direction (1, 2) at 18.4 degrees, which the diagonal kernel leaves symmetric.
+inline constexpr double kDiagonalFullDegrees = 8.0;
+inline constexpr double kDiagonalNoneDegrees = 16.0;
 
 // Scale (pixels) over which the pixel density of a line is measured: large enough to average
 // stair steps and make the estimate's bias across the strip small (±0.3 % after correction),
@@ -30,6 +48,13 @@ inline constexpr double kDensityScale = 2.5;
 // measured as √(2π)·s·(G_s ⊗ mask) with s = kDensityScale and corrected for the strip's width
 // (width_law.h). 1 for a line along an axis, √2 along a diagonal, about 0.5 at a line's end.
 cv::Mat1f lineDensity(const cv::Mat1b& lineMask);
+
+// Per line pixel of `lineMask`, the share of its intensity blurred with kDiagonalKernelShift
+// (0 elsewhere). The line's local direction comes from the Hessian of `density` (lineDensity of
+// the same mask, a ridge along each line): with H = [a b; b c] at the pixel, the angle Δ between
+// the line and the nearest diagonal has cos 2Δ = |2b| / √((a − c)² + 4b²). Where H is zero (no
+// ridge to speak of) the share is 0.
+cv::Mat1f diagonalShare(const cv::Mat1b& lineMask, const cv::Mat1f& density);
 
 // The general form: lineWidths holds, per pixel, the total width wanted for the line through it
 // (≤ 0: not a line pixel; values in [0, 1) count as 1). sigma follows maxWidth (0: the largest

@@ -54,6 +54,8 @@ struct FftGaussianBlur::Plans {
     Work(std::size_t realCount, std::size_t complexCount) : real(realCount), spectrum(complexCount) {}
     FftwArray<float> real;
     FftwArray<fftwf_complex> spectrum;
+    // The running sum of blurSum()'s products, made on its first use with two parts or more.
+    std::unique_ptr<FftwArray<fftwf_complex>> sum;
   };
   std::vector<std::unique_ptr<Work>> idle;
   ~Plans() {
@@ -187,21 +189,48 @@ std::shared_ptr<const FftGaussianBlur::Spectrum> FftGaussianBlur::spectrumFor(cv
   return spectrum;
 }
 
+cv::Size FftGaussianBlur::paddedSize(cv::Size size, double sigma,
+                                     std::span<const ShiftedImage> parts) {
+  cv::Size padded(0, 0);
+  for (const ShiftedImage& part : parts) {
+    const cv::Size one = paddedSize(size, sigma, part.shift);
+    padded = {std::max(padded.width, one.width), std::max(padded.height, one.height)};
+  }
+  return padded;
+}
+
 cv::Mat1f FftGaussianBlur::blur(const cv::Mat1f& image, double sigma, cv::Point2d shift) {
-  if (image.empty()) throw std::invalid_argument("FftGaussianBlur::blur: empty image");
+  const ShiftedImage part{&image, shift};
+  return blurSum({&part, 1}, sigma);
+}
+
+cv::Mat1f FftGaussianBlur::blurSum(std::span<const ShiftedImage> parts, double sigma) {
+  if (parts.empty()) throw std::invalid_argument("FftGaussianBlur::blurSum: no image");
+  const cv::Size size = parts.front().image ? parts.front().image->size() : cv::Size();
+  for (const ShiftedImage& part : parts) {
+    if (!part.image || part.image->empty()) {
+      throw std::invalid_argument("FftGaussianBlur::blur: empty image");
+    }
+    if (part.image->size() != size) {
+      throw std::invalid_argument("FftGaussianBlur::blurSum: images differ in size");
+    }
+  }
   if (!(sigma > 0) || !std::isfinite(sigma)) {
     throw std::invalid_argument("FftGaussianBlur::blur: sigma must be positive and finite");
   }
-  const cv::Size padded = paddedSize(image.size(), sigma, shift);
+  const cv::Size padded = paddedSize(size, sigma, parts);
   const Plans* plans = nullptr;
-  std::shared_ptr<const Spectrum> kernelSpectrum;
+  std::vector<std::shared_ptr<const Spectrum>> kernelSpectra;
   {
     std::lock_guard lock(mutex_);
-    kernelSpectrum = spectrumFor(padded, sigma, shift);  // also makes the plans
+    for (const ShiftedImage& part : parts) {
+      kernelSpectra.push_back(spectrumFor(padded, sigma, part.shift));  // also makes the plans
+    }
     plans = &plansFor(padded);
   }
 
   const std::size_t realCount = std::size_t(padded.width) * padded.height;
+  const std::size_t count = complexCount(padded);
   std::unique_ptr<Plans::Work> work;
   {
     std::lock_guard lock(mutex_);
@@ -211,28 +240,40 @@ cv::Mat1f FftGaussianBlur::blur(const cv::Mat1f& image, double sigma, cv::Point2
       idle.pop_back();
     }
   }
-  if (!work) work = std::make_unique<Plans::Work>(realCount, complexCount(padded));
+  if (!work) work = std::make_unique<Plans::Work>(realCount, count);
+  if (parts.size() > 1 && !work->sum) work->sum = std::make_unique<FftwArray<fftwf_complex>>(count);
   float* const real = work->real.data;
   fftwf_complex* const spectrum = work->spectrum.data;
-  // The image in the top-left corner, zeros elsewhere (every element is written: the array
-  // holds the previous call's output). The padding on the right and bottom is at least the
-  // kernel's reach, so no periodic copy reaches into the image.
-  for (int y = 0; y < image.rows; ++y) {
-    float* row = real + std::size_t(y) * padded.width;
-    std::copy_n(image[y], image.cols, row);
-    std::fill(row + image.cols, row + padded.width, 0.0f);
-  }
-  std::fill(real + std::size_t(image.rows) * padded.width, real + realCount, 0.0f);
-  fftwf_execute_dft_r2c(plans->forward, real, spectrum);
-  const std::complex<float>* kernel = kernelSpectrum->data();
   auto* values = reinterpret_cast<std::complex<float>*>(spectrum);
-  const std::size_t count = complexCount(padded);
-  for (std::size_t i = 0; i < count; ++i) values[i] *= kernel[i];
-  fftwf_execute_dft_c2r(plans->backward, spectrum, real);
+  // With one part the product stays in `spectrum`; with more, each part's product is added to
+  // `sum` (the first one written), and `sum` goes through the backward transform.
+  auto* sum = parts.size() > 1 ? reinterpret_cast<std::complex<float>*>(work->sum->data) : values;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    const cv::Mat1f& image = *parts[p].image;
+    // The image in the top-left corner, zeros elsewhere (every element is written: the array
+    // holds the previous call's output). The padding on the right and bottom is at least the
+    // kernel's reach, so no periodic copy reaches into the image.
+    for (int y = 0; y < image.rows; ++y) {
+      float* row = real + std::size_t(y) * padded.width;
+      std::copy_n(image[y], image.cols, row);
+      std::fill(row + image.cols, row + padded.width, 0.0f);
+    }
+    std::fill(real + std::size_t(image.rows) * padded.width, real + realCount, 0.0f);
+    fftwf_execute_dft_r2c(plans->forward, real, spectrum);
+    const std::complex<float>* kernel = kernelSpectra[p]->data();
+    if (parts.size() == 1) {
+      for (std::size_t i = 0; i < count; ++i) values[i] *= kernel[i];
+    } else if (p == 0) {
+      for (std::size_t i = 0; i < count; ++i) sum[i] = values[i] * kernel[i];
+    } else {
+      for (std::size_t i = 0; i < count; ++i) sum[i] += values[i] * kernel[i];
+    }
+  }
+  fftwf_execute_dft_c2r(plans->backward, reinterpret_cast<fftwf_complex*>(sum), real);
 
-  cv::Mat1f out(image.size());
-  for (int y = 0; y < image.rows; ++y) {
-    std::copy_n(real + std::size_t(y) * padded.width, image.cols, out[y]);
+  cv::Mat1f out(size);
+  for (int y = 0; y < size.height; ++y) {
+    std::copy_n(real + std::size_t(y) * padded.width, size.width, out[y]);
   }
   {
     std::lock_guard lock(mutex_);

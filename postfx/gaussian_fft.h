@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <tuple>
 #include <vector>
 
@@ -58,8 +59,20 @@ class FftGaussianBlur {
   // sigma > 0 and finite; image not empty and without NaN.
   cv::Mat1f blur(const cv::Mat1f& image, double sigma, cv::Point2d shift = {});
 
+  // One term of blurSum(): an image and the shift of the kernel it is blurred with.
+  struct ShiftedImage {
+    const cv::Mat1f* image = nullptr;
+    cv::Point2d shift;
+  };
+  // The sum over `parts` of blur(*part.image, sigma, part.shift), all images of one size, through
+  // one forward transform per part and a single backward transform (the spectra add up first).
+  // With one part, the same bytes as blur().
+  cv::Mat1f blurSum(std::span<const ShiftedImage> parts, double sigma);
+
   // The padded transform size used for an image of `size` and this kernel.
   static cv::Size paddedSize(cv::Size size, double sigma, cv::Point2d shift = {});
+  // ... and for several kernel shifts at once (the largest of their padded sizes).
+  static cv::Size paddedSize(cv::Size size, double sigma, std::span<const ShiftedImage> parts);
 
   // Entries currently cached (for tests of the cache policy).
   std::size_t cachedPlans() const;

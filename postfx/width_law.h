@@ -22,8 +22,12 @@
 // so ends are rounded and somewhat shorter; lines closer than about their width plus 3 s merge,
 // since their blurred profiles add (dense lines thicken and fill the gaps between them); lines
 // exactly along a pixel axis or diagonal can only take widths in the steps of the pixel rows
-// they cover (1 px on axes, 0.71 px on diagonals), see broaden.h; depth-adaptive widths follow
-// the depth smoothed along the line over about s.
+// they cover (1 px on axes, 0.71 px on diagonals): with the kernel a quarter row off-centre
+// ((1/4, 1/4) near the axes, (1/4, 0) near the diagonals, see broaden.h) every row count is
+// reachable, so they come out within half a row (±0.5 px, ±0.36 px) of the asked width
+// (measured over all orientations in 1 degree steps: within ±0.31 px for W = 2..40);
+// depth-adaptive widths follow the depth smoothed along the line over about s. The kernel
+// shift does not enter the law: a shift moves a band, it does not change its area.
 #include <string>
 
 namespace vsil {

@@ -1,6 +1,9 @@
 // Broadened widths measured on CPU-made silhouettes (tests/reference/digital_curves.h): circles
 // and straight lines in many orientations, fixed widths 2..40.
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <vector>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -38,7 +41,9 @@ TEST_P(FixedWidth, StraightLinesHaveTheAskedWidthInEveryOrientation) {
   FftGaussianBlur blur;
   std::ostringstream row;
   row << "W=" << std::setw(2) << width << ":";
-  for (double angle : {3.0, 11.0, 22.5, 29.0, 37.0, 52.0, 60.0, 71.0, 83.0, 97.0, 124.0, 151.0}) {
+  for (double angle :
+       {3.0, 11.0, 22.5, 29.0, 37.0, 44.0, 45.0, 52.0, 60.0, 71.0, 83.0, 97.0, 124.0, 135.0, 137.0,
+        151.0}) {
     const cv::Point2d point(127.3, 128.6);
     const cv::Mat1b lines = test::silhouettePixels({256, 256}, test::halfPlaneShape(point, angle));
     const cv::Mat1b band = broadenMask(lines, width, blur);
@@ -60,11 +65,12 @@ namespace {
 
 // Lines exactly along a pixel axis: the quarter-pixel kernel shift (broaden.h) makes their band
 // exactly W rows for integer W. Along a diagonal the band grows by whole diagonal rows of
-// 1/√2 px, so the best possible is within ±0.36 px; the test allows the row step, 0.71 px.
-TEST(LatticeAlignedLines, AxisLinesAreExactDiagonalsWithinOneDiagonalRow) {
+// 1/√2 px; the diagonal kernel shift lets it take every row count, so the nearest is within
+// ±0.36 px, inside the requirement's ±0.5 px or ±4 %.
+TEST(LatticeAlignedLines, AxisLinesAreExactDiagonalsWithinTolerance) {
   FftGaussianBlur blur;
-  for (int width : {2, 3, 4, 5, 8, 13, 21, 40}) {
-    for (double angle : {0.0, 90.0, 180.0, 270.0, 45.0, 135.0}) {
+  for (int width : {2, 3, 4, 5, 6, 8, 13, 21, 40}) {
+    for (double angle : {0.0, 90.0, 180.0, 270.0, 45.0, 135.0, 225.0, 315.0}) {
       const cv::Point2d point(127.3, 128.6);
       const cv::Mat1b lines =
           test::silhouettePixels({256, 256}, test::halfPlaneShape(point, angle));
@@ -72,8 +78,34 @@ TEST(LatticeAlignedLines, AxisLinesAreExactDiagonalsWithinOneDiagonalRow) {
       const double measured = test::straightBandWidth(band, point, angle, 70, width + 10);
       const bool axis = std::fmod(angle, 90.0) == 0.0;
       // Axis: the count of rows per column is an integer; 0.02 covers the cut at the window ends.
-      const double allowed = axis ? 0.02 : std::max(1.0 / std::sqrt(2.0), 0.04 * width);
+      const double allowed = axis ? 0.02 : widthTolerance(width);
       EXPECT_NEAR(measured, width, allowed) << "line at " << angle << " degrees";
+    }
+  }
+}
+
+TEST(DiagonalShare, OneOnDiagonalsZeroOnAxesAndAwayFromThem) {
+  for (double angle : {0.0, 45.0, 90.0, 135.0, 30.0, 60.0, 41.0, 20.0}) {
+    const cv::Point2d point(127.3, 128.6);
+    const cv::Mat1b lines = test::silhouettePixels({256, 256}, test::halfPlaneShape(point, angle));
+    const cv::Mat1f share = diagonalShare(lines, lineDensity(lines));
+    // Away from the image border, where the line is cut.
+    double low = 1, high = 0;
+    for (int y = 64; y < 192; ++y) {
+      for (int x = 64; x < 192; ++x) {
+        if (!lines(y, x)) {
+          EXPECT_EQ(share(y, x), 0.0f);
+          continue;
+        }
+        low = std::min(low, double(share(y, x)));
+        high = std::max(high, double(share(y, x)));
+      }
+    }
+    const double offDiagonal = std::abs(std::remainder(angle, 90.0) - std::copysign(45.0, std::remainder(angle, 90.0)));
+    if (offDiagonal <= kDiagonalFullDegrees - 1) {
+      EXPECT_EQ(low, 1.0) << angle << " degrees";
+    } else if (offDiagonal >= kDiagonalNoneDegrees + 1) {
+      EXPECT_EQ(high, 0.0) << angle << " degrees";
     }
   }
 }
@@ -93,6 +125,61 @@ TEST(Broadening, WidthOneIsTheLineItself) {
   FftGaussianBlur blur;
   const cv::Mat1b band = broadenMask(lines, 1, blur);
   EXPECT_EQ(cv::countNonZero(band != lines), 0);
+}
+
+}  // namespace
+}  // namespace vsil
+
+namespace vsil {
+namespace {
+
+// The orientation sweep behind README's "Line widths" table (not run by ctest; run with
+//   build/tests/vsil_tests_postfx --gtest_also_run_disabled_tests --gtest_filter='*Sweep*'):
+// straight digital lines at 0..180 degrees in 1 degree steps, each width, worst error per width.
+TEST(OrientationSweep, DISABLED_DigitalLinesEveryDegree) {
+  FftGaussianBlur blur;
+  for (int width : {2, 3, 5, 8, 13, 21, 40}) {
+    double worst = 0, worstAngle = 0, worstRatio = 0;
+    int failing = 0;
+    for (int degree = 0; degree <= 180; ++degree) {
+      const cv::Point2d point(127.3, 128.6);
+      const cv::Mat1b lines =
+          test::silhouettePixels({256, 256}, test::halfPlaneShape(point, degree));
+      const cv::Mat1b band = broadenMask(lines, width, blur);
+      const double error =
+          test::straightBandWidth(band, point, degree, 70, width + 10) - width;
+      if (std::abs(error) > std::abs(worst)) worst = error, worstAngle = degree;
+      worstRatio = std::max(worstRatio, std::abs(error) / widthTolerance(width));
+      failing += std::abs(error) > widthTolerance(width);
+    }
+    std::cout << "sweep W=" << width << " worst error " << std::showpos << std::fixed
+              << std::setprecision(2) << worst << std::noshowpos << " at " << worstAngle
+              << " deg, worst error/tolerance " << worstRatio << ", angles out of tolerance "
+              << failing << "\n";
+  }
+}
+
+// Broadening time at 512² (a circle and two lines, W = 8): median of 41 runs after a warm-up.
+TEST(OrientationSweep, DISABLED_BroadeningTime512) {
+  const cv::Mat1b lines =
+      test::silhouettePixels({512, 512}, test::discShape({256.3, 255.7}, 170)) |
+      test::silhouettePixels({512, 512}, test::halfPlaneShape({100.2, 300.7}, 45)) |
+      test::silhouettePixels({512, 512}, test::halfPlaneShape({300.2, 100.7}, 17));
+  FftGaussianBlur blur;
+  for (int width : {3, 8, 40}) {
+    cv::Mat1b band = broadenMask(lines, width, blur);
+    std::vector<double> ms;
+    for (int i = 0; i < 41; ++i) {
+      const auto start = std::chrono::steady_clock::now();
+      band = broadenMask(lines, width, blur);
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                             start)
+                       .count());
+    }
+    std::sort(ms.begin(), ms.end());
+    std::cout << "broadenMask 512x512 W=" << width << ": median " << ms[ms.size() / 2]
+              << " ms, min " << ms.front() << " ms\n";
+  }
 }
 
 }  // namespace

@@ -138,6 +138,25 @@ TEST(FftGaussianBlur, SameBytesEveryRunAndEveryObject) {
   EXPECT_EQ(first.cachedSpectra(), 1u);
 }
 
+TEST(FftGaussianBlur, BlurSumIsTheSumOfTheShiftedBlurs) {
+  const cv::Mat1f first = randomImage({123, 97}, 5), second = randomImage({123, 97}, 6);
+  FftGaussianBlur blur;
+  const cv::Point2d shiftA(0.25, 0.25), shiftB(0.25, 0.0);
+  const FftGaussianBlur::ShiftedImage parts[] = {{&first, shiftA}, {&second, shiftB}};
+  const cv::Mat1f sum = blur.blurSum(parts, 3.0);
+  const cv::Mat1f expected = blur.blur(first, 3.0, shiftA) + blur.blur(second, 3.0, shiftB);
+  EXPECT_LT(cv::norm(sum, expected, cv::NORM_INF), 1e-5);
+  const cv::Mat1f again = blur.blurSum(parts, 3.0);  // reused work arrays
+  EXPECT_EQ(0, std::memcmp(sum.data, again.data, sum.total() * sizeof(float)));
+  // One part: the same bytes as blur().
+  const cv::Mat1f one = blur.blurSum({parts, 1}, 3.0);
+  const cv::Mat1f plain = blur.blur(first, 3.0, shiftA);
+  EXPECT_EQ(0, std::memcmp(one.data, plain.data, one.total() * sizeof(float)));
+  const cv::Mat1f other(5, 7, 0.0f);
+  const FftGaussianBlur::ShiftedImage mismatched[] = {{&first, shiftA}, {&other, shiftB}};
+  EXPECT_THROW(blur.blurSum(mismatched, 3.0), std::invalid_argument);
+}
+
 TEST(FftGaussianBlur, RejectsBadSigma) {
   FftGaussianBlur blur;
   const cv::Mat1f image(8, 8, 0.0f);
