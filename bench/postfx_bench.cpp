@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "postfx/broaden.h"
 #include "postfx/gaussian_fft.h"
 
 namespace {
@@ -31,6 +32,26 @@ void BM_FftGaussianBlur(benchmark::State& state) {
     state.SkipWithError("blur does not preserve the image's mass");
   }
 }
+
+// The whole broadening of one-pixel lines (density, orientation split, blur, threshold): its
+// cost should not grow with the width.
+void BM_BroadenMask512(benchmark::State& state) {
+  const int width = int(state.range(0));
+  cv::Mat1b lines(512, 512, std::uint8_t(0));
+  cv::circle(lines, {256, 256}, 170, 255, 1);
+  cv::line(lines, {100, 300}, {400, 0}, 255, 1);     // exactly diagonal
+  cv::line(lines, {0, 100}, {511, 260}, 255, 1);     // oblique
+  vsil::FftGaussianBlur blur;
+  cv::Mat1b band = vsil::broadenMask(lines, width, blur);  // plans outside the timing
+  for (auto _ : state) {
+    band = vsil::broadenMask(lines, width, blur);
+    benchmark::DoNotOptimize(band.data);
+  }
+  if (cv::countNonZero(band) < cv::countNonZero(lines)) {
+    state.SkipWithError("the band must cover the lines");
+  }
+}
+BENCHMARK(BM_BroadenMask512)->Arg(3)->Arg(8)->Arg(40)->Unit(benchmark::kMillisecond);
 
 void BM_OpenCvGaussianBlur(benchmark::State& state) {
   const int size = int(state.range(0));

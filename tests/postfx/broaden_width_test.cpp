@@ -1,7 +1,6 @@
 // Broadened widths measured on CPU-made silhouettes (tests/reference/digital_curves.h): circles
 // and straight lines in many orientations, fixed widths 2..40.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <vector>
 #include <iomanip>
@@ -160,27 +159,5 @@ TEST(OrientationSweep, DISABLED_DigitalLinesEveryDegree) {
 }
 
 // Broadening time at 512² (a circle and two lines, W = 8): median of 41 runs after a warm-up.
-TEST(OrientationSweep, DISABLED_BroadeningTime512) {
-  const cv::Mat1b lines =
-      test::silhouettePixels({512, 512}, test::discShape({256.3, 255.7}, 170)) |
-      test::silhouettePixels({512, 512}, test::halfPlaneShape({100.2, 300.7}, 45)) |
-      test::silhouettePixels({512, 512}, test::halfPlaneShape({300.2, 100.7}, 17));
-  FftGaussianBlur blur;
-  for (int width : {3, 8, 40}) {
-    cv::Mat1b band = broadenMask(lines, width, blur);
-    std::vector<double> ms;
-    for (int i = 0; i < 41; ++i) {
-      const auto start = std::chrono::steady_clock::now();
-      band = broadenMask(lines, width, blur);
-      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
-                                                             start)
-                       .count());
-    }
-    std::sort(ms.begin(), ms.end());
-    std::cout << "broadenMask 512x512 W=" << width << ": median " << ms[ms.size() / 2]
-              << " ms, min " << ms.front() << " ms\n";
-  }
-}
-
 }  // namespace
 }  // namespace vsil
