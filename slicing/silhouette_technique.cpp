@@ -18,6 +18,13 @@ constexpr GLfloat kZeroF[4] = {0, 0, 0, 0};
 
 }  // namespace
 
+SilhouetteTechnique::Programs::Programs()
+    : footprint("slice.vert", "footprint.frag"),
+      contour("screen.vert", "contour.frag"),
+      decision("screen.vert", "decision.frag"),
+      decisionInPlace("slice.vert", "decision_inplace.frag"),
+      finish("screen.vert", "finish.frag") {}
+
 void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
   const glm::ivec2 size = frame.view->viewport;
   if (!targets_ || targets_->footprint.size() != size) {

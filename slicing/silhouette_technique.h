@@ -41,11 +41,8 @@ class SilhouetteTechnique : public Technique {
     gl::EmptyFramebuffer stencilOnly;  // the footprint's stencil, no colour: the in-place pass
   };
   struct Programs {
-    gl::Program footprint{"slice.vert", "footprint.frag"};
-    gl::Program contour{"screen.vert", "contour.frag"};
-    gl::Program decision{"screen.vert", "decision.frag"};
-    gl::Program decisionInPlace{"slice.vert", "decision_inplace.frag"};
-    gl::Program finish{"screen.vert", "finish.frag"};
+    Programs();  // out of line: clang cannot default-construct it inside std::optional here
+    gl::Program footprint, contour, decision, decisionInPlace, finish;
   };
   std::optional<Targets> targets_;
   std::optional<Programs> programs_;
