@@ -18,13 +18,6 @@
 namespace vsil {
 namespace {
 
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 std::string datasetsDir() { return test::datasetPath("").parent_path().string(); }
 
 int lineCount(const std::string& text) {
@@ -61,7 +54,7 @@ TEST_F(Nk3Run, SucceedsAndPrintsTheMachineAndTheTable) {
 
 TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
   ASSERT_EQ(result_.exitCode, 0) << result_.err;
-  const auto document = nlohmann::json::parse(slurp(dir_ / "nk3.json"));
+  const auto document = nlohmann::json::parse(test::readFileBytes(dir_ / "nk3.json"));
   for (const char* key : {"cpu", "hardware_threads", "gl_renderer", "gl_version",
                           "lp_num_threads", "vsil_version", "build_type", "date_utc"}) {
     EXPECT_TRUE(document["machine"].contains(key)) << key;
@@ -98,7 +91,7 @@ TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
 
 TEST_F(Nk3Run, WritesMarkdownAndPlot) {
   ASSERT_EQ(result_.exitCode, 0) << result_.err;
-  const std::string markdown = slurp(dir_ / "nk3.md");
+  const std::string markdown = test::readFileBytes(dir_ / "nk3.md");
   EXPECT_NE(markdown.find("| dataset |"), std::string::npos) << markdown;
   EXPECT_NE(markdown.find("| neghip |"), std::string::npos) << markdown;
   const cv::Mat plot = cv::imread((dir_ / "nk3.png").string(), cv::IMREAD_UNCHANGED);
@@ -115,7 +108,7 @@ TEST(BenchCommand, SkullIsReportedMissingWithThePaperNumbers) {
   EXPECT_NE(result.out.find("not available (no stored copy; see ../shared/datasets/README.md)"),
             std::string::npos)
       << result.out;
-  const auto rows = nlohmann::json::parse(slurp(dir / "skull.json"))["rows"];
+  const auto rows = nlohmann::json::parse(test::readFileBytes(dir / "skull.json"))["rows"];
   ASSERT_EQ(rows.size(), 6u) << "256² and 512², 3 techniques";
   for (const auto& row : rows) {
     EXPECT_EQ(row["dataset"], "skull");

@@ -28,13 +28,6 @@ using Clock = std::chrono::steady_clock;
 
 const std::string kPrevious = "a previous good output, not a PNG";
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 struct ChildRun {
   int status = 0;
   double seconds = 0;
@@ -81,7 +74,7 @@ TEST(InterruptedRender, LeavesThePreviousOutputsAndNoTemporaries) {
   writePrevious(dir);
   const ChildRun full = renderInto(dir, -1, 0);
   ASSERT_TRUE(WIFEXITED(full.status) && WEXITSTATUS(full.status) == 0) << full.status;
-  EXPECT_NE(slurp(dir / "out.png"), kPrevious);
+  EXPECT_NE(test::readFileBytes(dir / "out.png"), kPrevious);
 
   // Signals spread over the run, densest near the end where the files are written.
   int killed = 0;
@@ -102,7 +95,7 @@ TEST(InterruptedRender, LeavesThePreviousOutputsAndNoTemporaries) {
         // Each output is either the previous one or a complete new one (a signal after some
         // renames but before the last), never a partial file.
         for (const char* name : {"out.png", "state.png"}) {
-          const std::string bytes = slurp(dir / name);
+          const std::string bytes = test::readFileBytes(dir / name);
           if (bytes != kPrevious) {
             EXPECT_EQ(bytes.substr(1, 3), "PNG") << name;
             EXPECT_EQ(bytes.substr(bytes.size() - 8, 4), "IEND") << name << " is incomplete";

@@ -14,13 +14,6 @@
 namespace vsil {
 namespace {
 
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
   const auto dir = test::scratchDir();
   const auto result = test::runVsil(
@@ -49,7 +42,7 @@ TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
   }
   EXPECT_GT(silhouettes, 40);
 
-  const auto meta = nlohmann::json::parse(slurp(dir / "meta.json"));
+  const auto meta = nlohmann::json::parse(test::readFileBytes(dir / "meta.json"));
   EXPECT_EQ(meta["parameters"]["technique"], "silhouette");
   EXPECT_EQ(meta["dataset"]["name"], "sphere");
   EXPECT_EQ(meta["dataset"]["dims"], nlohmann::json({48, 48, 48}));
@@ -104,7 +97,7 @@ TEST(RenderCommand, PaperAndFastPipelinesGiveIdenticalImages) {
                                       (dir / "out.png").string() + " --state-out " +
                                       state.string());
     ASSERT_EQ(result.exitCode, 0) << result.err;
-    images[i] = slurp(state);
+    images[i] = test::readFileBytes(state);
   }
   EXPECT_EQ(images[0], images[1]);
 }
@@ -120,7 +113,7 @@ TEST(RenderCommand, SameCommandTwiceGivesIdenticalBytes) {
                                         (dir / (name + ".png")).string() + " --depth-out " +
                                         (dir / (name + "-depth.png")).string());
       ASSERT_EQ(result.exitCode, 0) << result.err;
-      outputs[run] = slurp(dir / (name + ".png")) + slurp(dir / (name + "-depth.png"));
+      outputs[run] = test::readFileBytes(dir / (name + ".png")) + test::readFileBytes(dir / (name + "-depth.png"));
     }
     EXPECT_EQ(outputs[0], outputs[1]) << technique;
   }

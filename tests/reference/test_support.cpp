@@ -30,7 +30,7 @@ std::filesystem::path scratchDir() {
   return dir;
 }
 
-static std::string slurp(const std::filesystem::path& path) {
+std::string readFileBytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream buffer;
   buffer << in.rdbuf();
@@ -49,8 +49,8 @@ CommandResult runVsil(const std::string& arguments) {
   const int status = std::system(command.c_str());
   CommandResult result;
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  result.out = slurp(outPath);
-  result.err = slurp(errPath);
+  result.out = readFileBytes(outPath);
+  result.err = readFileBytes(errPath);
   return result;
 }
 

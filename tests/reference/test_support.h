@@ -12,6 +12,9 @@ std::filesystem::path vsilBinary();
 // A fresh, empty folder under the build's temporary area, unique to the calling test.
 std::filesystem::path scratchDir();
 
+// The whole file as bytes ("" when it cannot be read).
+std::string readFileBytes(const std::filesystem::path& path);
+
 struct CommandResult {
   int exitCode = -1;
   std::string out;  // stdout
