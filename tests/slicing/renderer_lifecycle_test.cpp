@@ -78,8 +78,11 @@ TEST_F(GlTest, RenderersLeakNoGlObjectsAndNoMemory) {
 
   constexpr int kWarmUp = 5, kCycles = 40;
   for (int i = 0; i < kWarmUp; ++i) renderCycle(volume);
+  // Allocators settle over the first cycles; a leak keeps growing. So the growth is measured
+  // over the second half of the cycles only.
+  for (int i = 0; i < kCycles / 2; ++i) renderCycle(volume);
   const std::size_t residentBefore = residentBytes();
-  for (int i = 0; i < kCycles; ++i) renderCycle(volume);
+  for (int i = kCycles / 2; i < kCycles; ++i) renderCycle(volume);
   const std::size_t residentAfter = residentBytes();
   LiveObjects after = liveObjects();
 
@@ -93,7 +96,8 @@ TEST_F(GlTest, RenderersLeakNoGlObjectsAndNoMemory) {
   EXPECT_EQ(after.programsAndShaders, before.programsAndShaders);
 
   // Each cycle makes ~1.6 MiB of render targets (two RGBA32F 256x192 and more) and a 128 KiB
-  // texture: leaking one frame's objects per cycle would add > 60 MiB. 4 MiB is allocator noise.
+  // texture: leaking one frame's objects per cycle would add > 30 MiB over 20 cycles. 4 MiB is
+  // allocator noise (seen up to 4.4 MiB over 40 cycles from the first, on a loaded machine).
 #if defined(__SANITIZE_ADDRESS__)
   // ASan keeps freed memory in quarantine (256 MiB), so the resident set grows by design;
   // LeakSanitizer checks for leaks at exit instead.
@@ -102,7 +106,7 @@ TEST_F(GlTest, RenderersLeakNoGlObjectsAndNoMemory) {
 #else
   const double growthMiB = (double(residentAfter) - double(residentBefore)) / (1 << 20);
   EXPECT_LT(growthMiB, 4.0) << "resident set grew from " << residentBefore << " to "
-                            << residentAfter << " bytes over " << kCycles << " cycles";
+                            << residentAfter << " bytes over " << kCycles / 2 << " cycles";
 #endif
 }
 
