@@ -15,6 +15,9 @@ PixelRect wholeImage(glm::ivec2 viewport) { return {0, 0, viewport.x, viewport.y
 
 constexpr GLuint kZeroU[4] = {0, 0, 0, 0};
 constexpr GLfloat kZeroF[4] = {0, 0, 0, 0};
+// Dead pixels are marked every this many slices: often enough to skip most of them, rarely
+// enough that the marking pass (nine fetches per pixel) costs little.
+constexpr int kMarkDeadInterval = 8;
 
 }  // namespace
 
@@ -23,18 +26,19 @@ SilhouetteTechnique::Programs::Programs()
       contour("screen.vert", "contour.frag"),
       decision("screen.vert", "decision.frag"),
       decisionInPlace("slice.vert", "decision_inplace.frag"),
-      finish("screen.vert", "finish.frag") {}
+      finish("screen.vert", "finish.frag"),
+      markDead("slice.vert", "mark_dead.frag") {}
 
 void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
   const glm::ivec2 size = frame.view->viewport;
   if (!targets_ || targets_->footprint.size() != size) {
     targets_.reset();
     gl::RenderTarget footprint(size, GL_R8UI, /*withDepthStencil=*/true);
-    const GLuint stencil = footprint.depthStencil();
+    const GLuint depth = footprint.depthStencil();
     targets_.emplace(Targets{std::move(footprint), gl::RenderTarget(size, GL_R8UI),
                              {gl::RenderTarget(size, GL_RGBA32F),
                               gl::RenderTarget(size, GL_RGBA32F)},
-                             gl::EmptyFramebuffer(size, stencil)});
+                             gl::EmptyFramebuffer(size, depth)});
   }
   if (!programs_) programs_.emplace();
   pipeline_ = frame.settings->silhouettePipeline;
@@ -43,6 +47,8 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
     target->bindForDrawing();
     VSIL_GL(glClearBufferuiv(GL_COLOR, 0, kZeroU));
   }
+  targets_->footprint.bindForDrawing();
+  VSIL_GL(glClearBufferfi(GL_DEPTH_STENCIL, 0, 0.0f, 0));
   for (const auto& target : targets_->intermediate) {
     target.bindForDrawing();
     VSIL_GL(glClearBufferfv(GL_COLOR, 0, kZeroF));
@@ -58,6 +64,7 @@ void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContex
       // The in-place pass reads footprints within one pixel of this polygon.
       drawFootprint(frame, slice, slice.recentUnion(1, 2, viewport));
       decideInPlace(frame, slice);
+      if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) markDeadPixels(frame, slice);
     }
   } else {
     // Pixels whose record may change here: this polygon (c != EMPTY) and the previous one
@@ -85,17 +92,37 @@ void SilhouetteTechnique::drawFootprint(const FrameContext& frame, const SliceCo
   scissorTo(clearBounds, frame.view->viewport);
   targets_->footprint.bindForDrawing();
   VSIL_GL(glClearBufferuiv(GL_COLOR, 0, kZeroU));
-  VSIL_GL(glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0));
-  // FILLED fragments (not discarded) set the stencil to 1.
-  glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_ALWAYS, 1, 0xFF);
-  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-  glStencilMask(0xFF);
+  if (pipeline_ == SilhouettePipeline::Fast) {
+    // Slices come in depth order: GREATER passes every pixel but dead ones (depth 1), early;
+    // FILLED fragments (not discarded) leave this slice's depth for the decision pass.
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
+  }
   programs_->footprint.use();
   setSliceUniforms(programs_->footprint, frame, slice.slice);
   glBindVertexArray(frame.sliceVertexArray);
   VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
-  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_DEPTH_TEST);
+}
+
+void SilhouetteTechnique::markDeadPixels(const FrameContext& frame, const SliceContext& slice) {
+  glDisable(GL_SCISSOR_TEST);
+  targets_->depthOnly.bindForDrawing();
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_ALWAYS);
+  glDepthMask(GL_TRUE);
+  glDepthRange(1.0, 1.0);  // every kept fragment writes depth 1
+  programs_->markDead.use();
+  setSliceUniforms(programs_->markDead, frame, slice.slice);
+  programs_->markDead.set("intermediateTexture", 2);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, targets_->intermediate[0].texture());
+  glActiveTexture(GL_TEXTURE0);
+  glBindVertexArray(frame.sliceVertexArray);
+  VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
+  glDepthRange(0.0, 1.0);
+  glDisable(GL_DEPTH_TEST);
 }
 
 void SilhouetteTechnique::contourPaper(const FrameContext& frame, const PixelRect& bounds) {
@@ -133,10 +160,10 @@ void SilhouetteTechnique::decidePaper(const FrameContext& frame, const Slice* sl
 
 void SilhouetteTechnique::decideInPlace(const FrameContext& frame, const SliceContext& slice) {
   glDisable(GL_SCISSOR_TEST);
-  targets_->stencilOnly.bindForDrawing();
-  glEnable(GL_STENCIL_TEST);
-  glStencilFunc(GL_EQUAL, 1, 0xFF);
-  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  targets_->depthOnly.bindForDrawing();
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_EQUAL);
+  glDepthMask(GL_FALSE);
   gl::Program& program = programs_->decisionInPlace;
   program.use();
   setSliceUniforms(program, frame, slice.slice);
@@ -152,7 +179,7 @@ void SilhouetteTechnique::decideInPlace(const FrameContext& frame, const SliceCo
   glActiveTexture(GL_TEXTURE0);
   glBindVertexArray(frame.sliceVertexArray);
   VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
-  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_DEPTH_TEST);
   // The next slice's fetches see what this one stored.
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }

@@ -4,10 +4,12 @@
 // record; one extra empty slice after the last turns contours at the back into silhouettes.
 // Two pipelines give the same pixels (RenderSettings::silhouettePipeline):
 //  Paper: three passes, the intermediate record in ping-pong targets, as the paper draws it.
-//  Fast:  the footprint pass also marks FILLED pixels in the stencil; one pass fuses contour
-//         and decision, runs only on those pixels (early stencil test) and updates the record
+//  Fast:  the footprint pass writes this slice's depth at FILLED pixels; one pass fuses
+//         contour and decision, runs only there (early depth test EQUAL) and updates the record
 //         in place; detection (CONTOUR meeting an empty slice) is applied lazily
-//         (decision_inplace.frag), the extra empty slice by the finishing pass.
+//         (decision_inplace.frag), the extra empty slice by the finishing pass. Every few
+//         slices, pixels that can no longer matter get depth 1 (mark_dead.frag), and the
+//         footprint pass (depth test GREATER) skips them before sampling.
 #include <array>
 #include <optional>
 
@@ -30,19 +32,21 @@ class SilhouetteTechnique : public Technique {
   void contourPaper(const FrameContext& frame, const PixelRect& bounds);
   void decidePaper(const FrameContext& frame, const Slice* slice, const PixelRect& bounds);
   void decideInPlace(const FrameContext& frame, const SliceContext& slice);
+  void markDeadPixels(const FrameContext& frame, const SliceContext& slice);
 
   struct Targets {
-    // R8UI: 0 EMPTY, 1 FILLED; its stencil marks FILLED pixels for the fast pipeline.
+    // R8UI: 0 EMPTY, 1 FILLED. Fast pipeline: its depth holds the slice depth of the latest
+    // FILLED sample (0 before any), 1 at dead pixels.
     gl::RenderTarget footprint;
     gl::RenderTarget contour;  // R8UI: EMPTY, FILLED, CONTOUR (paper pipeline)
     // RGBA32F records (common.glsl): ping-pong (paper) or [0] updated in place (fast); the
     // finished frame (state, depth, shade, 0) goes to the other one.
     std::array<gl::RenderTarget, 2> intermediate;
-    gl::EmptyFramebuffer stencilOnly;  // the footprint's stencil, no colour: the in-place pass
+    gl::EmptyFramebuffer depthOnly;  // the footprint's depth, no colour: the in-place pass
   };
   struct Programs {
     Programs();  // out of line: clang cannot default-construct it inside std::optional here
-    gl::Program footprint, contour, decision, decisionInPlace, finish;
+    gl::Program footprint, contour, decision, decisionInPlace, finish, markDead;
   };
   std::optional<Targets> targets_;
   std::optional<Programs> programs_;

@@ -3,5 +3,7 @@
 // polygon only decides which pixels run.
 layout(location = 0) in vec3 positionVoxel;
 uniform mat4 clipFromVoxel;
+// Passes of one slice compare depths for equality: the same polygon must rasterize the same.
+invariant gl_Position;
 
 void main() { gl_Position = clipFromVoxel * vec4(positionVoxel, 1.0); }
