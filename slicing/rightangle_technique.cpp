@@ -1,7 +1,5 @@
 #include "slicing/rightangle_technique.h"
 
-#include <limits>
-
 namespace vsil {
 
 void RightAngleTechnique::beginFrame(const FrameContext& frame) {
@@ -40,24 +38,6 @@ void RightAngleTechnique::endFrame(const FrameContext& frame) {
 
 FrameBuffers RightAngleTechnique::readBack(const FrameContext&) {
   return frameFromStateImage(readTargetFlipped(targets_->finished, 4));
-}
-
-FrameBuffers frameFromStateImage(const cv::Mat& stateDepthShade) {
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  FrameBuffers frame;
-  frame.state.create(stateDepthShade.rows, stateDepthShade.cols);
-  frame.depth.create(stateDepthShade.rows, stateDepthShade.cols);
-  frame.shade.create(stateDepthShade.rows, stateDepthShade.cols);
-  for (int y = 0; y < stateDepthShade.rows; ++y) {
-    const cv::Vec4f* row = stateDepthShade.ptr<cv::Vec4f>(y);
-    for (int x = 0; x < stateDepthShade.cols; ++x) {
-      const auto state = PixelState(std::uint8_t(row[x][0] + 0.5f));
-      frame.state(y, x) = std::uint8_t(state);
-      frame.depth(y, x) = state == PixelState::Empty ? nan : row[x][1];
-      frame.shade(y, x) = state == PixelState::Filled ? row[x][2] : nan;
-    }
-  }
-  return frame;
 }
 
 }  // namespace vsil

@@ -26,8 +26,4 @@ class RightAngleTechnique : public Technique {
   std::optional<gl::Program> finish_;
 };
 
-// Splits an RGBA32F (state, depth, shade, 0) image into FrameBuffers: depth NaN where EMPTY,
-// shade NaN where not FILLED.
-FrameBuffers frameFromStateImage(const cv::Mat& stateDepthShade);
-
 }  // namespace vsil

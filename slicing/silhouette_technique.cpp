@@ -1,7 +1,5 @@
 #include "slicing/silhouette_technique.h"
 
-#include "slicing/rightangle_technique.h"
-
 namespace vsil {
 namespace {
 

@@ -1,6 +1,7 @@
 #include "slicing/technique.h"
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -69,6 +70,24 @@ cv::Mat readTargetFlipped(const gl::RenderTarget& target, int channels) {
   cv::Mat flipped;
   cv::flip(image, flipped, 0);
   return flipped;
+}
+
+FrameBuffers frameFromStateImage(const cv::Mat& stateDepthShade) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  FrameBuffers frame;
+  frame.state.create(stateDepthShade.rows, stateDepthShade.cols);
+  frame.depth.create(stateDepthShade.rows, stateDepthShade.cols);
+  frame.shade.create(stateDepthShade.rows, stateDepthShade.cols);
+  for (int y = 0; y < stateDepthShade.rows; ++y) {
+    const cv::Vec4f* row = stateDepthShade.ptr<cv::Vec4f>(y);
+    for (int x = 0; x < stateDepthShade.cols; ++x) {
+      const auto state = PixelState(std::uint8_t(row[x][0] + 0.5f));
+      frame.state(y, x) = std::uint8_t(state);
+      frame.depth(y, x) = state == PixelState::Empty ? nan : row[x][1];
+      frame.shade(y, x) = state == PixelState::Filled ? row[x][2] : nan;
+    }
+  }
+  return frame;
 }
 
 }  // namespace vsil

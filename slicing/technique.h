@@ -63,4 +63,8 @@ void finishRecords(gl::Program& finish, const FrameContext& frame, const gl::Ren
 // attachment as floats with `channels` channels (1 or 4) and flips it.
 cv::Mat readTargetFlipped(const gl::RenderTarget& target, int channels);
 
+// Splits an RGBA32F (state, depth, shade, 0) image into FrameBuffers: depth NaN where EMPTY,
+// shade NaN where not FILLED.
+FrameBuffers frameFromStateImage(const cv::Mat& stateDepthShade);
+
 }  // namespace vsil
