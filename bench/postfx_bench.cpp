@@ -39,8 +39,8 @@ void BM_BroadenMask512(benchmark::State& state) {
   const int width = int(state.range(0));
   cv::Mat1b lines(512, 512, std::uint8_t(0));
   cv::circle(lines, {256, 256}, 170, 255, 1);
-  cv::line(lines, {100, 300}, {400, 0}, 255, 1);     // exactly diagonal
-  cv::line(lines, {0, 100}, {511, 260}, 255, 1);     // oblique
+  cv::line(lines, {100, 300}, {400, 0}, 255, 1);  // exactly diagonal
+  cv::line(lines, {0, 100}, {511, 260}, 255, 1);  // oblique
   vsil::FftGaussianBlur blur;
   cv::Mat1b band = vsil::broadenMask(lines, width, blur);  // plans outside the timing
   for (auto _ : state) {

@@ -51,7 +51,8 @@ struct FftGaussianBlur::Plans {
   // Work arrays of finished blur() calls, kept for the next ones (allocating and faulting in a
   // few MB per call cost about as much as a transform). Guarded by the owner's mutex_.
   struct Work {
-    Work(std::size_t realCount, std::size_t complexCount) : real(realCount), spectrum(complexCount) {}
+    Work(std::size_t realCount, std::size_t complexCount)
+        : real(realCount), spectrum(complexCount) {}
     FftwArray<float> real;
     FftwArray<fftwf_complex> spectrum;
     // The running sum of blurSum()'s products, made on its first use with two parts or more.

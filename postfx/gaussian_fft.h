@@ -5,9 +5,9 @@
 // the image, taken as zero outside, with the sampled Gaussian kernel.
 //
 // One FftGaussianBlur owns a small cache of FFTW plans and reusable work arrays (per padded
-// size) and of kernel spectra (per padded size, sigma and shift). Plans are made on one thread at a time (FFTW's planner is
-// not thread safe) with FFTW_ESTIMATE, so the output bytes are the same on every run; blur()
-// itself may be called from several threads.
+// size) and of kernel spectra (per padded size, sigma and shift). Plans are made on one thread at a
+// time (FFTW's planner is not thread safe) with FFTW_ESTIMATE, so the output bytes are the same on
+// every run; blur() itself may be called from several threads.
 #include <complex>
 #include <cstddef>
 #include <map>

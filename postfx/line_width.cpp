@@ -95,8 +95,8 @@ std::vector<LineWidthSample> measureLineWidths(const cv::Mat1b& lineMask) {
   if (box.empty()) return samples;
   const int margin = 4;  // the edge smoothing's reach plus one
   cv::Mat1f coarse(box.height + 2 * margin, box.width + 2 * margin, 0.0f);
-  cv::Mat1f(lineMask(box) != 0).convertTo(coarse(cv::Rect(margin, margin, box.width, box.height)),
-                                          CV_32F, 1.0 / 255.0);
+  cv::Mat1f(lineMask(box) != 0)
+      .convertTo(coarse(cv::Rect(margin, margin, box.width, box.height)), CV_32F, 1.0 / 255.0);
   // The band's edge at sub-pixel resolution: the 0.5 level of the mask smoothed by a Gaussian of
   // kEdgeSigma and interpolated bilinearly, sampled on a grid kWidthUpsampling times finer. On
   // axis-aligned bands this edge lies exactly halfway between line and non-line pixel centres,

@@ -22,8 +22,8 @@ void checkGlError(const char* what, const char* file, int line);
 }  // namespace vsil::gl
 
 // VSIL_GL(glTexImage3D(...)): run the call, then check for an error naming it.
-#define VSIL_GL(call)                                      \
-  do {                                                     \
-    call;                                                  \
-    ::vsil::gl::checkGlError(#call, __FILE__, __LINE__);   \
+#define VSIL_GL(call)                                    \
+  do {                                                   \
+    call;                                                \
+    ::vsil::gl::checkGlError(#call, __FILE__, __LINE__); \
   } while (0)

@@ -41,8 +41,8 @@ namespace {
 // Compiles one stage; the `#line 1 1` lets compiler messages count lines in `file` itself
 // (source string 0 is the prelude, 1 the file).
 GLuint compileStage(GLenum stage, std::string_view file, std::string_view defines) {
-  const char* stageDefine =
-      stage == GL_FRAGMENT_SHADER ? "#define VSIL_FRAGMENT_SHADER 1\n" : "#define VSIL_VERTEX_SHADER 1\n";
+  const char* stageDefine = stage == GL_FRAGMENT_SHADER ? "#define VSIL_FRAGMENT_SHADER 1\n"
+                                                        : "#define VSIL_VERTEX_SHADER 1\n";
   const std::string source = "#version 450 core\n" + std::string(stageDefine) +
                              std::string(defines) + "\n" +
                              std::string(embeddedShaderSource("common.glsl")) + "\n#line 1 1\n" +
@@ -59,8 +59,8 @@ GLuint compileStage(GLenum stage, std::string_view file, std::string_view define
     std::vector<char> log(std::size_t(std::max(length, 1)));
     glGetShaderInfoLog(shader, length, nullptr, log.data());
     glDeleteShader(shader);
-    throw GlError("compiling shaders/" + std::string(file) + " (source 1 = this file): " +
-                  std::string(log.data()));
+    throw GlError("compiling shaders/" + std::string(file) +
+                  " (source 1 = this file): " + std::string(log.data()));
   }
   return shader;
 }
@@ -96,7 +96,9 @@ Program::Program(std::string_view vertexFile, std::string_view fragmentFile,
   checkGlError(("building program " + label_).c_str(), __FILE__, __LINE__);
 }
 
-void Program::use() const { VSIL_GL(glUseProgram(name_.id())); }
+void Program::use() const {
+  VSIL_GL(glUseProgram(name_.id()));
+}
 
 GLint Program::location(const char* name) {
   auto it = locations_.find(name);
@@ -106,8 +108,12 @@ GLint Program::location(const char* name) {
   return it->second;
 }
 
-void Program::set(const char* name, int value) { glUniform1i(location(name), value); }
-void Program::set(const char* name, float value) { glUniform1f(location(name), value); }
+void Program::set(const char* name, int value) {
+  glUniform1i(location(name), value);
+}
+void Program::set(const char* name, float value) {
+  glUniform1f(location(name), value);
+}
 void Program::set(const char* name, glm::vec2 value) {
   glUniform2fv(location(name), 1, glm::value_ptr(value));
 }
@@ -133,12 +139,18 @@ struct FormatInfo {
 
 FormatInfo uploadFormat(GLenum internalFormat) {
   switch (internalFormat) {
-    case GL_R8UI: return {GL_RED_INTEGER, GL_UNSIGNED_BYTE};
-    case GL_R8: return {GL_RED, GL_UNSIGNED_BYTE};
-    case GL_R32F: return {GL_RED, GL_FLOAT};
-    case GL_RG32F: return {GL_RG, GL_FLOAT};
-    case GL_RGBA32F: return {GL_RGBA, GL_FLOAT};
-    case GL_RGBA8: return {GL_RGBA, GL_UNSIGNED_BYTE};
+    case GL_R8UI:
+      return {GL_RED_INTEGER, GL_UNSIGNED_BYTE};
+    case GL_R8:
+      return {GL_RED, GL_UNSIGNED_BYTE};
+    case GL_R32F:
+      return {GL_RED, GL_FLOAT};
+    case GL_RG32F:
+      return {GL_RG, GL_FLOAT};
+    case GL_RGBA32F:
+      return {GL_RGBA, GL_FLOAT};
+    case GL_RGBA8:
+      return {GL_RGBA, GL_UNSIGNED_BYTE};
   }
   throw GlError("RenderTarget: unsupported internal format " + std::to_string(internalFormat));
 }
@@ -159,14 +171,14 @@ RenderTarget::RenderTarget(glm::ivec2 size, GLenum internalFormat, bool withDept
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   framebuffer_ = createFramebuffer();
   VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
-  VSIL_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                                 texture_.id(), 0));
+  VSIL_GL(glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture_.id(),
+                                 0));
   if (withDepthStencil) {
     depthStencil_ = createRenderbuffer();
     VSIL_GL(glBindRenderbuffer(GL_RENDERBUFFER, depthStencil_.id()));
     VSIL_GL(glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, size.x, size.y));
-    VSIL_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT,
-                                      GL_RENDERBUFFER, depthStencil_.id()));
+    VSIL_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                                      depthStencil_.id()));
   }
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
@@ -181,15 +193,14 @@ void RenderTarget::bindForDrawing() const {
   VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
 }
 
-EmptyFramebuffer::EmptyFramebuffer(glm::ivec2 size, GLuint depthStencilRenderbuffer)
-    : size_(size) {
+EmptyFramebuffer::EmptyFramebuffer(glm::ivec2 size, GLuint depthStencilRenderbuffer) : size_(size) {
   framebuffer_ = createFramebuffer();
   VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
   VSIL_GL(glFramebufferParameteri(GL_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_WIDTH, size.x));
   VSIL_GL(glFramebufferParameteri(GL_FRAMEBUFFER, GL_FRAMEBUFFER_DEFAULT_HEIGHT, size.y));
   if (depthStencilRenderbuffer != 0) {
-    VSIL_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT,
-                                      GL_RENDERBUFFER, depthStencilRenderbuffer));
+    VSIL_GL(glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER,
+                                      depthStencilRenderbuffer));
   }
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {

@@ -74,7 +74,8 @@ VertexArrayName createVertexArray();
 // `#version 450 core`, the given defines and common.glsl in front of its own file.
 class Program {
  public:
-  Program(std::string_view vertexFile, std::string_view fragmentFile, std::string_view defines = {});
+  Program(std::string_view vertexFile, std::string_view fragmentFile,
+          std::string_view defines = {});
   GLuint id() const { return name_.id(); }
   void use() const;
 

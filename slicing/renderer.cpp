@@ -48,7 +48,9 @@ void validate(const RenderSettings& settings) {
 
 }  // namespace
 
-void Renderer::validateSettings(const RenderSettings& settings) { validate(settings); }
+void Renderer::validateSettings(const RenderSettings& settings) {
+  validate(settings);
+}
 
 struct Renderer::Impl {
   gl::GlContext* context = nullptr;
@@ -82,7 +84,9 @@ Renderer::Renderer(gl::GlContext& context) : impl_(std::make_unique<Impl>()) {
 
 Renderer::~Renderer() = default;
 
-std::vector<std::string> Renderer::techniqueNames() { return {"silhouette", "rightangle"}; }
+std::vector<std::string> Renderer::techniqueNames() {
+  return {"silhouette", "rightangle"};
+}
 
 void Renderer::setVolume(const Volume& volume) {
   impl_->volumeTexture.reset();

@@ -9,7 +9,9 @@ void scissorTo(const PixelRect& rect, glm::ivec2 viewport) {
   glScissor(rect.x0, viewport.y - rect.y1, rect.x1 - rect.x0, rect.y1 - rect.y0);
 }
 
-PixelRect wholeImage(glm::ivec2 viewport) { return {0, 0, viewport.x, viewport.y}; }
+PixelRect wholeImage(glm::ivec2 viewport) {
+  return {0, 0, viewport.x, viewport.y};
+}
 
 constexpr GLuint kZeroU[4] = {0, 0, 0, 0};
 constexpr GLfloat kZeroF[4] = {0, 0, 0, 0};
@@ -33,10 +35,11 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
     targets_.reset();
     gl::RenderTarget footprint(size, GL_R8UI, /*withDepthStencil=*/true);
     const GLuint depth = footprint.depthStencil();
-    targets_.emplace(Targets{std::move(footprint), gl::RenderTarget(size, GL_R8UI),
-                             {gl::RenderTarget(size, GL_RGBA32F),
-                              gl::RenderTarget(size, GL_RGBA32F)},
-                             gl::EmptyFramebuffer(size, depth)});
+    targets_.emplace(
+        Targets{std::move(footprint),
+                gl::RenderTarget(size, GL_R8UI),
+                {gl::RenderTarget(size, GL_RGBA32F), gl::RenderTarget(size, GL_RGBA32F)},
+                gl::EmptyFramebuffer(size, depth)});
   }
   if (!programs_) programs_.emplace();
   pipeline_ = frame.settings->silhouettePipeline;

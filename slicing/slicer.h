@@ -11,8 +11,8 @@
 namespace vsil {
 
 struct Slice {
-  double eyeDistance = 0;   // -z_eye of the plane
-  double depth = 0;         // normalized depth d of the plane (View::normalizedDepth)
+  double eyeDistance = 0;                // -z_eye of the plane
+  double depth = 0;                      // normalized depth d of the plane (View::normalizedDepth)
   std::vector<glm::dvec3> polygonVoxel;  // box ∩ plane in voxel coordinates, convex, ordered
 };
 
@@ -32,8 +32,7 @@ struct SlicePlan {
 // Slices every `1 / samplesPerVoxel` voxels along the view direction (anisotropic spacing
 // counted), spread evenly over the box's eye-distance range [nearEye, farEye] with the first
 // and last plane half a step inside it.
-SlicePlan planSlices(const View& view, glm::ivec3 dims, glm::dvec3 spacing,
-                     double samplesPerVoxel);
+SlicePlan planSlices(const View& view, glm::ivec3 dims, glm::dvec3 spacing, double samplesPerVoxel);
 
 // Box ∩ plane at eye distance `eyeDistance`, in voxel coordinates; empty if they miss.
 std::vector<glm::dvec3> slicePolygon(const View& view, glm::ivec3 dims, double eyeDistance);

@@ -15,8 +15,7 @@ namespace vsil {
 std::unique_ptr<Technique> makeTechnique(const std::string& name) {
   if (name == "silhouette") return std::make_unique<SilhouetteTechnique>();
   if (name == "rightangle") return std::make_unique<RightAngleTechnique>();
-  throw InputError("--technique: unknown technique '" + name +
-                   "' (known: silhouette, rightangle)");
+  throw InputError("--technique: unknown technique '" + name + "' (known: silhouette, rightangle)");
 }
 
 PixelRect SliceContext::recentUnion(int count, int margin, glm::ivec2 viewport) const {
@@ -65,8 +64,8 @@ cv::Mat readTargetFlipped(const gl::RenderTarget& target, int channels) {
   VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer()));
   VSIL_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
   VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
-  VSIL_GL(glReadPixels(0, 0, size.x, size.y, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT,
-                       image.data));
+  VSIL_GL(
+      glReadPixels(0, 0, size.x, size.y, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT, image.data));
   cv::Mat flipped;
   cv::flip(image, flipped, 0);
   return flipped;

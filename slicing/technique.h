@@ -29,7 +29,7 @@ struct SliceContext {
   int index = 0;
   const Slice* slice = nullptr;
   GLint firstVertex = 0;
-  GLsizei vertexCount = 0;      // 0 when the plane misses the box
+  GLsizei vertexCount = 0;  // 0 when the plane misses the box
   // Pixels the polygons of this slice ([0]), the previous ([1]) and the one before ([2]) may
   // cover; empty where there is no such slice.
   std::array<PixelRect, 3> recentBounds;

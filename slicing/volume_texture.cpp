@@ -21,8 +21,7 @@ bool exactInHalfFloat(const std::vector<float>& samples) {
 }  // namespace
 
 VolumeTexture::VolumeTexture(const Volume& volume)
-    : dims_(volume.dims),
-      internalFormat_(exactInHalfFloat(volume.samples) ? GL_R16F : GL_R32F) {
+    : dims_(volume.dims), internalFormat_(exactInHalfFloat(volume.samples) ? GL_R16F : GL_R32F) {
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
   for (int axis = 0; axis < 3; ++axis) {
@@ -38,8 +37,8 @@ VolumeTexture::VolumeTexture(const Volume& volume)
   texture_ = gl::createTexture();
   VSIL_GL(glBindTexture(GL_TEXTURE_3D, texture_.id()));
   VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
-  VSIL_GL(glTexImage3D(GL_TEXTURE_3D, 0, GLint(internalFormat_), dims_.x, dims_.y, dims_.z, 0, GL_RED, GL_FLOAT,
-                       volume.samples.data()));
+  VSIL_GL(glTexImage3D(GL_TEXTURE_3D, 0, GLint(internalFormat_), dims_.x, dims_.y, dims_.z, 0,
+                       GL_RED, GL_FLOAT, volume.samples.data()));
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {

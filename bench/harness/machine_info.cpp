@@ -61,9 +61,12 @@ MachineInfo collectMachineInfo() {
 std::string formatMachineInfo(const MachineInfo& machine) {
   return "machine: " + machine.cpuModel + ", " + std::to_string(machine.hardwareThreads) +
          " hardware threads\n"
-         "GL: " + machine.glRenderer + ", " + machine.glVersion +
-         ", LP_NUM_THREADS=" + machine.lpNumThreads + "\n"
-         "vsil " + machine.vsilVersion + " (" + machine.buildType + "), " + machine.dateUtc + "\n";
+         "GL: " +
+         machine.glRenderer + ", " + machine.glVersion +
+         ", LP_NUM_THREADS=" + machine.lpNumThreads +
+         "\n"
+         "vsil " +
+         machine.vsilVersion + " (" + machine.buildType + "), " + machine.dateUtc + "\n";
 }
 
 nlohmann::json machineInfoJson(const MachineInfo& machine) {

@@ -14,7 +14,7 @@ constexpr int kLeft = 70, kRight = 20, kTop = 84, kBottom = 170;
 constexpr int kBarWidth = 9, kGroupGap = 14;
 constexpr auto kFont = cv::FONT_HERSHEY_SIMPLEX;
 
-const cv::Scalar kColors[] = {{180, 119, 31}, {14, 127, 255}, {44, 160, 44},
+const cv::Scalar kColors[] = {{180, 119, 31}, {14, 127, 255},  {44, 160, 44},
                               {40, 39, 214},  {189, 103, 148}, {75, 86, 140}};
 
 // ASCII only: putText's Hershey fonts have no '²', 'σ' or '–'.
@@ -22,11 +22,30 @@ std::string ascii(const std::string& text) {
   std::string out;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const unsigned char c = text[i];
-    if (c < 0x80) { out += char(c); continue; }
-    if (text.compare(i, 2, "²") == 0) { out += "^2"; i += 1; continue; }
-    if (text.compare(i, 2, "³") == 0) { out += "^3"; i += 1; continue; }
-    if (text.compare(i, 2, "σ") == 0) { out += "s"; i += 1; continue; }
-    if (text.compare(i, 3, "–") == 0) { out += "-"; i += 2; continue; }
+    if (c < 0x80) {
+      out += char(c);
+      continue;
+    }
+    if (text.compare(i, 2, "²") == 0) {
+      out += "^2";
+      i += 1;
+      continue;
+    }
+    if (text.compare(i, 2, "³") == 0) {
+      out += "^3";
+      i += 1;
+      continue;
+    }
+    if (text.compare(i, 2, "σ") == 0) {
+      out += "s";
+      i += 1;
+      continue;
+    }
+    if (text.compare(i, 3, "–") == 0) {
+      out += "-";
+      i += 2;
+      continue;
+    }
     if ((c & 0xC0) == 0xC0) out += '?';  // other characters: one '?' per code point
   }
   return out;
@@ -47,10 +66,16 @@ cv::Mat drawPanel(const PlotSpec& plot) {
   double lo = INFINITY, hi = 0;
   for (const auto& group : plot.values) {
     for (double v : group) {
-      if (std::isfinite(v) && v > 0) { lo = std::min(lo, v); hi = std::max(hi, v); }
+      if (std::isfinite(v) && v > 0) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
     }
   }
-  if (!(hi > 0)) { lo = 0.1; hi = 1; }
+  if (!(hi > 0)) {
+    lo = 0.1;
+    hi = 1;
+  }
   // Axis range: whole decades (log) or 0..a round maximum (linear).
   double axisLo = 0, axisHi = hi * 1.1;
   if (plot.logScale) {
@@ -85,8 +110,8 @@ cv::Mat drawPanel(const PlotSpec& plot) {
   for (std::size_t g = 0; g < plot.groups.size(); ++g) {
     const int x0 = kLeft + kGroupGap / 2 + int(g) * groupWidth;
     for (int s = 0; s < seriesCount; ++s) {
-      const double v = g < plot.values.size() && s < int(plot.values[g].size())
-                           ? plot.values[g][s] : NAN;
+      const double v =
+          g < plot.values.size() && s < int(plot.values[g].size()) ? plot.values[g][s] : NAN;
       const int x = x0 + s * kBarWidth;
       const cv::Scalar color = colorOf(plot, s);
       if (!(std::isfinite(v) && v > 0)) {

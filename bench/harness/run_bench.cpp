@@ -35,8 +35,8 @@ std::string markdownReport(const MachineInfo& machine, const std::vector<TableRe
          " hardware threads\n";
   out += "- GL: " + machine.glRenderer + ", " + machine.glVersion + "\n";
   out += "- LP_NUM_THREADS: " + machine.lpNumThreads + "\n";
-  out += "- vsil " + machine.vsilVersion + " (" + machine.buildType + "), " + machine.dateUtc +
-         "\n";
+  out +=
+      "- vsil " + machine.vsilVersion + " (" + machine.buildType + "), " + machine.dateUtc + "\n";
   for (const auto& table : tables) {
     out += "\n## " + table.name + ": " + table.title + "\n\n" + table.markdown + "\n";
     for (const auto& note : table.notes) out += "- " + note + "\n";
@@ -67,8 +67,8 @@ BenchOptions validateOptions(BenchOptions options) {
                        ") have no datasets");
     }
     if (!datasets.count(name)) {
-      throw InputError("--only: unknown dataset '" + name + "' (known: " +
-                       joined({datasets.begin(), datasets.end()}, ", ") + ")");
+      throw InputError("--only: unknown dataset '" + name +
+                       "' (known: " + joined({datasets.begin(), datasets.end()}, ", ") + ")");
     }
   }
   for (int size : options.sizes) {
@@ -84,7 +84,8 @@ BenchOptions validateOptions(BenchOptions options) {
   }
   if (options.datasetsDir.empty()) {
 #ifdef VSIL_SOURCE_DIR
-    const std::filesystem::path beside = std::filesystem::path(VSIL_SOURCE_DIR) / ".." / "shared" / "datasets";
+    const std::filesystem::path beside =
+        std::filesystem::path(VSIL_SOURCE_DIR) / ".." / "shared" / "datasets";
 #else
     const std::filesystem::path beside;
 #endif
@@ -108,8 +109,8 @@ BenchOptions validateOptions(BenchOptions options) {
 BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostream& progressOut,
                      bool progressIsTerminal) {
   const MachineInfo machine = collectMachineInfo();
-  out << "vsil bench: " << joined(options.tables, ", ") << "\n" << formatMachineInfo(machine)
-      << std::flush;
+  out << "vsil bench: " << joined(options.tables, ", ") << "\n"
+      << formatMachineInfo(machine) << std::flush;
 
   BenchReport report;
   std::vector<TableResult> tables;
@@ -133,12 +134,9 @@ BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostrea
     nlohmann::json document;
     document["format"] = "vsil-bench-1";
     document["machine"] = machineInfoJson(machine);
-    document["settings"] = {{"tables", options.tables},
-                            {"datasets", options.datasetsDir.string()},
-                            {"only", options.only},
-                            {"sizes", options.sizes},
-                            {"frames", options.frames},
-                            {"warmup", options.warmup}};
+    document["settings"] = {{"tables", options.tables}, {"datasets", options.datasetsDir.string()},
+                            {"only", options.only},     {"sizes", options.sizes},
+                            {"frames", options.frames}, {"warmup", options.warmup}};
     document["tables"] = nlohmann::json::array();
     for (const auto& table : tables) {
       document["tables"].push_back({{"name", table.name},

@@ -27,8 +27,8 @@ TableResult runFftTable(const BenchOptions& options, Progress& progress) {
   TableResult table;
   table.name = "fft";
   table.title = "Broadening cost against sigma: FFT (FFTW, zero padded) vs OpenCV GaussianBlur, ms";
-  TextTable text({"size", "sigma", "FFT ms", "[min–max]", "spatial ms", "[min–max]",
-                  "FFT/spatial", "max diff", "check"});
+  TextTable text({"size", "sigma", "FFT ms", "[min–max]", "spatial ms", "[min–max]", "FFT/spatial",
+                  "max diff", "check"});
   table.plot.title = "fft: blur time per image (ms)";
   table.plot.valueLabel = "ms";
   table.plot.series = {{"FFT", false}, {"GaussianBlur", false}};
@@ -84,11 +84,20 @@ std::vector<TableDefinition> makeRegistry() {
       {"nk3", "Nagy–Klein Table 3: RA, OPS and BS frame rates per dataset and window",
        nk3DatasetNames(), runNk3Table, ""},
       {"fft", "broadening cost against sigma: FFT vs OpenCV GaussianBlur", {}, runFftTable, ""},
-      {"dv1", "Díaz–Vázquez Table 1: MIP, DEMIP and DVR composite frame rates", {}, {},
+      {"dv1",
+       "Díaz–Vázquez Table 1: MIP, DEMIP and DVR composite frame rates",
+       {},
+       {},
        "the mip and demip techniques and DVR compositing do not exist yet"},
-      {"illustrate", "Ebert–Rheingans volume illustration frame rates", {}, {},
+      {"illustrate",
+       "Ebert–Rheingans volume illustration frame rates",
+       {},
+       {},
        "the illustrate technique does not exist yet"},
-      {"semantic", "Rautek et al. semantic rendering frame rates", {}, {},
+      {"semantic",
+       "Rautek et al. semantic rendering frame rates",
+       {},
+       {},
        "the semantic technique does not exist yet"},
   };
 }
@@ -106,7 +115,8 @@ const TableDefinition& implementedTable(const std::string& name) {
     known += (known.empty() ? "" : ", ") + table.name;
     if (table.name != name) continue;
     if (!table.run) {
-      throw InputError("--table " + name + ": not implemented yet (" + table.missingTechnique + ")");
+      throw InputError("--table " + name + ": not implemented yet (" + table.missingTechnique +
+                       ")");
     }
     return table;
   }

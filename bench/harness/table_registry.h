@@ -14,7 +14,8 @@ struct TableDefinition {
   std::string description;
   std::vector<std::string> datasets;  // names --only accepts for this table (may be empty)
   TableRun run;                       // empty: not implemented yet
-  std::string missingTechnique;       // when run is empty: why, e.g. "the x technique does not exist yet"
+  std::string
+      missingTechnique;  // when run is empty: why, e.g. "the x technique does not exist yet"
 };
 
 const std::vector<TableDefinition>& tableRegistry();

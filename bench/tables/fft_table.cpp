@@ -49,8 +49,7 @@ std::vector<FftTableRow> measureFftTable(const FftTableSpec& spec) {
       FftTableRow row{size, sigma};
       cv::Mat1f fft, spatial;
       fft = blur.blur(image, sigma);  // warm: plans and spectrum made once, outside the timing
-      const TimingStats fftTimes =
-          timeMs(spec.repetitions, [&] { fft = blur.blur(image, sigma); });
+      const TimingStats fftTimes = timeMs(spec.repetitions, [&] { fft = blur.blur(image, sigma); });
       const TimingStats spatialTimes = timeMs(spec.repetitions, [&] {
         cv::GaussianBlur(image, spatial, cv::Size(), sigma, sigma, cv::BORDER_CONSTANT);
       });

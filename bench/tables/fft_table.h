@@ -12,9 +12,9 @@ namespace vsil::bench {
 struct FftTableRow {
   int size = 0;  // square images, pixels per side
   double sigma = 0;
-  double fftMs = 0;          // FftGaussianBlur::blur, plans and spectrum cached (warm)
-  double spatialMs = 0;      // cv::GaussianBlur, kernel 2·ceil(3 sigma)+1 (OpenCV's own choice)
-  double fftMinMs = 0, fftMaxMs = 0;          // over the repetitions
+  double fftMs = 0;      // FftGaussianBlur::blur, plans and spectrum cached (warm)
+  double spatialMs = 0;  // cv::GaussianBlur, kernel 2·ceil(3 sigma)+1 (OpenCV's own choice)
+  double fftMinMs = 0, fftMaxMs = 0;  // over the repetitions
   double spatialMinMs = 0, spatialMaxMs = 0;
   double ratio = 0;          // fftMs / spatialMs
   double maxDifference = 0;  // max |fft - spatial| on the benchmark image (a sanity check)

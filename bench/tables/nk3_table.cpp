@@ -33,33 +33,65 @@ struct PaperFps {
 // value histograms (`vsil info`) and by looking at renders, so that the surface is the object
 // the paper's figures show:
 struct Nk3Dataset {
-  const char* name;   // our name (--only, JSON "dataset"): the file's base name up to its size
+  const char* name;  // our name (--only, JSON "dataset"): the file's base name up to its size
   const char* paperName;
   const char* paperSize;
-  const char* file;   // in the datasets folder; nullptr: no stored copy
-  float iso;          // in the file's units (all five are 8-bit)
+  const char* file;  // in the datasets folder; nullptr: no stored copy
+  float iso;         // in the file's units (all five are 8-bit)
   PaperFps paper256, paper512;
   const char* isoReason;
 };
 
 const Nk3Dataset kDatasets[] = {
-    {"bonsai", "Bonsai", "256³", "bonsai.vti", 40.0f,
-     {256, 39.37, 5.82, 3.24, 6.76}, {512, 10.00, 1.60, 1.04, 6.25},
+    {"bonsai",
+     "Bonsai",
+     "256³",
+     "bonsai.vti",
+     40.0f,
+     {256, 39.37, 5.82, 3.24, 6.76},
+     {512, 10.00, 1.60, 1.04, 6.25},
      "iso 40: trunk, branches and the pot; the foliage noise below ~30 stays outside"},
-    {"engine", "Engine", "256²·128", "engine.vti", 90.0f,
-     {256, 54.13, 8.47, 4.27, 6.39}, {512, 13.78, 2.30, 1.27, 5.99},
+    {"engine",
+     "Engine",
+     "256²·128",
+     "engine.vti",
+     90.0f,
+     {256, 54.13, 8.47, 4.27, 6.39},
+     {512, 13.78, 2.30, 1.27, 5.99},
      "iso 90: the engine block without the low-density air noise"},
-    {"hydrogen_atom", "Hydrog. Atom", "128³", "hydrogen_atom_128x128x128_uint8.nhdr", 20.0f,
-     {256, 39.37, 5.98, 3.51, 6.58}, {512, 9.84, 1.60, 1.02, 6.15},
+    {"hydrogen_atom",
+     "Hydrog. Atom",
+     "128³",
+     "hydrogen_atom_128x128x128_uint8.nhdr",
+     20.0f,
+     {256, 39.37, 5.98, 3.51, 6.58},
+     {512, 9.84, 1.60, 1.02, 6.15},
      "iso 20: the outer lobes and the torus of the probability cloud"},
-    {"neghip", "NegHip", "64³", "neghip_64x64x64_uint8.nhdr", 64.0f,
-     {256, 19.95, 3.05, 2.26, 6.54}, {512, 9.85, 1.58, 1.07, 6.23},
+    {"neghip",
+     "NegHip",
+     "64³",
+     "neghip_64x64x64_uint8.nhdr",
+     64.0f,
+     {256, 19.95, 3.05, 2.26, 6.54},
+     {512, 9.85, 1.58, 1.07, 6.23},
      "iso 64: the lobes of positive and negative potential"},
-    {"skull", "Skull", "256³", nullptr, 0.0f,
-     {256, 39.41, 5.82, 3.61, 6.77}, {512, 9.85, 1.58, 1.06, 6.23}, ""},
-    {"teddybear", "Teddy", "128²·64", "teddybear_128x128x62_uint8.nhdr", 60.0f,
-     {256, 44.0, 5.41, 3.37, 8.13}, {512, 11.12, 1.47, 0.94, 7.56},
-     "iso 60: the bear's surface (the scan's board above it stays at any iso; the background noise is below 33)"},
+    {"skull",
+     "Skull",
+     "256³",
+     nullptr,
+     0.0f,
+     {256, 39.41, 5.82, 3.61, 6.77},
+     {512, 9.85, 1.58, 1.06, 6.23},
+     ""},
+    {"teddybear",
+     "Teddy",
+     "128²·64",
+     "teddybear_128x128x62_uint8.nhdr",
+     60.0f,
+     {256, 44.0, 5.41, 3.37, 8.13},
+     {512, 11.12, 1.47, 0.94, 7.56},
+     "iso 60: the bear's surface (the scan's board above it stays at any iso; the background noise "
+     "is below 33)"},
 };
 
 constexpr const char* kSkullMissing =
@@ -83,7 +115,9 @@ constexpr int kPlacementRadius = 2;
 constexpr double kMinPlacedFraction = 0.98;
 
 enum class Technique { Ra, Ops, Bs };
-const char* techniqueKey(Technique t) { return t == Technique::Ra ? "ra" : t == Technique::Ops ? "ops" : "bs"; }
+const char* techniqueKey(Technique t) {
+  return t == Technique::Ra ? "ra" : t == Technique::Ops ? "ops" : "bs";
+}
 
 struct FrameSample {
   double ms = 0, renderMs = 0, readbackMs = 0, postfxMs = 0;
@@ -94,22 +128,30 @@ struct CaseResult {
   Technique technique = Technique::Ops;
   std::vector<FrameSample> frames;  // timed frames only
   TimingStats stats;
-  cv::Mat1b firstState;       // timed frame 0 (orbit start)
+  cv::Mat1b firstState;  // timed frame 0 (orbit start)
   int sliceCount = 0;
   std::vector<std::string> problems;
 };
 
 double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
 }
 
 void countStates(const cv::Mat1b& state, FrameSample& sample) {
   for (auto it = state.begin(); it != state.end(); ++it) {
     switch (PixelState(*it)) {
-      case PixelState::Filled: ++sample.filled; break;
-      case PixelState::Contour: ++sample.contours; break;
-      case PixelState::Silhouette: ++sample.silhouettes; break;
-      default: break;
+      case PixelState::Filled:
+        ++sample.filled;
+        break;
+      case PixelState::Contour:
+        ++sample.contours;
+        break;
+      case PixelState::Silhouette:
+        ++sample.silhouettes;
+        break;
+      default:
+        break;
     }
   }
 }
@@ -193,10 +235,10 @@ std::vector<CaseResult> runCases(Renderer& renderer, const RenderSettings& setti
       results[t].technique = techniques[t];
       const bool warm = k < options.warmup;
       progress.step(std::string(techniqueKey(techniques[t])) + " " +
-                    (warm ? "warm-up " + std::to_string(k + 1) + "/" +
-                                std::to_string(options.warmup)
-                          : "frame " + std::to_string(k - options.warmup + 1) + "/" +
-                                std::to_string(options.frames)));
+                    (warm
+                         ? "warm-up " + std::to_string(k + 1) + "/" + std::to_string(options.warmup)
+                         : "frame " + std::to_string(k - options.warmup + 1) + "/" +
+                               std::to_string(options.frames)));
       renderFrame(renderer, settings, k, options, blur, results[t], warmupStates[t]);
     }
   }
@@ -263,10 +305,9 @@ void checkFrames(CaseResult& result, int window) {
 void checkSameSilhouettes(const CaseResult& ops, CaseResult& bs) {
   for (std::size_t i = 0; i < std::min(ops.frames.size(), bs.frames.size()); ++i) {
     if (ops.frames[i].silhouettes != bs.frames[i].silhouettes) {
-      bs.problems.push_back("frame " + std::to_string(i + 1) + " has " +
-                            std::to_string(bs.frames[i].silhouettes) +
-                            " silhouette pixels, OPS had " +
-                            std::to_string(ops.frames[i].silhouettes));
+      bs.problems.push_back(
+          "frame " + std::to_string(i + 1) + " has " + std::to_string(bs.frames[i].silhouettes) +
+          " silhouette pixels, OPS had " + std::to_string(ops.frames[i].silhouettes));
       return;
     }
   }
@@ -384,23 +425,23 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
     table.notes.push_back(std::string(d.paperName) + ": " + reason);
     for (int window : sizes) {
       const auto paper = paperFor(d, window);
-      lines.push_back({d.name, d.paperSize, std::to_string(window) + "²", {0, 0, 0}, paper,
-                       "missing"});
+      lines.push_back(
+          {d.name, d.paperSize, std::to_string(window) + "²", {0, 0, 0}, paper, "missing"});
       for (Technique t : techniques) {
-        table.rows.push_back({{"table", "nk3"},
-                              {"dataset", d.name},
-                              {"width", window},
-                              {"height", window},
-                              {"technique", techniqueKey(t)},
-                              {"frames", 0},
-                              {"ms_median", nullptr},
-                              {"ms_min", nullptr},
-                              {"ms_max", nullptr},
-                              {"fps", nullptr},
-                              {"paper_fps", paper ? nlohmann::json(paperFpsOf(*paper, t))
-                                                  : nlohmann::json(nullptr)},
-                              {"missing", reason},
-                              {"check", nullptr}});
+        table.rows.push_back(
+            {{"table", "nk3"},
+             {"dataset", d.name},
+             {"width", window},
+             {"height", window},
+             {"technique", techniqueKey(t)},
+             {"frames", 0},
+             {"ms_median", nullptr},
+             {"ms_min", nullptr},
+             {"ms_max", nullptr},
+             {"fps", nullptr},
+             {"paper_fps", paper ? nlohmann::json(paperFpsOf(*paper, t)) : nlohmann::json(nullptr)},
+             {"missing", reason},
+             {"check", nullptr}});
       }
     }
   };
@@ -436,9 +477,9 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
       settings.iso = d->iso;
       settings.camera.elevationDeg = kElevationDeg;
       settings.samplesPerVoxel = 1.0;
-      std::vector<CaseResult> results = runCases(
-          renderer, settings, std::string(d->name) + " " + std::to_string(window) + "²", options,
-          progress);
+      std::vector<CaseResult> results =
+          runCases(renderer, settings, std::string(d->name) + " " + std::to_string(window) + "²",
+                   options, progress);
       for (CaseResult& result : results) checkFrames(result, window);
       checkPlacement(results[0], results[1]);
       checkSameSilhouettes(results[1], results[2]);
@@ -481,8 +522,8 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
             {"iso", d->iso},
             {"dims", {volume.dims.x, volume.dims.y, volume.dims.z}},
             {"slices", r.sliceCount},
-            {"paper_fps", line.paper ? nlohmann::json(paperFpsOf(*line.paper, t))
-                                     : nlohmann::json(nullptr)},
+            {"paper_fps",
+             line.paper ? nlohmann::json(paperFpsOf(*line.paper, t)) : nlohmann::json(nullptr)},
             {"check", check}};
         if (t == Technique::Bs) {
           row["line_width"] = kBroadenedWidth;
@@ -502,20 +543,20 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
   progress.finish();
 
   // Printed table and Markdown.
-  TextTable text({"dataset", "size", "window", "RA fps", "OPS fps", "BS fps", "RA/OPS",
-                  "paper RA", "paper OPS", "paper BS", "paper RA/OPS", "check"});
+  TextTable text({"dataset", "size", "window", "RA fps", "OPS fps", "BS fps", "RA/OPS", "paper RA",
+                  "paper OPS", "paper BS", "paper RA/OPS", "check"});
   table.plot.title = "nk3: frames per second (ours solid, paper hatched)";
   table.plot.valueLabel = "fps";
   table.plot.logScale = true;
-  table.plot.series = {{"RA", false, 0},  {"RA paper", true, 0}, {"OPS", false, 1},
-                       {"OPS paper", true, 1}, {"BS", false, 2}, {"BS paper", true, 2}};
+  table.plot.series = {{"RA", false, 0},       {"RA paper", true, 0}, {"OPS", false, 1},
+                       {"OPS paper", true, 1}, {"BS", false, 2},      {"BS paper", true, 2}};
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const Nk3Line& l : lines) {
     const auto& p = l.paper;
     text.addRow({l.dataset, l.size, l.window, formatFps(l.fps[0]), formatFps(l.fps[1]),
-                 formatFps(l.fps[2]), formatRatio(l.fps[0] / l.fps[1]),
-                 p ? formatFps(p->ra) : "–", p ? formatFps(p->ops) : "–",
-                 p ? formatFps(p->bs) : "–", p ? formatRatio(p->raOverOps) : "–", l.check});
+                 formatFps(l.fps[2]), formatRatio(l.fps[0] / l.fps[1]), p ? formatFps(p->ra) : "–",
+                 p ? formatFps(p->ops) : "–", p ? formatFps(p->bs) : "–",
+                 p ? formatRatio(p->raOverOps) : "–", l.check});
     table.plot.groups.push_back(l.dataset + " " + l.window);
     auto measured = [&](int i) { return l.fps[i] > 0 ? l.fps[i] : nan; };
     table.plot.values.push_back({measured(0), p ? p->ra : nan, measured(1), p ? p->ops : nan,
@@ -525,7 +566,8 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
   table.markdown = text.markdown();
   char method[400];
   std::snprintf(method, sizeof method,
-                "method: %d warm-up + %d timed frames per technique, RA/OPS/BS taking turns, orbit from azimuth %.0f° in "
+                "method: %d warm-up + %d timed frames per technique, RA/OPS/BS taking turns, orbit "
+                "from azimuth %.0f° in "
                 "steps of %.1f° at elevation %.0f°, 1 slice per voxel; frame time = "
                 "Renderer::render (slicing + glFinish + readback), fps = 1000 / median; "
                 "BS adds broadening to W = %.0f px and composition",

@@ -1,5 +1,5 @@
-// vsil_fft_table [--threads N] [--json FILE]: the FFT-vs-spatial blur table (bench/tables/fft_table.h) as
-// Markdown on stdout, and as JSON in FILE.
+// vsil_fft_table [--threads N] [--json FILE]: the FFT-vs-spatial blur table
+// (bench/tables/fft_table.h) as Markdown on stdout, and as JSON in FILE.
 #include <cstdlib>
 #include <cstring>
 #include <fstream>

@@ -40,15 +40,17 @@ const CommandRegistration registration(40, [](CLI::App& app) {
   auto& o = flags->options;
   CLI::App* command = app.add_subcommand(
       "bench", "Reproduce the papers' benchmark tables on this machine (nk3, fft)");
-  command->add_option("--table", o.tables,
-                      "Table(s) to run: nk3, fft (dv1, illustrate, semantic: not yet); "
-                      "default: all implemented")
+  command
+      ->add_option("--table", o.tables,
+                   "Table(s) to run: nk3, fft (dv1, illustrate, semantic: not yet); "
+                   "default: all implemented")
       ->delimiter(',');
   command->add_option("--datasets", flags->datasets,
                       "Folder with the classic datasets (default ../shared/datasets)");
   command->add_option("--only", o.only, "Datasets to run, e.g. bonsai,neghip")->delimiter(',');
-  command->add_option("--sizes", o.sizes,
-                      "Square window sides, e.g. 256,512 (default: each table's own)")
+  command
+      ->add_option("--sizes", o.sizes,
+                   "Square window sides, e.g. 256,512 (default: each table's own)")
       ->delimiter(',');
   command->add_option("--frames", o.frames, "Timed frames per case")->capture_default_str();
   command->add_option("--warmup", o.warmup, "Untimed frames before them")->capture_default_str();

@@ -26,7 +26,11 @@ namespace {
 bool validateOnlyFlag = false;
 }
 
-void setValidateOnly(bool on) { validateOnlyFlag = on; }
-bool validateOnly() { return validateOnlyFlag; }
+void setValidateOnly(bool on) {
+  validateOnlyFlag = on;
+}
+bool validateOnly() {
+  return validateOnlyFlag;
+}
 
 }  // namespace vsil::cli

@@ -47,10 +47,10 @@ void addVolumeOptions(CLI::App& command, VolumeOptions& options) {
       .add_option("--endian", options.endian, "byte order of multi-byte samples (default little)")
       ->check(CLI::IsMember({"little", "big"}))
       ->group(group);
-  command
-      .add_option("--max-memory", options.maxMemoryMiB,
-                  "refuse work needing more than this many MiB of memory (default: half the "
-                  "physical memory, " + std::to_string(limits::defaultMemoryBytes() >> 20) + ")");
+  command.add_option("--max-memory", options.maxMemoryMiB,
+                     "refuse work needing more than this many MiB of memory (default: half the "
+                     "physical memory, " +
+                         std::to_string(limits::defaultMemoryBytes() >> 20) + ")");
 }
 
 LoadOptions toLoadOptions(const VolumeOptions& options) {
@@ -58,8 +58,9 @@ LoadOptions toLoadOptions(const VolumeOptions& options) {
   if (options.maxMemoryMiB) {
     const long long mib = *options.maxMemoryMiB;
     if (mib < 1 || mib > limits::kMaxMemoryMiBFlag) {
-      throwInputError("--max-memory " + std::to_string(mib),
-                      "must be between 1 and " + std::to_string(limits::kMaxMemoryMiBFlag) + " MiB");
+      throwInputError(
+          "--max-memory " + std::to_string(mib),
+          "must be between 1 and " + std::to_string(limits::kMaxMemoryMiBFlag) + " MiB");
     }
     load.limits.maxBytes = std::size_t(mib) << 20;
   }

@@ -15,10 +15,10 @@
 namespace vsil::cli {
 
 struct VolumeOptions {
-  std::string dims;            // --dims XxYxZ (raw files)
-  std::string type;            // --type uint8|uint16|int16|float32 (raw files)
-  std::string spacing;         // --spacing a,b,c (raw files; default 1,1,1)
-  std::string endian;          // --endian little|big (raw files; default little)
+  std::string dims;                       // --dims XxYxZ (raw files)
+  std::string type;                       // --type uint8|uint16|int16|float32 (raw files)
+  std::string spacing;                    // --spacing a,b,c (raw files; default 1,1,1)
+  std::string endian;                     // --endian little|big (raw files; default little)
   std::optional<long long> maxMemoryMiB;  // --max-memory MiB; unset keeps VolumeLimits' default
 };
 

@@ -1,8 +1,8 @@
 // vsil: volume silhouette illustration. Only this file turns errors into exit statuses:
 // 2 for bad input (files, flags, parameters), 1 for internal failures.
 #include <exception>
-#include <new>
 #include <iostream>
+#include <new>
 
 #include "cli/commands.h"
 #include "core/atomic_file.h"

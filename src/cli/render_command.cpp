@@ -13,8 +13,8 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/limits.h"
 #include "core/image_file.h"
+#include "core/limits.h"
 #include "io/volume_loader.h"
 #include "postfx/compose.h"
 #include "slicing/gl_context.h"
@@ -85,7 +85,8 @@ RenderSettings checkedSettings(const RenderOptions& options, const LoadOptions& 
   settings.camera.zoom = options.zoom;
   settings.samplesPerVoxel = options.sampling;
   if (options.pipeline != "fast" && options.pipeline != "paper") {
-    throw InputError("--pipeline: unknown pipeline '" + options.pipeline + "' (known: fast, paper)");
+    throw InputError("--pipeline: unknown pipeline '" + options.pipeline +
+                     "' (known: fast, paper)");
   }
   settings.silhouettePipeline =
       options.pipeline == "paper" ? SilhouettePipeline::Paper : SilhouettePipeline::Fast;
@@ -96,7 +97,8 @@ RenderSettings checkedSettings(const RenderOptions& options, const LoadOptions& 
     throw InputError("--technique: unknown technique '" + settings.technique +
                      "' (known: silhouette, rightangle)");
   }
-  if (options.iso && !std::isfinite(*options.iso)) throw InputError("--iso: must be a finite number");
+  if (options.iso && !std::isfinite(*options.iso))
+    throw InputError("--iso: must be a finite number");
   settings.iso = float(options.iso.value_or(0.0));  // the real default needs the volume
   Renderer::validateSettings(settings);
   const double maxWidth = std::max(postfx.width.near, postfx.width.far);
@@ -104,8 +106,7 @@ RenderSettings checkedSettings(const RenderOptions& options, const LoadOptions& 
     throw InputError("--width: " + std::to_string(int(std::min(maxWidth, 1e9))) +
                      " pixels is over the limit of " + std::to_string(int(limits::kMaxLineWidth)));
   }
-  limits::checkMemory("--size " + options.size,
-                      limits::renderImageBytes(settings.size, maxWidth),
+  limits::checkMemory("--size " + options.size, limits::renderImageBytes(settings.size, maxWidth),
                       loadOptions.limits.maxBytes);
   return settings;
 }
@@ -121,8 +122,8 @@ void checkVolumeWork(const Volume& volume, const RenderSettings& settings,
                      " slices per frame, over the limit of " + std::to_string(limits::kMaxSlices));
   }
   const double maxWidth = std::max(postfx.width.near, postfx.width.far);
-  const std::uint64_t bytes = limits::renderVolumeBytes(volume.dims) +
-                              limits::renderImageBytes(settings.size, maxWidth);
+  const std::uint64_t bytes =
+      limits::renderVolumeBytes(volume.dims) + limits::renderImageBytes(settings.size, maxWidth);
   limits::checkMemory("rendering " + volume.source + " at --size " + options.size, bytes,
                       loadOptions.limits.maxBytes);
 }
@@ -213,12 +214,14 @@ const CommandRegistration registration(10, [](CLI::App& app) {
   CLI::App* command = app.add_subcommand("render", "Render one frame of a technique to PNG");
   command->add_option("input", options->input,
                       "Volume file (.nrrd .nhdr .vti .vtk, raw with --dims/--type) or "
-                      "gen:NAME[:N]; default " + std::string(kDefaultInput));
+                      "gen:NAME[:N]; default " +
+                          std::string(kDefaultInput));
   command->add_option("--technique", options->technique, "silhouette | rightangle")
       ->capture_default_str();
-  command->add_option("--pipeline", options->pipeline,
-                      "silhouette: fast (fused in-place passes) or paper (the paper's three "
-                      "passes); same pixels")
+  command
+      ->add_option("--pipeline", options->pipeline,
+                   "silhouette: fast (fused in-place passes) or paper (the paper's three "
+                   "passes); same pixels")
       ->capture_default_str();
   command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
   command->add_option("--iso", options->iso,
@@ -229,10 +232,13 @@ const CommandRegistration registration(10, [](CLI::App& app) {
   command->add_option("--zoom", options->zoom, "Magnification (> 0)")->capture_default_str();
   command->add_option("--sampling", options->sampling, "Slices per voxel along the view")
       ->capture_default_str();
-  command->add_option("--ra-exponent", options->raExponent,
-                      "rightangle: exponent k of (1 - |n.v|)^k")->capture_default_str();
-  command->add_option("--ra-threshold", options->raThreshold,
-                      "rightangle: line where (1 - |n.v|)^k exceeds this")->capture_default_str();
+  command
+      ->add_option("--ra-exponent", options->raExponent, "rightangle: exponent k of (1 - |n.v|)^k")
+      ->capture_default_str();
+  command
+      ->add_option("--ra-threshold", options->raThreshold,
+                   "rightangle: line where (1 - |n.v|)^k exceeds this")
+      ->capture_default_str();
   command->add_option("--out", options->out, "Output PNG")->capture_default_str();
   command->add_option("--state-out", options->stateOut,
                       "8-bit PNG of pixel states: 0 Empty, 85 Filled, 170 Contour, 255 Silhouette");

@@ -106,7 +106,8 @@ void writeFileAtomically(const std::filesystem::path& path, std::span<const std:
     fd = mkstemp(temp.data());
     if (fd >= 0) registration.emplace(temp);
   }
-  if (fd < 0) throwInputError(target, std::string("cannot create the output file: ") + std::strerror(errno));
+  if (fd < 0)
+    throwInputError(target, std::string("cannot create the output file: ") + std::strerror(errno));
   std::size_t written = 0;
   while (written < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);

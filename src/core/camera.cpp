@@ -62,8 +62,8 @@ View makeView(const CameraSpec& camera, glm::ivec3 dims, glm::dvec3 spacing, glm
   const double zoom = camera.zoom > 0 ? camera.zoom : 1.0;
   // The bounding sphere fills the smaller image side at zoom 1.
   const double halfMin = camera.orthographic ? radius / zoom : std::tan(fovHalf) / zoom;
-  view.halfExtent = aspect >= 1.0 ? glm::dvec2(halfMin * aspect, halfMin)
-                                  : glm::dvec2(halfMin, halfMin / aspect);
+  view.halfExtent =
+      aspect >= 1.0 ? glm::dvec2(halfMin * aspect, halfMin) : glm::dvec2(halfMin, halfMin / aspect);
   // Clip planes with a margin around the box so no slice touches them.
   const double margin = 0.01 * (farEye - nearEye) + 1e-3;
   const double clipNear = camera.orthographic ? nearEye - margin : std::max(nearEye - margin, 1e-3);

@@ -19,12 +19,12 @@ struct CameraSpec {
   double elevationDeg = 20.0;  // orbit up towards +y; 90 looks straight down
   double zoom = 1.0;           // > 1 magnifies
   bool orthographic = false;
-  double fovYDeg = 30.0;       // perspective only, before zoom
+  double fovYDeg = 30.0;  // perspective only, before zoom
 };
 
 // Everything needed to go from a voxel to a pixel, fixed for one frame.
 struct View {
-  glm::ivec2 viewport{0};       // width, height in pixels
+  glm::ivec2 viewport{0};  // width, height in pixels
   glm::dmat4 worldFromVoxel{1.0};
   glm::dmat4 eyeFromWorld{1.0};
   glm::dmat4 eyeFromVoxel{1.0};

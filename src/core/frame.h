@@ -11,7 +11,9 @@ namespace vsil {
 enum class PixelState : std::uint8_t { Empty = 0, Filled = 1, Contour = 2, Silhouette = 3 };
 
 // Grey levels of the state image written by `vsil render --state-out`.
-inline std::uint8_t stateGrey(PixelState state) { return std::uint8_t(85 * int(state)); }
+inline std::uint8_t stateGrey(PixelState state) {
+  return std::uint8_t(85 * int(state));
+}
 
 struct FrameBuffers {
   cv::Mat1b state;  // PixelState per pixel

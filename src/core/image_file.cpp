@@ -20,8 +20,8 @@ void writePng(const std::filesystem::path& path, const cv::Mat& image) {
 cv::Mat readImage(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
-    throwInputError(path.string(), std::filesystem::exists(path, ec) ? "is not a regular file"
-                                                                      : "no such file");
+    throwInputError(path.string(),
+                    std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
   }
   cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
   if (image.empty()) throwInputError(path.string(), "not a readable image");

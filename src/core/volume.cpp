@@ -9,20 +9,28 @@ namespace vsil {
 
 const char* sampleTypeName(SampleType type) {
   switch (type) {
-    case SampleType::UInt8: return "uint8";
-    case SampleType::UInt16: return "uint16";
-    case SampleType::Int16: return "int16";
-    case SampleType::Float32: return "float32";
+    case SampleType::UInt8:
+      return "uint8";
+    case SampleType::UInt16:
+      return "uint16";
+    case SampleType::Int16:
+      return "int16";
+    case SampleType::Float32:
+      return "float32";
   }
   return "unknown";
 }
 
 std::size_t sampleTypeSize(SampleType type) {
   switch (type) {
-    case SampleType::UInt8: return 1;
-    case SampleType::UInt16: return 2;
-    case SampleType::Int16: return 2;
-    case SampleType::Float32: return 4;
+    case SampleType::UInt8:
+      return 1;
+    case SampleType::UInt16:
+      return 2;
+    case SampleType::Int16:
+      return 2;
+    case SampleType::Float32:
+      return 4;
   }
   return 0;
 }
@@ -48,8 +56,8 @@ void checkVolumeSize(const std::string& where, glm::ivec3 dims, const VolumeLimi
   // long double first, then exactly.
   const long double bytes = (long double)dims.x * dims.y * dims.z * sizeof(float);
   if (bytes > (long double)limits.maxBytes) {
-    throwInputError(where, "volume of " + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
-                               std::to_string(dims.z) + " samples needs " +
+    throwInputError(where, "volume of " + std::to_string(dims.x) + "x" + std::to_string(dims.y) +
+                               "x" + std::to_string(dims.z) + " samples needs " +
                                std::to_string((unsigned long long)(bytes / (1 << 20))) +
                                " MiB, over the memory limit of " +
                                std::to_string(limits.maxBytes >> 20) + " MiB");

@@ -18,7 +18,9 @@
 namespace vsil {
 namespace {
 
-std::string datasetsDir() { return test::datasetPath("").parent_path().string(); }
+std::string datasetsDir() {
+  return test::datasetPath("").parent_path().string();
+}
 
 int lineCount(const std::string& text) {
   return int(std::count(text.begin(), text.end(), '\n'));
@@ -30,10 +32,11 @@ class Nk3Run : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = test::scratchDir();
-    result_ = test::runVsil("bench --table nk3 --datasets " + datasetsDir() +
-                            " --only neghip,hydrogen_atom --sizes 64 --frames 2 --warmup 0 --json " +
-                            (dir_ / "nk3.json").string() + " --markdown " +
-                            (dir_ / "nk3.md").string() + " --plot " + (dir_ / "nk3.png").string());
+    result_ =
+        test::runVsil("bench --table nk3 --datasets " + datasetsDir() +
+                      " --only neghip,hydrogen_atom --sizes 64 --frames 2 --warmup 0 --json " +
+                      (dir_ / "nk3.json").string() + " --markdown " + (dir_ / "nk3.md").string() +
+                      " --plot " + (dir_ / "nk3.png").string());
   }
   std::filesystem::path dir_;
   test::CommandResult result_;
@@ -48,15 +51,14 @@ TEST_F(Nk3Run, SucceedsAndPrintsTheMachineAndTheTable) {
   EXPECT_NE(out.find("neghip"), std::string::npos) << out;
   EXPECT_NE(out.find("hydrogen_atom"), std::string::npos) << out;
   EXPECT_EQ(out.find("bonsai"), std::string::npos) << "--only leaves bonsai out\n" << out;
-  EXPECT_NE(result_.err.find("[1/2]"), std::string::npos) << "progress on stderr\n"
-                                                            << result_.err;
+  EXPECT_NE(result_.err.find("[1/2]"), std::string::npos) << "progress on stderr\n" << result_.err;
 }
 
 TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
   ASSERT_EQ(result_.exitCode, 0) << result_.err;
   const auto document = nlohmann::json::parse(test::readFileBytes(dir_ / "nk3.json"));
-  for (const char* key : {"cpu", "hardware_threads", "gl_renderer", "gl_version",
-                          "lp_num_threads", "vsil_version", "build_type", "date_utc"}) {
+  for (const char* key : {"cpu", "hardware_threads", "gl_renderer", "gl_version", "lp_num_threads",
+                          "vsil_version", "build_type", "date_utc"}) {
     EXPECT_TRUE(document["machine"].contains(key)) << key;
   }
   const auto& rows = document["rows"];

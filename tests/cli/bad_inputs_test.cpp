@@ -29,7 +29,9 @@ struct BadInput {
 };
 
 // gtest names cases by `name`; this keeps failure messages readable too.
-void PrintTo(const BadInput& c, std::ostream* out) { *out << c.name << ": vsil " << c.args; }
+void PrintTo(const BadInput& c, std::ostream* out) {
+  *out << c.name << ": vsil " << c.args;
+}
 
 std::vector<BadInput> loadCases() {
   std::ifstream in(kCorpus / "cases.json");
@@ -43,7 +45,8 @@ std::vector<BadInput> loadCases() {
 }
 
 std::string substitute(std::string text, const std::string& key, const std::string& value) {
-  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size())) {
+  for (std::size_t at = text.find(key); at != std::string::npos;
+       at = text.find(key, at + value.size())) {
     text.replace(at, key.size(), value);
   }
   return text;
@@ -65,7 +68,8 @@ TEST_P(BadInputCase, FailsWithItsExactError) {
   if (!c.stderrPrefix.empty()) {
     EXPECT_TRUE(result.err.starts_with(expand(c.stderrPrefix))) << result.err;
   }
-  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << "one line: " << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1)
+      << "one line: " << result.err;
   EXPECT_EQ(result.out, "") << "nothing on stdout that a script could take for output";
   for (const auto& entry : fs::directory_iterator(out)) {
     ADD_FAILURE() << "left behind: " << entry.path();
@@ -86,8 +90,8 @@ TEST(BadInputs, UnreadableFile) {
   fs::permissions(file, fs::perms::none);
   const test::CommandResult result = test::runVsil("info " + file.string());
   EXPECT_EQ(result.exitCode, 2);
-  EXPECT_EQ(result.err, "vsil: " + file.string() +
-                            ": cannot be opened for reading: Permission denied\n");
+  EXPECT_EQ(result.err,
+            "vsil: " + file.string() + ": cannot be opened for reading: Permission denied\n");
   EXPECT_EQ(result.out, "");
 }
 

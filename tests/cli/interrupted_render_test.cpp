@@ -1,7 +1,7 @@
 // An interrupted run leaves no partial output and no stray temporary, and a previous good
 // output at the target path survives untouched (core/atomic_file.h). A render of a few seconds
-// (a 128³ generated volume at 1024x1024, three outputs) is started in a child process and sent SIGTERM
-// or SIGINT at points spread over its run time: while generating, rendering, and writing.
+// (a 128³ generated volume at 1024x1024, three outputs) is started in a child process and sent
+// SIGTERM or SIGINT at points spread over its run time: while generating, rendering, and writing.
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -38,9 +38,9 @@ ChildRun renderInto(const fs::path& dir, double delay, int signal) {
   const std::string binary = test::vsilBinary().string();
   const std::string out = (dir / "out.png").string(), state = (dir / "state.png").string(),
                     meta = (dir / "meta.json").string();
-  std::vector<std::string> args = {binary, "render", "gen:blobs:128", "--size", "1024x1024",
-                                   "--width", "4", "--out", out, "--state-out", state,
-                                   "--meta-out", meta};
+  std::vector<std::string> args = {
+      binary,  "render", "gen:blobs:128", "--size", "1024x1024",  "--width", "4",
+      "--out", out,      "--state-out",   state,    "--meta-out", meta};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

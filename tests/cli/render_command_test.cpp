@@ -18,9 +18,8 @@ TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
   const auto dir = test::scratchDir();
   const auto result = test::runVsil(
       "render gen:sphere:48 --size 96x80 --iso 0.5 --view 10,20 --ortho --out " +
-      (dir / "a.png").string() + " --state-out " + (dir / "state.png").string() +
-      " --depth-out " + (dir / "depth.png").string() + " --meta-out " +
-      (dir / "meta.json").string());
+      (dir / "a.png").string() + " --state-out " + (dir / "state.png").string() + " --depth-out " +
+      (dir / "depth.png").string() + " --meta-out " + (dir / "meta.json").string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.out.find("a.png"), std::string::npos) << "prints where the image is";
 
@@ -73,9 +72,10 @@ TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
   EXPECT_NEAR(sumX / silhouettes, px, 0.5);
   EXPECT_NEAR(sumY / silhouettes, py, 0.5);
   // Silhouette depth: the sphere's centre depth, normalized over depth_range_eye.
-  const double nearEye = meta["camera"]["depth_range_eye"][0], farEye = meta["camera"]["depth_range_eye"][1];
-  const double centreDepth = (-(eyeFromVoxel * glm::dvec4(23.5, 23.5, 23.5, 1.0)).z - nearEye) /
-                             (farEye - nearEye);
+  const double nearEye = meta["camera"]["depth_range_eye"][0],
+               farEye = meta["camera"]["depth_range_eye"][1];
+  const double centreDepth =
+      (-(eyeFromVoxel * glm::dvec4(23.5, 23.5, 23.5, 1.0)).z - nearEye) / (farEye - nearEye);
   double depthSum = 0;
   for (int y = 0; y < state.rows; ++y) {
     for (int x = 0; x < state.cols; ++x) {
@@ -92,10 +92,9 @@ TEST(RenderCommand, PaperAndFastPipelinesGiveIdenticalImages) {
   const char* pipelines[2] = {"fast", "paper"};
   for (int i = 0; i < 2; ++i) {
     const auto state = dir / (std::string(pipelines[i]) + ".png");
-    const auto result = test::runVsil("render gen:spheres:64 --size 120x100 --pipeline " +
-                                      std::string(pipelines[i]) + " --out " +
-                                      (dir / "out.png").string() + " --state-out " +
-                                      state.string());
+    const auto result = test::runVsil(
+        "render gen:spheres:64 --size 120x100 --pipeline " + std::string(pipelines[i]) + " --out " +
+        (dir / "out.png").string() + " --state-out " + state.string());
     ASSERT_EQ(result.exitCode, 0) << result.err;
     images[i] = test::readFileBytes(state);
   }
@@ -108,12 +107,13 @@ TEST(RenderCommand, SameCommandTwiceGivesIdenticalBytes) {
     std::string outputs[2];
     for (int run = 0; run < 2; ++run) {
       const std::string name = std::string(technique) + std::to_string(run);
-      const auto result = test::runVsil("render gen:torus:48 --size 100x90 --technique " +
-                                        std::string(technique) + " --out " +
-                                        (dir / (name + ".png")).string() + " --depth-out " +
-                                        (dir / (name + "-depth.png")).string());
+      const auto result =
+          test::runVsil("render gen:torus:48 --size 100x90 --technique " + std::string(technique) +
+                        " --out " + (dir / (name + ".png")).string() + " --depth-out " +
+                        (dir / (name + "-depth.png")).string());
       ASSERT_EQ(result.exitCode, 0) << result.err;
-      outputs[run] = test::readFileBytes(dir / (name + ".png")) + test::readFileBytes(dir / (name + "-depth.png"));
+      outputs[run] = test::readFileBytes(dir / (name + ".png")) +
+                     test::readFileBytes(dir / (name + "-depth.png"));
     }
     EXPECT_EQ(outputs[0], outputs[1]) << technique;
   }
@@ -130,8 +130,8 @@ class RenderCommandRejects : public ::testing::TestWithParam<BadRender> {};
 TEST_P(RenderCommandRejects, WithOneLineAndExitTwoAndNoOutput) {
   const auto dir = test::scratchDir();
   const auto out = dir / "never.png";
-  const auto result = test::runVsil(std::string("render ") + GetParam().arguments + " --out " +
-                                    out.string());
+  const auto result =
+      test::runVsil(std::string("render ") + GetParam().arguments + " --out " + out.string());
   EXPECT_EQ(result.exitCode, 2) << result.err;
   EXPECT_NE(result.err.find(GetParam().expected), std::string::npos) << result.err;
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
@@ -141,18 +141,18 @@ TEST_P(RenderCommandRejects, WithOneLineAndExitTwoAndNoOutput) {
 
 INSTANTIATE_TEST_SUITE_P(
     BadInput, RenderCommandRejects,
-    ::testing::Values(BadRender{"unknown_technique", "gen:sphere:16 --technique nope", "--technique"},
-                      BadRender{"unknown_pipeline", "gen:sphere:16 --pipeline slow", "--pipeline"},
-                      BadRender{"zero_size", "gen:sphere:16 --size 0x10", "--size"},
-                      BadRender{"size_without_x", "gen:sphere:16 --size 12", "--size"},
-                      BadRender{"view_one_angle", "gen:sphere:16 --view 1", "--view"},
-                      BadRender{"negative_zoom", "gen:sphere:16 --zoom -1", "--zoom"},
-                      BadRender{"zero_sampling", "gen:sphere:16 --sampling 0", "--sampling"},
-                      BadRender{"nan_iso", "gen:sphere:16 --iso nan", "--iso"},
-                      BadRender{"width_below_one", "gen:sphere:16 --width 0.5", "--width"},
-                      BadRender{"unknown_generator", "gen:nosuchthing", "nosuchthing"},
-                      BadRender{"missing_file", "/nonexistent/volume.nrrd",
-                                "/nonexistent/volume.nrrd"}),
+    ::testing::Values(
+        BadRender{"unknown_technique", "gen:sphere:16 --technique nope", "--technique"},
+        BadRender{"unknown_pipeline", "gen:sphere:16 --pipeline slow", "--pipeline"},
+        BadRender{"zero_size", "gen:sphere:16 --size 0x10", "--size"},
+        BadRender{"size_without_x", "gen:sphere:16 --size 12", "--size"},
+        BadRender{"view_one_angle", "gen:sphere:16 --view 1", "--view"},
+        BadRender{"negative_zoom", "gen:sphere:16 --zoom -1", "--zoom"},
+        BadRender{"zero_sampling", "gen:sphere:16 --sampling 0", "--sampling"},
+        BadRender{"nan_iso", "gen:sphere:16 --iso nan", "--iso"},
+        BadRender{"width_below_one", "gen:sphere:16 --width 0.5", "--width"},
+        BadRender{"unknown_generator", "gen:nosuchthing", "nosuchthing"},
+        BadRender{"missing_file", "/nonexistent/volume.nrrd", "/nonexistent/volume.nrrd"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -18,9 +18,10 @@ TEST(RenderThenMeasureWidth, SphereAtWidthNineMeasuresNine) {
   std::filesystem::create_directories(dir);
   const auto out = (dir / "out.png").string(), depth = (dir / "depth.png").string(),
              state = (dir / "state.png").string(), json = (dir / "report.json").string();
-  const auto render = test::runVsil("render gen:sphere:64 --ortho --view 20,10 --size 240x240 "
-                                    "--width 9 --out " + out + " --depth-out " + depth +
-                                    " --state-out " + state);
+  const auto render = test::runVsil(
+      "render gen:sphere:64 --ortho --view 20,10 --size 240x240 "
+      "--width 9 --out " +
+      out + " --depth-out " + depth + " --state-out " + state);
   ASSERT_EQ(render.exitCode, 0) << render.err;
   const auto measure =
       test::runVsil("measure-width " + out + " --depth " + depth + " --json " + json);
@@ -31,8 +32,8 @@ TEST(RenderThenMeasureWidth, SphereAtWidthNineMeasuresNine) {
   EXPECT_EQ(report["image"], out);
   EXPECT_EQ(report["line_color"], "black");
   const auto& widths = report["widths"];
-  for (const char* key : {"count", "mean", "median", "min", "max", "p05", "p25", "p75", "p95",
-                          "bin_width"}) {
+  for (const char* key :
+       {"count", "mean", "median", "min", "max", "p05", "p25", "p75", "p95", "bin_width"}) {
     EXPECT_TRUE(widths[key].is_number()) << key;
   }
   ASSERT_TRUE(widths["histogram"].is_array());

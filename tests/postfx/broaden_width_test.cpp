@@ -2,10 +2,10 @@
 // and straight lines in many orientations, fixed widths 2..40.
 #include <algorithm>
 #include <cmath>
-#include <vector>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -40,9 +40,8 @@ TEST_P(FixedWidth, StraightLinesHaveTheAskedWidthInEveryOrientation) {
   FftGaussianBlur blur;
   std::ostringstream row;
   row << "W=" << std::setw(2) << width << ":";
-  for (double angle :
-       {3.0, 11.0, 22.5, 29.0, 37.0, 44.0, 45.0, 52.0, 60.0, 71.0, 83.0, 97.0, 124.0, 135.0, 137.0,
-        151.0}) {
+  for (double angle : {3.0, 11.0, 22.5, 29.0, 37.0, 44.0, 45.0, 52.0, 60.0, 71.0, 83.0, 97.0, 124.0,
+                       135.0, 137.0, 151.0}) {
     const cv::Point2d point(127.3, 128.6);
     const cv::Mat1b lines = test::silhouettePixels({256, 256}, test::halfPlaneShape(point, angle));
     const cv::Mat1b band = broadenMask(lines, width, blur);
@@ -100,7 +99,8 @@ TEST(DiagonalShare, OneOnDiagonalsZeroOnAxesAndAwayFromThem) {
         high = std::max(high, double(share(y, x)));
       }
     }
-    const double offDiagonal = std::abs(std::remainder(angle, 90.0) - std::copysign(45.0, std::remainder(angle, 90.0)));
+    const double offDiagonal =
+        std::abs(std::remainder(angle, 90.0) - std::copysign(45.0, std::remainder(angle, 90.0)));
     if (offDiagonal <= kDiagonalFullDegrees - 1) {
       EXPECT_EQ(low, 1.0) << angle << " degrees";
     } else if (offDiagonal >= kDiagonalNoneDegrees + 1) {
@@ -145,8 +145,7 @@ TEST(OrientationSweep, DISABLED_DigitalLinesEveryDegree) {
       const cv::Mat1b lines =
           test::silhouettePixels({256, 256}, test::halfPlaneShape(point, degree));
       const cv::Mat1b band = broadenMask(lines, width, blur);
-      const double error =
-          test::straightBandWidth(band, point, degree, 70, width + 10) - width;
+      const double error = test::straightBandWidth(band, point, degree, 70, width + 10) - width;
       if (std::abs(error) > std::abs(worst)) worst = error, worstAngle = degree;
       worstRatio = std::max(worstRatio, std::abs(error) / widthTolerance(width));
       failing += std::abs(error) > widthTolerance(width);

@@ -17,7 +17,9 @@ namespace vsil {
 namespace {
 
 // The tolerance for depth-adaptive widths: ±0.75 px or ±6 %, whichever is larger.
-double depthTolerance(double width) { return std::max(0.75, 0.06 * width); }
+double depthTolerance(double width) {
+  return std::max(0.75, 0.06 * width);
+}
 
 struct NearFar {
   double near, far;
@@ -71,25 +73,25 @@ TEST_F(RenderedDepthWidths, SpheresAtDifferentDepthsGetTheLawsWidths) {
   std::vector<double> depths;
   for (const auto& ball : balls_) {
     centres.push_back(test::pixelOfVoxel(view, ball.centreVoxel));
-    depths.push_back(view.normalizedDepth(-(view.eyeFromVoxel * glm::dvec4(ball.centreVoxel, 1)).z));
+    depths.push_back(
+        view.normalizedDepth(-(view.eyeFromVoxel * glm::dvec4(ball.centreVoxel, 1)).z));
   }
   const double radius = balls_[0].radiusVoxels * test::pixelsPerVoxel(view);
   // The rings must be far enough apart for the widest band (W/2 + 1 beyond the circle).
   ASSERT_GT(cv::norm(centres[0] - centres[1]), 2 * (radius + 21 + 2));
 
   FftGaussianBlur blur;
-  for (const NearFar nearFar : {NearFar{2, 40}, NearFar{40, 2}, NearFar{3, 13}, NearFar{13, 3},
-                                NearFar{8, 21}, NearFar{21, 8}, NearFar{5, 40}, NearFar{2, 8},
-                                NearFar{30, 20}}) {
+  for (const NearFar nearFar :
+       {NearFar{2, 40}, NearFar{40, 2}, NearFar{3, 13}, NearFar{13, 3}, NearFar{8, 21},
+        NearFar{21, 8}, NearFar{5, 40}, NearFar{2, 8}, NearFar{30, 20}}) {
     const WidthLaw law = WidthLaw::depthAdaptive(nearFar.near, nearFar.far);
     const cv::Mat1b band = broadenSilhouettes(result_->frame, law, blur);
     std::ostringstream row;
-    row << "near " << std::setw(2) << nearFar.near << " far " << std::setw(2) << nearFar.far
-        << ":";
+    row << "near " << std::setw(2) << nearFar.near << " far " << std::setw(2) << nearFar.far << ":";
     for (std::size_t i = 0; i < balls_.size(); ++i) {
       const double expected = law.widthAt(depths[i]);
-      const double measured = test::ringBandWidth(bandOfBall(band, centres, i), centres[i],
-                                                  radius, radius + law.maxWidth() + 8);
+      const double measured = test::ringBandWidth(bandOfBall(band, centres, i), centres[i], radius,
+                                                  radius + law.maxWidth() + 8);
       row << " d=" << std::fixed << std::setprecision(2) << depths[i] << " " << measured << "/"
           << expected;
       EXPECT_NEAR(measured, expected, depthTolerance(expected))

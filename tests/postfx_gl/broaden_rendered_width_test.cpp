@@ -11,12 +11,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <string>
-#include <vector>
 #include <iomanip>
 #include <iostream>
 #include <numbers>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -31,7 +31,9 @@ namespace {
 const int kWidths[] = {2, 3, 5, 8, 13, 21, 40};
 
 // The tolerance: ±0.5 px or ±4 %, whichever is larger.
-double widthTolerance(double width) { return std::max(0.5, 0.04 * width); }
+double widthTolerance(double width) {
+  return std::max(0.5, 0.04 * width);
+}
 
 using RenderedWidths = test::GlTest;
 
@@ -167,10 +169,10 @@ TEST_F(RenderedWidths, DISABLED_SweepEveryDegree) {
     }
   }
   for (std::size_t i = 0; i < worst.size(); ++i) {
-    std::cout << "rendered sweep W=" << kWidths[i] << " worst error " << std::showpos
-              << std::fixed << std::setprecision(2) << worst[i] << std::noshowpos << " at "
-              << worstAngle[i] << " deg, worst error/tolerance " << worstRatio[i]
-              << ", lines out of tolerance " << failing[i] << "\n";
+    std::cout << "rendered sweep W=" << kWidths[i] << " worst error " << std::showpos << std::fixed
+              << std::setprecision(2) << worst[i] << std::noshowpos << " at " << worstAngle[i]
+              << " deg, worst error/tolerance " << worstRatio[i] << ", lines out of tolerance "
+              << failing[i] << "\n";
   }
 }
 

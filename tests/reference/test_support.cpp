@@ -16,7 +16,9 @@ std::filesystem::path datasetPath(const std::string& name) {
   return std::filesystem::path(VSIL_SHARED_DIR) / "datasets" / name;
 }
 
-std::filesystem::path vsilBinary() { return VSIL_BINARY; }
+std::filesystem::path vsilBinary() {
+  return VSIL_BINARY;
+}
 
 std::filesystem::path scratchDir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
@@ -39,8 +41,8 @@ std::string readFileBytes(const std::filesystem::path& path) {
 
 CommandResult runVsil(const std::string& arguments) {
   // Not scratchDir(): that would empty the calling test's folder, which holds its inputs.
-  const auto dir = std::filesystem::temp_directory_path() / "vsil-tests" /
-                   ("run-" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / "vsil-tests" / ("run-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto outPath = dir / "stdout";
   const auto errPath = dir / "stderr";

@@ -45,8 +45,8 @@ RenderResult renderOrthographic(const Volume& volume, glm::ivec2 size, double az
 using SilhouetteAnalytic = test::GlTest;
 
 TEST_F(SilhouetteAnalytic, SeparatedSpheresGiveOnePixelCirclesAtTheProjectedRadius) {
-  const std::vector<test::Ball> balls = {{{24, 40, 30}, 14.0}, {{72, 40, 50}, 10.0},
-                                         {{50, 76, 40}, 7.5}};
+  const std::vector<test::Ball> balls = {
+      {{24, 40, 30}, 14.0}, {{72, 40, 50}, 10.0}, {{50, 76, 40}, 7.5}};
   const Volume volume = test::ballsVolume({96, 96, 80}, balls);
   const RenderResult result = renderOrthographic(volume, {320, 320});
   std::vector<Circle> circles;
@@ -104,7 +104,10 @@ TEST_F(SilhouetteAnalytic, OverlappingSpheresShowOnlyTheVisibleOutline) {
         ++frontRim;  // the front sphere's whole outline is visible
       } else if (offBack <= 0.25 && offBack >= -1.5) {
         // The back sphere's outline is visible only outside the front disc.
-        if (offFront < 0) ++hidden; else ++backRim;
+        if (offFront < 0)
+          ++hidden;
+        else
+          ++backRim;
       } else {
         ++interior;
       }

@@ -35,7 +35,9 @@ void writeBytes(const std::filesystem::path& path, std::span<const std::uint8_t>
 
 }  // namespace
 
-const std::vector<FuzzTarget>& targets() { return registry(); }
+const std::vector<FuzzTarget>& targets() {
+  return registry();
+}
 
 const FuzzTarget* findTarget(const std::string& name) {
   for (const FuzzTarget& target : registry()) {

@@ -63,8 +63,8 @@ LoadOptions fuzzLoadOptions();
 
 }  // namespace vsil::fuzz
 
-#define VSIL_FUZZ_TARGET(name)                                                              \
-  static void vsilFuzzTarget_##name(std::span<const std::uint8_t> bytes);                   \
-  static const ::vsil::fuzz::Registration vsilFuzzRegistration_##name(#name,                \
+#define VSIL_FUZZ_TARGET(name)                                                                \
+  static void vsilFuzzTarget_##name(std::span<const std::uint8_t> bytes);                     \
+  static const ::vsil::fuzz::Registration vsilFuzzRegistration_##name(#name,                  \
                                                                       vsilFuzzTarget_##name); \
   static void vsilFuzzTarget_##name(std::span<const std::uint8_t> bytes)

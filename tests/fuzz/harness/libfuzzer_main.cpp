@@ -5,7 +5,7 @@
 #include "fuzz_target.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const vsil::fuzz::FuzzTarget& target = [] () -> const vsil::fuzz::FuzzTarget& {
+  static const vsil::fuzz::FuzzTarget& target = []() -> const vsil::fuzz::FuzzTarget& {
     if (vsil::fuzz::targets().size() != 1) {
       std::fprintf(stderr, "a fuzz binary must link exactly one target\n");
       std::abort();

@@ -40,8 +40,8 @@ std::vector<FuzzInput> storedInputs() {
 }
 
 std::string testName(const ::testing::TestParamInfo<FuzzInput>& info) {
-  std::string name = info.param.target + "_" + info.param.file.parent_path().parent_path()
-                                                      .filename().string() + "_" +
+  std::string name = info.param.target + "_" +
+                     info.param.file.parent_path().parent_path().filename().string() + "_" +
                      info.param.file.filename().string();
   for (char& c : name) {
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
