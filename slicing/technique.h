@@ -20,7 +20,7 @@ struct FrameContext {
   const SlicePlan* plan = nullptr;
   glm::ivec3 dims{0};
   glm::dvec3 spacing{1.0};
-  GLuint volumeTexture = 0;      // GL_TEXTURE_3D, R32F, data units, linear filtering
+  GLuint volumeTexture = 0;      // GL_TEXTURE_3D, R16F or R32F, data units, linear filtering
   GLuint sliceVertexArray = 0;   // all slice polygons, slice k at [firstVertex, +vertexCount)
   GLuint screenVertexArray = 0;  // empty VAO for the full-screen triangle (gl_VertexID)
 };
@@ -55,7 +55,7 @@ std::unique_ptr<Technique> makeTechnique(const std::string& name);
 void setSliceUniforms(gl::Program& program, const FrameContext& frame, const Slice* slice);
 
 // The last pass of a frame: shades the first hit recorded in `record` (state, depth, first-hit
-// eye distance, 0) and writes (state, depth, shade, 0) into `output` (see finish.frag).
+// eye distance, ...; common.glsl) and writes (state, depth, shade, 0) into `output` (finish.frag).
 void finishRecords(gl::Program& finish, const FrameContext& frame, const gl::RenderTarget& record,
                    const gl::RenderTarget& output);
 

@@ -1,7 +1,7 @@
 #pragma once
 // The CPU twin of slicing/shaders/common.glsl: the same sample positions (pixel centres on the
 // view-aligned slice planes of slicing/slicer.h), computed in float with the same operations,
-// and trilinear interpolation as OpenGL defines it for a clamped R32F 3D texture.
+// and trilinear interpolation as OpenGL defines it for a clamped float 3D texture.
 #include <glm/glm.hpp>
 
 #include "core/camera.h"
