@@ -41,6 +41,18 @@ Setup setUp(const Volume& volume, const RenderSettings& settings) {
   return setup;
 }
 
+// A frame of the setup's size with every pixel Empty (depth and shade NaN), nothing ambiguous.
+ReferenceFrame emptyFrame(const Setup& setup, glm::ivec2 size) {
+  ReferenceFrame result;
+  result.view = setup.view;
+  result.sliceCount = int(setup.plan.slices.size());
+  result.ambiguous = cv::Mat1b(size.y, size.x, std::uint8_t(0));
+  result.frame.state = cv::Mat1b(size.y, size.x, std::uint8_t(PixelState::Empty));
+  result.frame.depth = cv::Mat1f(size.y, size.x, kNan);
+  result.frame.shade = cv::Mat1f(size.y, size.x, kNan);
+  return result;
+}
+
 }  // namespace
 
 ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& settings,
@@ -48,10 +60,7 @@ ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& sett
   const Setup setup = setUp(volume, settings);
   const SliceSampler sampler(volume, setup.view);
   const int w = settings.size.x, h = settings.size.y;
-  ReferenceFrame result;
-  result.view = setup.view;
-  result.sliceCount = int(setup.plan.slices.size());
-  result.ambiguous = cv::Mat1b(h, w, std::uint8_t(0));
+  ReferenceFrame result = emptyFrame(setup, settings.size);
   cv::Mat1b state(h, w, std::uint8_t(PixelState::Empty));
   cv::Mat1f depth(h, w, 0.0f), shade(h, w, 0.0f);
   cv::Mat1b footprint(h, w), nearIso(h, w);
@@ -112,8 +121,6 @@ ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& sett
   step(nullptr, previousDepth);  // the extra empty slice
 
   result.frame.state = state;
-  result.frame.depth = cv::Mat1f(h, w, kNan);
-  result.frame.shade = cv::Mat1f(h, w, kNan);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       const auto s = PixelState(state(y, x));
@@ -129,13 +136,7 @@ ReferenceFrame renderRightAngle(const Volume& volume, const RenderSettings& sett
   const Setup setup = setUp(volume, settings);
   const SliceSampler sampler(volume, setup.view);
   const int w = settings.size.x, h = settings.size.y;
-  ReferenceFrame result;
-  result.view = setup.view;
-  result.sliceCount = int(setup.plan.slices.size());
-  result.ambiguous = cv::Mat1b(h, w, std::uint8_t(0));
-  result.frame.state = cv::Mat1b(h, w, std::uint8_t(PixelState::Empty));
-  result.frame.depth = cv::Mat1f(h, w, kNan);
-  result.frame.shade = cv::Mat1f(h, w, kNan);
+  ReferenceFrame result = emptyFrame(setup, settings.size);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       for (const Slice& slice : setup.plan.slices) {
