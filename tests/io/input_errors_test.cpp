@@ -258,7 +258,8 @@ TEST(InputErrors, BrokenVtiFiles) {
       {"<VTKFile type=\"ImageData\"><ImageData", "is not valid XML"},
       {"<VTKFile type=\"PolyData\"/>", "only ImageData"},
       {head + "</PointData></Piece></ImageData></VTKFile>", "has no <DataArray>"},
-      {head + "<DataArray type=\"UInt8\" format=\"ascii\">1    2    3    </DataArray>" + tail + "</VTKFile>",
+      {head + "<DataArray type=\"UInt8\" format=\"ascii\">1    2    3    </DataArray>" + tail +
+           "</VTKFile>",
        "holds 3 values, 8 expected"},
       {head + "<DataArray type=\"UInt8\" format=\"binary\">CAAAAA==AQID</DataArray>" + tail +
            "</VTKFile>",
