@@ -58,6 +58,16 @@ class InflateStream {
 
 }  // namespace
 
+void checkInflatable(const std::string& where, const std::string& what,
+                     std::uint64_t compressedBytes, std::uint64_t expected) {
+  constexpr std::uint64_t kMaxDeflateRatio = 1032;
+  if (compressedBytes < expected / kMaxDeflateRatio) {
+    throwInputError(where, what + " of " + std::to_string(compressedBytes) +
+                               " bytes cannot inflate to the " + std::to_string(expected) +
+                               " bytes expected");
+  }
+}
+
 void inflateExactly(const std::string& where, const std::string& what,
                     std::span<const std::uint8_t> compressed, std::span<std::uint8_t> out,
                     DeflateWrapper wrapper) {

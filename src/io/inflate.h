@@ -17,4 +17,9 @@ void inflateExactly(const std::string& where, const std::string& what,
                     std::span<const std::uint8_t> compressed, std::span<std::uint8_t> out,
                     DeflateWrapper wrapper);
 
+// Deflate packs at most 1032:1; fewer compressed bytes than expected/1032 cannot hold the data.
+// Throws InputError before anything is allocated for them.
+void checkInflatable(const std::string& where, const std::string& what,
+                     std::uint64_t compressedBytes, std::uint64_t expected);
+
 }  // namespace vsil::io

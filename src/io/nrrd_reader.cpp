@@ -258,6 +258,7 @@ Volume readNrrd(const std::string& path, const VolumeLimits& limits) {
                                 " bytes, more than a gzip stream of " + std::to_string(inflated) +
                                 " bytes can take" + layout);
     }
+    checkInflatable(path, "gzip " + payload.label, payload.size, inflated);
     const auto compressed = readFileBytes(payload.path, payload.offset, payload.size);
     std::vector<std::uint8_t> bytes(inflated);
     inflateExactly(path, "gzip " + payload.label, compressed, bytes, DeflateWrapper::Gzip);

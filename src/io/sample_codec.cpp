@@ -152,6 +152,12 @@ std::vector<float> decodeSamples(const std::string& where, std::span<const std::
 
 std::vector<float> parseTextSamples(const std::string& where, std::string_view text,
                                     std::size_t count, StoredType type) {
+  // Each value takes at least one character and one separator: a short text is refused before
+  // the samples are allocated.
+  if (count > 0 && text.size() < 2 * count - 1) {
+    throwInputError(where, "holds " + std::to_string(text.size()) + " characters, too few for " +
+                               std::to_string(count) + " values");
+  }
   std::vector<float> samples(count);
   const char* p = text.data();
   const char* end = text.data() + text.size();

@@ -22,6 +22,9 @@ struct LoadOptions {
 
 // `spec` is a path (.nrrd, .nhdr, .vti, .vtk, or any file with options.raw set) or a generator
 // `gen:NAME[:N]` (see generators/generators.h). Throws InputError naming the file and problem.
+// Readers (src/io/*_reader.cpp): NRRD raw/gzip/ascii, attached or detached; VTK XML ImageData
+// ascii/base64/appended, zlib or not; legacy VTK STRUCTURED_POINTS ASCII/BINARY; raw.
+// Stored int8 samples load as Int16 and float64 as Float32 (refused unless finite in float).
 Volume loadVolume(const std::string& spec, const LoadOptions& options = {});
 
 }  // namespace vsil

@@ -109,9 +109,10 @@ class BlockReader {
                                  " blocks of " + std::to_string(blockSize) + " bytes, not the " +
                                  std::to_string(expected) + " bytes expected" + layout);
     }
-    std::vector<std::uint8_t> bytes(expected);
-    std::uint64_t offset = (3 + blocks) * encoding_.headerWordSize;
     word(2 + blocks);  // the header is all there
+    std::uint64_t offset = (3 + blocks) * encoding_.headerWordSize;
+    checkInflatable(path_, "zlib data", block_.size() - offset, expected);
+    std::vector<std::uint8_t> bytes(expected);
     for (std::uint64_t i = 0; i < blocks; ++i) {
       const std::uint64_t size = word(3 + i);
       if (size > block_.size() - offset) {

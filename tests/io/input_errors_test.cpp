@@ -199,6 +199,32 @@ TEST(InputErrors, GzipBombsStopAtTheExpectedSize) {
   expectInputError([&] { loadVolume(junk); }, junk + ": ", {"corrupt"});
 }
 
+TEST(InputErrors, TinyFilesClaimingHugeVolumesAllocateNothing) {
+  // 1024³ samples from a few bytes: refused by size checks before any sample buffer exists.
+  const std::string gz =
+      scratchFile("tiny.nrrd", nrrdHeader("type: uint8\ndimension: 3\nsizes: 1024 1024 1024\n"
+                                          "encoding: gzip") +
+                                   "\n" + test::asText(test::deflateBytes({1}, true)));
+  expectInputError([&] { loadVolume(gz); }, gz + ": ", {"cannot inflate to the 1073741824 bytes"});
+  const std::string ascii =
+      scratchFile("tiny.vti",
+                  "<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 1023 0 1023 0 1023\">"
+                  "<Piece><PointData><DataArray type=\"UInt8\" format=\"ascii\">1 2 3</DataArray>"
+                  "</PointData></Piece></ImageData></VTKFile>");
+  expectInputError([&] { loadVolume(ascii); }, ascii + ": ", {"too few for 1073741824 values"});
+  Bytes header;
+  for (std::uint64_t word : {1ull, 1ull << 30, 0ull, 8ull})
+    test::appendWord(header, word, 8, false);
+  const std::string zlib =
+      scratchFile("tiny64.vti",
+                  "<VTKFile type=\"ImageData\" header_type=\"UInt64\" "
+                  "compressor=\"vtkZLibDataCompressor\"><ImageData WholeExtent=\"0 1023 0 1023 "
+                  "0 1023\"><Piece><PointData><DataArray type=\"UInt8\" format=\"appended\" "
+                  "offset=\"0\"/></PointData></Piece></ImageData><AppendedData>_" +
+                      test::asText(header) + "12345678</AppendedData></VTKFile>");
+  expectInputError([&] { loadVolume(zlib); }, zlib + ": ", {"cannot inflate"});
+}
+
 TEST(InputErrors, ZlibBlockBombInVti) {
   // The block table claims one 8-byte block; the block inflates to 1 MiB.
   const Bytes packed = test::deflateBytes(Bytes(1 << 20), false);
@@ -232,7 +258,8 @@ TEST(InputErrors, BrokenVtiFiles) {
       {"<VTKFile type=\"ImageData\"><ImageData", "is not valid XML"},
       {"<VTKFile type=\"PolyData\"/>", "only ImageData"},
       {head + "</PointData></Piece></ImageData></VTKFile>", "has no <DataArray>"},
-      {head + "<DataArray type=\"UInt8\" format=\"ascii\">1 2 3</DataArray>" + tail + "</VTKFile>",
+      {head + "<DataArray type=\"UInt8\" format=\"ascii\">1    2    3    </DataArray>" + tail +
+           "</VTKFile>",
        "holds 3 values, 8 expected"},
       {head + "<DataArray type=\"UInt8\" format=\"binary\">CAAAAA==AQID</DataArray>" + tail +
            "</VTKFile>",
