@@ -51,9 +51,13 @@ std::string quote(std::string_view text) {
   return "'" + shown + (text.size() > kMaxShown ? "...'" : "'");
 }
 
-std::int64_t parseInteger(const std::string& where, const std::string& field,
-                          std::string_view token) {
-  std::int64_t value = 0;
+namespace {
+
+// from_chars for integers and reals alike; `noun` names what the field should hold.
+template <typename Number>
+Number parseNumber(const std::string& where, const std::string& field, std::string_view token,
+                   const char* noun) {
+  Number value{};
   const char* end = token.data() + token.size();
   if (!token.empty() && token.front() == '+') token.remove_prefix(1);
   const auto [stop, error] = std::from_chars(token.data(), end, value);
@@ -61,23 +65,20 @@ std::int64_t parseInteger(const std::string& where, const std::string& field,
     throwInputError(where, field + " value " + quote(token) + " is out of range");
   }
   if (token.empty() || error != std::errc() || stop != end) {
-    throwInputError(where, field + " value " + quote(token) + " is not an integer");
+    throwInputError(where, field + " value " + quote(token) + " is not " + noun);
   }
   return value;
 }
 
+}  // namespace
+
+std::int64_t parseInteger(const std::string& where, const std::string& field,
+                          std::string_view token) {
+  return parseNumber<std::int64_t>(where, field, token, "an integer");
+}
+
 double parseReal(const std::string& where, const std::string& field, std::string_view token) {
-  double value = 0.0;
-  const char* end = token.data() + token.size();
-  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
-  const auto [stop, error] = std::from_chars(token.data(), end, value);
-  if (error == std::errc::result_out_of_range) {
-    throwInputError(where, field + " value " + quote(token) + " is out of range");
-  }
-  if (token.empty() || error != std::errc() || stop != end) {
-    throwInputError(where, field + " value " + quote(token) + " is not a number");
-  }
-  return value;
+  return parseNumber<double>(where, field, token, "a number");
 }
 
 glm::ivec3 parseDims(const std::string& where, const std::string& field, std::string_view text) {
