@@ -9,15 +9,12 @@
 
 #include "digital_curves.h"
 #include "postfx/broaden.h"
+#include "width_tolerances.h"
 
 namespace vsil {
 namespace {
 
-// The tolerance for depth-adaptive widths: ±0.75 px or ±6 %, whichever is larger
-// (one sigma, chosen for the widest line, serves all widths: thin lines sit near their peak).
-double depthTolerance(double width) {
-  return std::max(0.75, 0.06 * width);
-}
+using test::depthTolerance;
 
 struct NearFar {
   double near, far;

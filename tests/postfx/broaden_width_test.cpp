@@ -11,14 +11,12 @@
 
 #include "digital_curves.h"
 #include "postfx/broaden.h"
+#include "width_tolerances.h"
 
 namespace vsil {
 namespace {
 
-// The tolerance: ±0.5 px or ±4 %, whichever is larger.
-double widthTolerance(double width) {
-  return std::max(0.5, 0.04 * width);
-}
+using test::widthTolerance;
 
 class FixedWidth : public ::testing::TestWithParam<int> {};
 

@@ -12,14 +12,12 @@
 #include "gl_harness.h"
 #include "postfx/broaden.h"
 #include "rendered_scenes.h"
+#include "width_tolerances.h"
 
 namespace vsil {
 namespace {
 
-// The tolerance for depth-adaptive widths: ±0.75 px or ±6 %, whichever is larger.
-double depthTolerance(double width) {
-  return std::max(0.75, 0.06 * width);
-}
+using test::depthTolerance;
 
 struct NearFar {
   double near, far;

@@ -24,16 +24,14 @@
 #include "gl_harness.h"
 #include "postfx/broaden.h"
 #include "rendered_scenes.h"
+#include "width_tolerances.h"
 
 namespace vsil {
 namespace {
 
 const int kWidths[] = {2, 3, 5, 8, 13, 21, 40};
 
-// The tolerance: ±0.5 px or ±4 %, whichever is larger.
-double widthTolerance(double width) {
-  return std::max(0.5, 0.04 * width);
-}
+using test::widthTolerance;
 
 using RenderedWidths = test::GlTest;
 
