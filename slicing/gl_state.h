@@ -33,10 +33,12 @@ class ScopedState {
   ~ScopedState() {
     glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
     glScissor(scissorBox_[0], scissorBox_[1], scissorBox_[2], scissorBox_[3]);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(drawFramebuffer_));
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(readFramebuffer_));
-    glUseProgram(GLuint(program_));
-    glBindVertexArray(GLuint(vertexArray_));
+    // Objects current on entry may have been deleted since (a program deleted while in use
+    // lives on only until another one is used): those are not restored.
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, liveOrZero(drawFramebuffer_, glIsFramebuffer));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, liveOrZero(readFramebuffer_, glIsFramebuffer));
+    glUseProgram(liveOrZero(program_, glIsProgram));
+    glBindVertexArray(liveOrZero(vertexArray_, glIsVertexArray));
     glDepthFunc(GLenum(depthFunc_));
     glDepthMask(depthMask_);
     glBlendFuncSeparate(GLenum(blendSrcRgb_), GLenum(blendDstRgb_), GLenum(blendSrcAlpha_),
@@ -49,6 +51,10 @@ class ScopedState {
   }
   ScopedState(const ScopedState&) = delete;
   ScopedState& operator=(const ScopedState&) = delete;
+
+  static GLuint liveOrZero(GLint name, GLboolean (*isLive)(GLuint)) {
+    return name != 0 && isLive(GLuint(name)) ? GLuint(name) : 0;
+  }
 
   static void setEnabled(GLenum capability, bool enabled) {
     if (enabled) {

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/limits.h"
+#include "slicing/empty_space.h"
 #include "slicing/gl_context.h"
 #include "slicing/gl_state.h"
 #include "slicing/technique.h"
@@ -55,6 +56,8 @@ void Renderer::validateSettings(const RenderSettings& settings) {
 struct Renderer::Impl {
   gl::GlContext* context = nullptr;
   std::optional<VolumeTexture> volumeTexture;
+  std::optional<BrickMaxima> brickMaxima;
+  std::optional<EmptySpaceSkipping> emptySpace;
   glm::ivec3 dims{0};
   glm::dvec3 spacing{1.0};
   gl::BufferName sliceBuffer;
@@ -91,6 +94,7 @@ std::vector<std::string> Renderer::techniqueNames() {
 void Renderer::setVolume(const Volume& volume) {
   impl_->volumeTexture.reset();
   impl_->volumeTexture.emplace(volume);
+  impl_->brickMaxima.emplace(volume);
   impl_->dims = volume.dims;
   impl_->spacing = volume.spacing;
 }
@@ -134,6 +138,9 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   glDisable(GL_CULL_FACE);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_3D, impl_->volumeTexture->id());
+  if (!impl_->emptySpace) impl_->emptySpace.emplace();
+  impl_->emptySpace->prepare(*impl_->brickMaxima, settings.iso, result.view,
+                             settings.emptySpaceSkipping);
 
   FrameContext frame;
   frame.settings = &settings;
@@ -144,6 +151,7 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   frame.volumeTexture = impl_->volumeTexture->id();
   frame.sliceVertexArray = impl_->sliceVertexArray.id();
   frame.screenVertexArray = impl_->screenVertexArray.id();
+  frame.emptySpace = &*impl_->emptySpace;
 
   technique.beginFrame(frame);
   for (const SliceContext& slice : slices) technique.drawSlice(frame, slice);

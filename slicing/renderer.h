@@ -31,6 +31,9 @@ struct RenderSettings {
   CameraSpec camera;
   double samplesPerVoxel = 1.0;  // slices per voxel along the view direction
   SilhouettePipeline silhouettePipeline = SilhouettePipeline::Fast;
+  // Skip pixels whose samples cannot reach the iso value (slicing/empty_space.h); the pixels
+  // are the same either way. Off: every slice samples its whole polygon, as in the papers.
+  bool emptySpaceSkipping = true;
   // rightangle: a first hit is a line pixel where (1 - |n·v|)^exponent > threshold.
   double rightAngleExponent = 8.0;
   double rightAngleThreshold = 0.3;

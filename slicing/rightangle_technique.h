@@ -1,8 +1,8 @@
 #pragma once
 // The right-angle baseline (RA): front-to-back iso-surface slicing; the first hit along each
 // ray is a line pixel where (1 - |∇f_n·V|)^k > ε (gradients by central differences). Slices
-// record the first hit under the depth test; the line test and shade run once per pixel at
-// the end.
+// record the first hit (rightangle.frag); the line test and shade run once per pixel at the
+// end.
 #include <optional>
 
 #include "slicing/technique.h"
@@ -18,12 +18,14 @@ class RightAngleTechnique : public Technique {
 
  private:
   struct Targets {
-    gl::RenderTarget result;    // RGBA32F records (state, depth, first-hit eye distance, 0)
-    gl::RenderTarget finished;  // RGBA32F (state, depth, shade, 0)
+    gl::RenderTarget result;         // RGBA32F records (state, depth, first-hit eye distance, hit)
+    gl::RenderTarget finished;       // RGBA32F (state, depth, shade, 0)
+    gl::EmptyFramebuffer depthOnly;  // result's depth buffer alone, for marking dead pixels
   };
   std::optional<Targets> targets_;
   std::optional<gl::Program> program_;
   std::optional<gl::Program> finish_;
+  std::optional<gl::Program> markDead_;
 };
 
 }  // namespace vsil

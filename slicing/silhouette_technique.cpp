@@ -15,9 +15,6 @@ PixelRect wholeImage(glm::ivec2 viewport) {
 
 constexpr GLuint kZeroU[4] = {0, 0, 0, 0};
 constexpr GLfloat kZeroF[4] = {0, 0, 0, 0};
-// Dead pixels are marked every this many slices: often enough to skip most of them, rarely
-// enough that the marking pass (nine fetches per pixel) costs little.
-constexpr int kMarkDeadInterval = 8;
 
 }  // namespace
 
@@ -48,8 +45,10 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
     target->bindForDrawing();
     VSIL_GL(glClearBufferuiv(GL_COLOR, 0, kZeroU));
   }
+  // The fast pipeline's footprint pass tests GREATER against this depth: pixels in front of
+  // the first occupied brick, and dead pixels later, are skipped.
   targets_->footprint.bindForDrawing();
-  VSIL_GL(glClearBufferfi(GL_DEPTH_STENCIL, 0, 0.0f, 0));
+  frame.emptySpace->writeEntryDepth(glm::mat4(frame.view->clipFromVoxel()));
   for (const auto& target : targets_->intermediate) {
     target.bindForDrawing();
     VSIL_GL(glClearBufferfv(GL_COLOR, 0, kZeroF));
@@ -65,7 +64,10 @@ void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContex
       // The in-place pass reads footprints within one pixel of this polygon.
       drawFootprint(frame, slice, slice.recentUnion(1, 2, viewport));
       decideInPlace(frame, slice);
-      if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) markDeadPixels(frame, slice);
+      if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
+        markDeadPixels(programs_->markDead, frame, slice, targets_->depthOnly,
+                       targets_->intermediate[0]);
+      }
     }
   } else {
     // Pixels whose record may change here: this polygon (c != EMPTY) and the previous one
@@ -104,25 +106,6 @@ void SilhouetteTechnique::drawFootprint(const FrameContext& frame, const SliceCo
   setSliceUniforms(programs_->footprint, frame, slice.slice);
   glBindVertexArray(frame.sliceVertexArray);
   VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
-  glDisable(GL_DEPTH_TEST);
-}
-
-void SilhouetteTechnique::markDeadPixels(const FrameContext& frame, const SliceContext& slice) {
-  glDisable(GL_SCISSOR_TEST);
-  targets_->depthOnly.bindForDrawing();
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_ALWAYS);
-  glDepthMask(GL_TRUE);
-  glDepthRange(1.0, 1.0);  // every kept fragment writes depth 1
-  programs_->markDead.use();
-  setSliceUniforms(programs_->markDead, frame, slice.slice);
-  programs_->markDead.set("intermediateTexture", 2);
-  glActiveTexture(GL_TEXTURE2);
-  glBindTexture(GL_TEXTURE_2D, targets_->intermediate[0].texture());
-  glActiveTexture(GL_TEXTURE0);
-  glBindVertexArray(frame.sliceVertexArray);
-  VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
-  glDepthRange(0.0, 1.0);
   glDisable(GL_DEPTH_TEST);
 }
 

@@ -7,9 +7,11 @@
 //  Fast:  the footprint pass writes this slice's depth at FILLED pixels; one pass fuses
 //         contour and decision, runs only there (early depth test EQUAL) and updates the record
 //         in place; detection (CONTOUR meeting an empty slice) is applied lazily
-//         (decision_inplace.frag), the extra empty slice by the finishing pass. Every few
-//         slices, pixels that can no longer matter get depth 1 (mark_dead.frag), and the
-//         footprint pass (depth test GREATER) skips them before sampling.
+//         (decision_inplace.frag), the extra empty slice by the finishing pass. The depth
+//         buffer starts with where rays enter occupied bricks (empty_space.h); every few
+//         slices, pixels that can no longer matter get depth 1 (mark_dead.frag); the
+//         footprint pass (depth test GREATER) skips both before sampling.
+//  The paper pipeline samples every pixel of every slice polygon (no empty-space skipping).
 #include <array>
 #include <optional>
 
@@ -32,11 +34,10 @@ class SilhouetteTechnique : public Technique {
   void contourPaper(const FrameContext& frame, const PixelRect& bounds);
   void decidePaper(const FrameContext& frame, const Slice* slice, const PixelRect& bounds);
   void decideInPlace(const FrameContext& frame, const SliceContext& slice);
-  void markDeadPixels(const FrameContext& frame, const SliceContext& slice);
 
   struct Targets {
     // R8UI: 0 EMPTY, 1 FILLED. Fast pipeline: its depth holds the slice depth of the latest
-    // FILLED sample (0 before any), 1 at dead pixels.
+    // FILLED sample (before any: where the ray enters occupied bricks), 1 at dead pixels.
     gl::RenderTarget footprint;
     gl::RenderTarget contour;  // R8UI: EMPTY, FILLED, CONTOUR (paper pipeline)
     // RGBA32F records (common.glsl): ping-pong (paper) or [0] updated in place (fast); the

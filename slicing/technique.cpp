@@ -39,7 +39,32 @@ void setSliceUniforms(gl::Program& program, const FrameContext& frame, const Sli
   if (slice) {
     program.set("sliceEyeDistance", float(slice->eyeDistance));
     program.set("sliceDepth", float(slice->depth));
+    const glm::dvec4 clip = view.clipFromEye * glm::dvec4(0.0, 0.0, -slice->eyeDistance, 1.0);
+    program.set("sliceWindowDepth", float(0.5 * clip.z / clip.w + 0.5));
   }
+}
+
+void markDeadPixels(gl::Program& markDead, const FrameContext& frame, const SliceContext& slice,
+                    const gl::EmptyFramebuffer& depthOnly, const gl::RenderTarget& record) {
+  glDisable(GL_SCISSOR_TEST);
+  depthOnly.bindForDrawing();
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);  // pixels already dead (depth 1) are skipped
+  glDepthMask(GL_TRUE);
+  glDepthRange(1.0, 1.0);  // every kept fragment writes depth 1
+  markDead.use();
+  setSliceUniforms(markDead, frame, slice.slice);
+  markDead.set("intermediateTexture", 2);
+  markDead.set("exitDepthTexture", 3);
+  glActiveTexture(GL_TEXTURE2);
+  glBindTexture(GL_TEXTURE_2D, record.texture());
+  glActiveTexture(GL_TEXTURE3);
+  glBindTexture(GL_TEXTURE_2D, frame.emptySpace->exitDepthTexture());
+  glActiveTexture(GL_TEXTURE0);
+  glBindVertexArray(frame.sliceVertexArray);
+  VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
+  glDepthRange(0.0, 1.0);
+  glDisable(GL_DEPTH_TEST);
 }
 
 void finishRecords(gl::Program& finish, const FrameContext& frame, const gl::RenderTarget& record,

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/frame.h"
+#include "slicing/empty_space.h"
 #include "slicing/gl_objects.h"
 #include "slicing/renderer.h"
 #include "slicing/slicer.h"
@@ -23,6 +24,9 @@ struct FrameContext {
   GLuint volumeTexture = 0;      // GL_TEXTURE_3D, R16F or R32F, data units, linear filtering
   GLuint sliceVertexArray = 0;   // all slice polygons, slice k at [firstVertex, +vertexCount)
   GLuint screenVertexArray = 0;  // empty VAO for the full-screen triangle (gl_VertexID)
+  // Writes the depth where rays first enter occupied bricks into the bound depth buffer
+  // (empty_space.h); slice passes testing GREATER against it skip empty space.
+  EmptySpaceSkipping* emptySpace = nullptr;
 };
 
 struct SliceContext {
@@ -53,6 +57,16 @@ std::unique_ptr<Technique> makeTechnique(const std::string& name);
 
 // Uniforms every slice shader reads (common.glsl): the volume, the camera and this slice.
 void setSliceUniforms(gl::Program& program, const FrameContext& frame, const Slice* slice);
+
+// Dead pixels are marked every this many slices: often enough to skip most of them, rarely
+// enough that the marking pass costs little.
+constexpr int kMarkDeadInterval = 8;
+
+// Writes depth 1 through `depthOnly` (a framebuffer with only the technique's depth buffer)
+// at the pixels of this slice's polygon that `markDead` (mark_dead.frag) keeps, reading the
+// records in `record`; slice passes testing GREATER then skip them.
+void markDeadPixels(gl::Program& markDead, const FrameContext& frame, const SliceContext& slice,
+                    const gl::EmptyFramebuffer& depthOnly, const gl::RenderTarget& record);
 
 // The last pass of a frame: shades the first hit recorded in `record` (state, depth, first-hit
 // eye distance, ...; common.glsl) and writes (state, depth, shade, 0) into `output` (finish.frag).

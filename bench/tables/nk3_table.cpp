@@ -564,11 +564,12 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
   }
   table.text = text.plain();
   table.markdown = text.markdown();
-  char method[400];
+  char method[512];
   std::snprintf(method, sizeof method,
                 "method: %d warm-up + %d timed frames per technique, RA/OPS/BS taking turns, orbit "
                 "from azimuth %.0f° in "
-                "steps of %.1f° at elevation %.0f°, 1 slice per voxel; frame time = "
+                "steps of %.1f° at elevation %.0f°, 1 slice per voxel, empty-space skipping on for "
+                "RA and OPS alike; frame time = "
                 "Renderer::render (slicing + glFinish + readback), fps = 1000 / median; "
                 "BS adds broadening to W = %.0f px and composition",
                 options.warmup, options.frames, kOrbitStartDeg, kOrbitStepDeg, kElevationDeg,

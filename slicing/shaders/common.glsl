@@ -17,6 +17,7 @@ uniform int orthographic;
 uniform float isoValue;
 uniform float sliceEyeDistance;       // -z_eye of this slice's plane
 uniform float sliceDepth;             // its normalized depth d
+uniform float sliceWindowDepth;       // its window depth (what the depth test compares)
 
 #ifdef VSIL_FRAGMENT_SHADER
 // The eye-space point of this pixel's centre on the plane at eye distance `eyeDistance`.

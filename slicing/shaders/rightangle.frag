@@ -1,12 +1,15 @@
-// rightangle.frag: the right-angle baseline (RA), one pass per slice, front to back, with the
-// depth test (LESS) keeping the first iso-surface hit along each ray: slices come in depth
-// order, so pixels with a hit reject later slices' fragments before any sampling.
-// Out: the record (STATE_FILLED, depth, first-hit eye distance, 0); finish.frag
+// rightangle.frag: the right-angle baseline (RA), one pass per slice, front to back. A sample
+// at or above the iso value is a hit; blending (ONE_MINUS_DST_ALPHA, DST_ALPHA) keeps the first
+// one, since a pixel's alpha turns 1 with its first hit. The depth test (GREATER, no writes)
+// skips pixels in front of the first occupied brick and, once marked (mark_dead.frag with
+// OWN_RECORD_ONLY), pixels that have their hit, before any sampling. (A shader that discards
+// and writes stencil loses llvmpipe's early test, so the first hit is not kept by a stencil.)
+// Out: the record (STATE_FILLED, depth, first-hit eye distance, 1); finish.frag
 // (RIGHT_ANGLE_LINES) then applies the line test once per pixel.
 layout(location = 0) out vec4 result;
 
 void main() {
   vec3 voxel = voxelFromEyePoint(slicePointEye());
   if (!insideVolume(voxel) || sampleVolume(voxel) < isoValue) discard;
-  result = vec4(float(STATE_FILLED), sliceDepth, sliceEyeDistance, 0.0);
+  result = vec4(float(STATE_FILLED), sliceDepth, sliceEyeDistance, 1.0);
 }

@@ -38,6 +38,7 @@ struct RenderOptions {
   double sampling = 1.0;
   double raExponent = 8.0;
   double raThreshold = 0.3;
+  bool noEmptySpaceSkipping = false;
   std::string out = "vsil.png";
   std::string stateOut, depthOut, metaOut;
 };
@@ -92,6 +93,7 @@ RenderSettings checkedSettings(const RenderOptions& options, const LoadOptions& 
       options.pipeline == "paper" ? SilhouettePipeline::Paper : SilhouettePipeline::Fast;
   settings.rightAngleExponent = options.raExponent;
   settings.rightAngleThreshold = options.raThreshold;
+  settings.emptySpaceSkipping = !options.noEmptySpaceSkipping;
   const auto names = Renderer::techniqueNames();
   if (std::find(names.begin(), names.end(), settings.technique) == names.end()) {
     throw InputError("--technique: unknown technique '" + settings.technique +
@@ -165,6 +167,7 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions,
     meta["parameters"] = {{"input", options.input},
                           {"technique", settings.technique},
                           {"pipeline", options.pipeline},
+                          {"empty_space_skipping", settings.emptySpaceSkipping},
                           {"size", {settings.size.x, settings.size.y}},
                           {"iso", settings.iso},
                           {"view", {view.x, view.y}},
@@ -223,6 +226,8 @@ const CommandRegistration registration(10, [](CLI::App& app) {
                    "silhouette: fast (fused in-place passes) or paper (the paper's three "
                    "passes); same pixels")
       ->capture_default_str();
+  command->add_flag("--no-empty-space-skipping", options->noEmptySpaceSkipping,
+                    "sample every pixel of every slice (slower; the same pixels)");
   command->add_option("--size", options->size, "Image size WxH")->capture_default_str();
   command->add_option("--iso", options->iso,
                       "Iso value in the data's own units (default: middle of the value range)");

@@ -101,6 +101,26 @@ TEST(RenderCommand, PaperAndFastPipelinesGiveIdenticalImages) {
   EXPECT_EQ(images[0], images[1]);
 }
 
+TEST(RenderCommand, EmptySpaceSkippingChangesNoByte) {
+  const auto dir = test::scratchDir();
+  for (const char* technique : {"silhouette", "rightangle"}) {
+    std::string images[2];
+    for (int skipping = 0; skipping < 2; ++skipping) {
+      const auto out = dir / (std::string(technique) + std::to_string(skipping) + ".png");
+      const auto meta = dir / "meta.json";
+      const auto result =
+          test::runVsil("render gen:blobs:64 --size 120x100 --width 4 --technique " +
+                        std::string(technique) + (skipping ? "" : " --no-empty-space-skipping") +
+                        " --out " + out.string() + " --meta-out " + meta.string());
+      ASSERT_EQ(result.exitCode, 0) << result.err;
+      images[skipping] = test::readFileBytes(out);
+      const auto parameters = nlohmann::json::parse(test::readFileBytes(meta))["parameters"];
+      EXPECT_EQ(parameters["empty_space_skipping"], skipping == 1);
+    }
+    EXPECT_EQ(images[0], images[1]) << technique;
+  }
+}
+
 TEST(RenderCommand, SameCommandTwiceGivesIdenticalBytes) {
   const auto dir = test::scratchDir();
   for (const char* technique : {"silhouette", "rightangle"}) {

@@ -5,9 +5,13 @@
 namespace vsil::test {
 
 // A long, smooth line of asked width W: within ±0.5 px or ±4 %, whichever is larger.
-inline double widthTolerance(double width) { return std::max(0.5, 0.04 * width); }
+inline double widthTolerance(double width) {
+  return std::max(0.5, 0.04 * width);
+}
 
 // Depth-adaptive widths, at the depth of each line: within ±0.75 px or ±6 %.
-inline double depthTolerance(double width) { return std::max(0.75, 0.06 * width); }
+inline double depthTolerance(double width) {
+  return std::max(0.75, 0.06 * width);
+}
 
 }  // namespace vsil::test

@@ -1,0 +1,92 @@
+#pragma once
+// Empty-space skipping, shared by every technique that looks for the iso-surface.
+//
+// The volume is cut into bricks of kBrickSize³ voxels; each brick keeps the largest sample that
+// trilinear filtering can reach from any position inside it. A filtered sample is a convex
+// combination of its eight voxels, so in a brick whose maximum is below the iso value no slice
+// can find a FILLED sample. Before the slices, a technique draws the front faces of the
+// occupied bricks (maximum >= iso) into its depth buffer with depth test LESS: what remains is,
+// per pixel, the depth where the view ray first enters an occupied brick, and 1 where it never
+// does. Slice passes that test GREATER against it then skip, before their shader runs, every
+// pixel in front of the volume's content and every pixel whose ray misses it. The faces turned
+// away from the eye give where each ray leaves occupied space for good; the passes that mark
+// dead pixels (mark_dead.frag) mark those pixels too once the slices are past it. Skipped
+// pixels are exactly those whose samples stay below the iso value, so no output changes (the
+// GL tests compare against a CPU reference that samples everything).
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/camera.h"
+#include "core/volume.h"
+#include "slicing/gl_objects.h"
+
+namespace vsil {
+
+class BrickMaxima {
+ public:
+  // 8: bonsai 256³ at 512² rendered fastest with it among 4, 8, 16 and 32 (commit message).
+  static constexpr int kBrickSize = 8;
+
+  explicit BrickMaxima(const Volume& volume);
+
+  glm::ivec3 bricks() const { return bricks_; }
+  glm::ivec3 dims() const { return dims_; }
+  float maximum(glm::ivec3 brick) const;
+  // True when some sample position inside the brick may filter to >= iso. A small relative
+  // slack absorbs float rounding in the filter's weights (R32F volumes).
+  bool occupied(glm::ivec3 brick, float iso) const;
+  // The brick's sample positions: [kB - 0.5, (k+1)B - 0.5] per axis, cut to the volume's box.
+  glm::dvec3 regionLow(glm::ivec3 brick) const;
+  glm::dvec3 regionHigh(glm::ivec3 brick) const;
+
+ private:
+  glm::ivec3 dims_{0};
+  glm::ivec3 bricks_{0};
+  std::vector<float> maxima_;  // x fastest
+};
+
+// Which boundary faces of the occupied bricks to list: those turned towards the eye (where rays
+// enter) or away from it (where they leave).
+enum class FaceSide { Entry, Exit };
+
+// Triangles, in voxel coordinates, of the boundary faces of the occupied bricks on one side:
+// each occupied brick's region grown by kEntryMargin voxels (so that float rounding in
+// rasterization never matters), and none that lies inside the next occupied brick (a ray
+// crossing it is inside that brick already). The nearest entry face along a ray is where it
+// first enters occupied space, the farthest exit face where it leaves it for good.
+std::vector<glm::vec3> occupiedFaces(const BrickMaxima& maxima, float iso, const View& view,
+                                     FaceSide side);
+constexpr double kEntryMargin = 0.5;
+
+// The GL side: per frame, the occupied bricks' entry faces (drawn into a technique's depth
+// buffer) and the exit depth image, which marking passes (mark_dead.frag) read.
+class EmptySpaceSkipping {
+ public:
+  EmptySpaceSkipping();
+  // Uploads this frame's faces and draws the exit depth image; `enabled` false turns skipping
+  // off (entry depth 0, exit depth 1 everywhere).
+  void prepare(const BrickMaxima& maxima, float iso, const View& view, bool enabled);
+  // Into the bound framebuffer's depth-stencil buffer: stencil 0 and, per pixel, a depth no
+  // greater than that of the first slice whose sample there may reach the iso value (1 where
+  // none can). Colour buffers are left untouched.
+  void writeEntryDepth(const glm::mat4& clipFromVoxel);
+  // R32F, per pixel the window depth beyond which the ray meets no occupied brick (0 where it
+  // meets none at all).
+  GLuint exitDepthTexture() const { return exitDepth_ ? exitDepth_->texture() : 0; }
+
+ private:
+  void drawFaces(gl::Program& program, const glm::mat4& clipFromVoxel, GLint first, GLsizei count);
+
+  bool enabled_ = true;
+  gl::Program entryProgram_;
+  gl::Program exitProgram_;
+  gl::BufferName buffer_;
+  gl::VertexArrayName vertexArray_;
+  GLsizei entryVertices_ = 0;  // entry faces first in the buffer, then exit faces
+  GLsizei exitVertices_ = 0;
+  std::optional<gl::RenderTarget> exitDepth_;
+};
+
+}  // namespace vsil
