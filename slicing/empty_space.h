@@ -32,7 +32,6 @@ class BrickMaxima {
   explicit BrickMaxima(const Volume& volume);
 
   glm::ivec3 bricks() const { return bricks_; }
-  glm::ivec3 dims() const { return dims_; }
   float maximum(glm::ivec3 brick) const;
   // True when some sample position inside the brick may filter to >= iso. A small relative
   // slack absorbs float rounding in the filter's weights (R32F volumes).
