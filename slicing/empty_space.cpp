@@ -82,15 +82,14 @@ glm::dvec3 BrickMaxima::regionHigh(glm::ivec3 brick) const {
   return glm::min(glm::dvec3((brick + 1) * kB), glm::dvec3(dims_)) - 0.5;
 }
 
-std::vector<glm::vec3> occupiedFaces(const BrickMaxima& maxima, float iso, const View& view,
-                                     FaceSide faceSide) {
+OccupiedFaces occupiedFaces(const BrickMaxima& maxima, float iso, const View& view) {
   const glm::dmat4 voxelFromEye = glm::inverse(view.eyeFromVoxel);
   // Perspective: a face is turned to the eye when the eye lies beyond its plane; orthographic:
   // when the direction towards the eye points out of it.
   const glm::dvec3 eye(voxelFromEye * glm::dvec4(0, 0, 0, 1));
   const glm::dvec3 towardsEye(voxelFromEye * glm::dvec4(0, 0, 1, 0));
   const glm::ivec3 bricks = maxima.bricks();
-  std::vector<glm::vec3> triangles;
+  OccupiedFaces faces;
   auto isOccupied = [&](glm::ivec3 b) {
     return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) &&
            glm::all(glm::lessThan(b, bricks)) && maxima.occupied(b, iso);
@@ -110,7 +109,8 @@ std::vector<glm::vec3> occupiedFaces(const BrickMaxima& maxima, float iso, const
             const double plane = side > 0 ? hi[axis] : lo[axis];
             const double towards =
                 view.orthographic ? side * towardsEye[axis] : side * (eye[axis] - plane);
-            if (faceSide == FaceSide::Entry ? !(towards > 0) : !(towards < 0)) continue;
+            if (towards == 0) continue;  // seen edge-on: covers no pixel
+            std::vector<glm::vec3>& triangles = towards > 0 ? faces.entry : faces.exit;
             const int u = (axis + 1) % 3, v = (axis + 2) % 3;
             auto corner = [&](bool highU, bool highV) {
               glm::dvec3 p;
@@ -127,7 +127,7 @@ std::vector<glm::vec3> occupiedFaces(const BrickMaxima& maxima, float iso, const
       }
     }
   }
-  return triangles;
+  return faces;
 }
 
 EmptySpaceSkipping::EmptySpaceSkipping()
@@ -156,14 +156,14 @@ void EmptySpaceSkipping::prepare(const BrickMaxima& maxima, float iso, const Vie
   VSIL_GL(glClearBufferfv(GL_COLOR, 0, exitClear));
   if (!enabled) return;
 
-  std::vector<glm::vec3> faces = occupiedFaces(maxima, iso, view, FaceSide::Entry);
-  entryVertices_ = GLsizei(faces.size());
-  const std::vector<glm::vec3> exits = occupiedFaces(maxima, iso, view, FaceSide::Exit);
-  faces.insert(faces.end(), exits.begin(), exits.end());
-  exitVertices_ = GLsizei(exits.size());
+  OccupiedFaces faces = occupiedFaces(maxima, iso, view);
+  entryVertices_ = GLsizei(faces.entry.size());
+  exitVertices_ = GLsizei(faces.exit.size());
+  std::vector<glm::vec3>& vertices = faces.entry;  // entry faces first, then exit faces
+  vertices.insert(vertices.end(), faces.exit.begin(), faces.exit.end());
   VSIL_GL(glBindBuffer(GL_ARRAY_BUFFER, buffer_.id()));
-  VSIL_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(faces.size() * sizeof(glm::vec3)), faces.data(),
-                       GL_STREAM_DRAW));
+  VSIL_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec3)),
+                       vertices.data(), GL_STREAM_DRAW));
 
   const glm::mat4 clipFromVoxel(view.clipFromVoxel());
   glEnable(GL_BLEND);

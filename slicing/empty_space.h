@@ -46,17 +46,17 @@ class BrickMaxima {
   std::vector<float> maxima_;  // x fastest
 };
 
-// Which boundary faces of the occupied bricks to list: those turned towards the eye (where rays
-// enter) or away from it (where they leave).
-enum class FaceSide { Entry, Exit };
-
-// Triangles, in voxel coordinates, of the boundary faces of the occupied bricks on one side:
-// each occupied brick's region grown by kEntryMargin voxels (so that float rounding in
-// rasterization never matters), and none that lies inside the next occupied brick (a ray
-// crossing it is inside that brick already). The nearest entry face along a ray is where it
-// first enters occupied space, the farthest exit face where it leaves it for good.
-std::vector<glm::vec3> occupiedFaces(const BrickMaxima& maxima, float iso, const View& view,
-                                     FaceSide side);
+// Triangles, in voxel coordinates, of the boundary faces of the occupied bricks: each occupied
+// brick's region grown by kEntryMargin voxels (so that float rounding in rasterization never
+// matters), and none that lies inside the next occupied brick (a ray crossing it is inside that
+// brick already). Entry faces are turned towards the eye, exit faces away from it: the nearest
+// entry face along a ray is where it first enters occupied space, the farthest exit face where
+// it leaves it for good.
+struct OccupiedFaces {
+  std::vector<glm::vec3> entry;
+  std::vector<glm::vec3> exit;
+};
+OccupiedFaces occupiedFaces(const BrickMaxima& maxima, float iso, const View& view);
 constexpr double kEntryMargin = 0.5;
 
 // The GL side: per frame, the occupied bricks' entry faces (drawn into a technique's depth

@@ -101,8 +101,7 @@ TEST(OccupiedFaces, OneBrickShowsEachOfItsSixFacesOnExactlyOneSide) {
   const Volume volume = spikesVolume({4 * kB, 4 * kB, 4 * kB}, {{kB + 3, 2 * kB + 4, kB + 5}});
   const BrickMaxima maxima(volume);
   const View view = makeView(CameraSpec{}, volume.dims, volume.spacing, {64, 64});
-  const auto entry = occupiedFaces(maxima, 0.5f, view, FaceSide::Entry);
-  const auto exit = occupiedFaces(maxima, 0.5f, view, FaceSide::Exit);
+  const auto [entry, exit] = occupiedFaces(maxima, 0.5f, view);
   // The spike's filter reach lies inside one brick: 6 faces of 2 triangles, none shared.
   EXPECT_EQ(entry.size() + exit.size(), 6u * 6u);
   EXPECT_GE(entry.size(), 6u);
@@ -118,7 +117,7 @@ TEST(OccupiedFaces, OneBrickShowsEachOfItsSixFacesOnExactlyOneSide) {
     }
   }
   // Nothing is occupied above the spike's value.
-  EXPECT_TRUE(occupiedFaces(maxima, 1.5f, view, FaceSide::Entry).empty());
+  EXPECT_TRUE(occupiedFaces(maxima, 1.5f, view).entry.empty());
 }
 
 TEST(OccupiedFaces, FacesBetweenTwoOccupiedBricksAreLeftOut) {
@@ -130,8 +129,7 @@ TEST(OccupiedFaces, FacesBetweenTwoOccupiedBricksAreLeftOut) {
   ASSERT_FALSE(maxima.occupied({0, 1, 1}, 0.5f));
   ASSERT_FALSE(maxima.occupied({3, 1, 1}, 0.5f));
   const View view = makeView(CameraSpec{}, volume.dims, volume.spacing, {64, 64});
-  const auto entry = occupiedFaces(maxima, 0.5f, view, FaceSide::Entry);
-  const auto exit = occupiedFaces(maxima, 0.5f, view, FaceSide::Exit);
+  const auto [entry, exit] = occupiedFaces(maxima, 0.5f, view);
   EXPECT_EQ(entry.size() + exit.size(), 10u * 6u);  // 12 faces, less the 2 they share
 }
 
