@@ -114,32 +114,28 @@ std::string tableRow(const LineMeasurement& m) {
   return row.str();
 }
 
+// Both lines of the cylinder at `angle` have every asked width; prints the table row.
+void expectAskedWidths(double angle) {
+  const LineMeasurement m = measureCylinderLines(angle);
+  for (std::size_t i = 0; i < m.widths.size(); ++i) {
+    for (int side = 0; side < 2; ++side) {
+      EXPECT_NEAR(m.widths[i][side], kWidths[i], widthTolerance(kWidths[i]))
+          << "line at " << m.imageAngle << " degrees in the image, side " << side;
+    }
+  }
+  std::cout << tableRow(m) << "\n";
+}
+
 TEST_F(RenderedWidths, StraightSilhouettesHaveTheAskedWidthInEveryOrientation) {
   for (double angle : {0.0, 15.0, 30.0, 41.0, 44.0, 60.0, 75.0, 90.0, 110.0, 134.0, 137.0, 161.0}) {
-    const LineMeasurement m = measureCylinderLines(angle);
-    for (std::size_t i = 0; i < m.widths.size(); ++i) {
-      for (int side = 0; side < 2; ++side) {
-        EXPECT_NEAR(m.widths[i][side], kWidths[i], widthTolerance(kWidths[i]))
-            << "line at " << m.imageAngle << " degrees in the image, side " << side;
-      }
-    }
-    std::cout << tableRow(m) << "\n";
+    expectAskedWidths(angle);
   }
 }
 
 // Lines exactly along a pixel diagonal: the band grows by whole diagonal rows of 1/√2 px; the
 // diagonal kernel shift (broaden.h) makes every row count reachable, so the asked width holds.
 TEST_F(RenderedWidths, ExactDiagonalsHaveTheAskedWidth) {
-  for (double angle : {45.0, 135.0}) {
-    const LineMeasurement m = measureCylinderLines(angle);
-    for (std::size_t i = 0; i < m.widths.size(); ++i) {
-      for (int side = 0; side < 2; ++side) {
-        EXPECT_NEAR(m.widths[i][side], kWidths[i], widthTolerance(kWidths[i]))
-            << "line at " << m.imageAngle << " degrees in the image, side " << side;
-      }
-    }
-    std::cout << tableRow(m) << "\n";
-  }
+  for (double angle : {45.0, 135.0}) expectAskedWidths(angle);
 }
 
 }  // namespace
