@@ -19,6 +19,19 @@ PixelRect PixelRect::grown(int pixels, glm::ivec2 viewport) const {
           std::min(viewport.y, y1 + pixels)};
 }
 
+SliceTexCoords sliceTexCoords(const View& view, glm::ivec3 dims, double eyeDistance) {
+  // eye = (ndc.x * h.x * s, ndc.y * h.y * s, -d) with s = d (perspective) or 1; voxel = M eye.
+  const glm::dmat4 voxelFromEye = glm::inverse(view.eyeFromVoxel);
+  const double scale = view.orthographic ? 1.0 : eyeDistance;
+  const glm::dvec3 perDim = 1.0 / glm::dvec3(dims);
+  SliceTexCoords coords;
+  coords.perNdcX = glm::vec3(glm::dvec3(voxelFromEye[0]) * (view.halfExtent.x * scale) * perDim);
+  coords.perNdcY = glm::vec3(glm::dvec3(voxelFromEye[1]) * (view.halfExtent.y * scale) * perDim);
+  coords.atNdcOrigin = glm::vec3(
+      (glm::dvec3(voxelFromEye[3]) - glm::dvec3(voxelFromEye[2]) * eyeDistance + 0.5) * perDim);
+  return coords;
+}
+
 std::vector<glm::dvec3> slicePolygon(const View& view, glm::ivec3 dims, double eyeDistance) {
   const glm::dvec3 lo(-0.5), hi = glm::dvec3(dims) - 0.5;
   auto corner = [&](int i) {

@@ -16,6 +16,17 @@ struct Slice {
   std::vector<glm::dvec3> polygonVoxel;  // box ∩ plane in voxel coordinates, convex, ordered
 };
 
+// Where pixel centres sample the volume on the plane at eye distance d, as the slice shaders
+// compute it (common.glsl sliceTexCoord): texture coordinates (voxel + 0.5) / dims, affine in
+// the pixel's NDC: tex = ndc.x * perNdcX + ndc.y * perNdcY + atNdcOrigin, in float. Computed
+// in double and rounded once, so the CPU references can repeat the shader's arithmetic.
+struct SliceTexCoords {
+  glm::vec3 perNdcX{0.0f};
+  glm::vec3 perNdcY{0.0f};
+  glm::vec3 atNdcOrigin{0.0f};
+};
+SliceTexCoords sliceTexCoords(const View& view, glm::ivec3 dims, double eyeDistance);
+
 // Pixel rectangle [x0, x1) x [y0, y1) in image pixels (origin top-left); empty when x0 >= x1.
 struct PixelRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;

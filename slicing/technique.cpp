@@ -41,6 +41,10 @@ void setSliceUniforms(gl::Program& program, const FrameContext& frame, const Sli
     program.set("sliceDepth", float(slice->depth));
     const glm::dvec4 clip = view.clipFromEye * glm::dvec4(0.0, 0.0, -slice->eyeDistance, 1.0);
     program.set("sliceWindowDepth", float(0.5 * clip.z / clip.w + 0.5));
+    const SliceTexCoords tex = sliceTexCoords(view, frame.dims, slice->eyeDistance);
+    program.set("sliceTexPerNdcX", tex.perNdcX);
+    program.set("sliceTexPerNdcY", tex.perNdcY);
+    program.set("sliceTexAtNdcOrigin", tex.atNdcOrigin);
   }
 }
 

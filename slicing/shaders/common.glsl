@@ -18,28 +18,42 @@ uniform float isoValue;
 uniform float sliceEyeDistance;       // -z_eye of this slice's plane
 uniform float sliceDepth;             // its normalized depth d
 uniform float sliceWindowDepth;       // its window depth (what the depth test compares)
+// Where pixel centres sample the volume on this slice (slicer.h SliceTexCoords): texture
+// coordinates affine in NDC, tex = ndc.x * sliceTexPerNdcX + ndc.y * sliceTexPerNdcY +
+// sliceTexAtNdcOrigin. Cheaper per fragment than the eye point and the matrix.
+uniform vec3 sliceTexPerNdcX;
+uniform vec3 sliceTexPerNdcY;
+uniform vec3 sliceTexAtNdcOrigin;
 
 #ifdef VSIL_FRAGMENT_SHADER
+// This pixel's centre in normalized device coordinates.
+vec2 fragmentNdc() { return gl_FragCoord.xy / viewportSize * 2.0 - 1.0; }
+
 // The eye-space point of this pixel's centre on the plane at eye distance `eyeDistance`.
 vec3 eyePointAt(float eyeDistance) {
-  vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
+  vec2 ndc = fragmentNdc();
   float scale = orthographic != 0 ? 1.0 : eyeDistance;
   return vec3(ndc * halfExtent * scale, -eyeDistance);
 }
 
-// ... on this slice's plane.
-vec3 slicePointEye() { return eyePointAt(sliceEyeDistance); }
+// The texture coordinate this pixel's centre samples on this slice.
+vec3 sliceTexCoord() {
+  vec2 ndc = fragmentNdc();
+  return ndc.x * sliceTexPerNdcX + ndc.y * sliceTexPerNdcY + sliceTexAtNdcOrigin;
+}
 
 #endif
 
 vec3 voxelFromEyePoint(vec3 eye) { return (voxelFromEye * vec4(eye, 1.0)).xyz; }
 
-// Inside the 3D texture's extent, voxel coordinates -0.5 .. dim - 0.5.
-bool insideVolume(vec3 voxel) {
-  return all(greaterThanEqual(voxel, vec3(-0.5))) && all(lessThanEqual(voxel, volumeDims - 0.5));
+// Inside the 3D texture's extent, texture coordinates 0 .. 1.
+bool insideTexture(vec3 tex) {
+  return all(greaterThanEqual(tex, vec3(0.0))) && all(lessThanEqual(tex, vec3(1.0)));
 }
 
-float sampleVolume(vec3 voxel) { return texture(volumeTexture, (voxel + 0.5) / volumeDims).r; }
+float sampleTexture(vec3 tex) { return texture(volumeTexture, tex).r; }
+
+float sampleVolume(vec3 voxel) { return sampleTexture((voxel + 0.5) / volumeDims); }
 
 // Central differences one voxel apart, in voxel-index units.
 vec3 gradientVoxel(vec3 voxel) {

@@ -9,7 +9,7 @@
 layout(location = 0) out vec4 result;
 
 void main() {
-  vec3 voxel = voxelFromEyePoint(slicePointEye());
-  if (!insideVolume(voxel) || sampleVolume(voxel) < isoValue) discard;
+  vec3 tex = sliceTexCoord();
+  if (!insideTexture(tex) || sampleTexture(tex) < isoValue) discard;
   result = vec4(float(STATE_FILLED), sliceDepth, sliceEyeDistance, 1.0);
 }

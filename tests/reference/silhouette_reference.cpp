@@ -69,12 +69,12 @@ ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& sett
     footprint = 0;
     nearIso = 0;
     if (slice) {
+      const SliceTexCoords coords = sliceTexCoords(setup.view, volume.dims, slice->eyeDistance);
       for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
-          const glm::vec3 voxel =
-              sampler.voxelFromEyePoint(sampler.eyePoint(x, y, float(slice->eyeDistance)));
-          if (!sampler.insideVolume(voxel)) continue;
-          const float value = sampler.sample(voxel);
+          const glm::vec3 tex = sampler.sliceTexCoord(x, y, coords);
+          if (!sampler.insideTexture(tex)) continue;
+          const float value = sampler.sampleTexture(tex);
           footprint(y, x) = value >= settings.iso;
           nearIso(y, x) = std::abs(value - settings.iso) <= isoEpsilon;
         }
@@ -137,16 +137,23 @@ ReferenceFrame renderRightAngle(const Volume& volume, const RenderSettings& sett
   const SliceSampler sampler(volume, setup.view);
   const int w = settings.size.x, h = settings.size.y;
   ReferenceFrame result = emptyFrame(setup, settings.size);
+  std::vector<SliceTexCoords> coords;
+  for (const Slice& slice : setup.plan.slices) {
+    coords.push_back(sliceTexCoords(setup.view, volume.dims, slice.eyeDistance));
+  }
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
-      for (const Slice& slice : setup.plan.slices) {
+      for (std::size_t k = 0; k < setup.plan.slices.size(); ++k) {
+        const Slice& slice = setup.plan.slices[k];
         if (slice.polygonVoxel.empty()) continue;
-        const glm::vec3 eye = sampler.eyePoint(x, y, float(slice.eyeDistance));
-        const glm::vec3 voxel = sampler.voxelFromEyePoint(eye);
-        if (!sampler.insideVolume(voxel)) continue;
-        const float value = sampler.sample(voxel);
+        const glm::vec3 tex = sampler.sliceTexCoord(x, y, coords[k]);
+        if (!sampler.insideTexture(tex)) continue;
+        const float value = sampler.sampleTexture(tex);
         if (std::abs(value - settings.iso) <= isoEpsilon) result.ambiguous(y, x) = 1;
         if (value < settings.iso) continue;
+        // The first hit is shaded where finish.frag shades it: at the eye point.
+        const glm::vec3 eye = sampler.eyePoint(x, y, float(slice.eyeDistance));
+        const glm::vec3 voxel = sampler.voxelFromEyePoint(eye);
         const float facing = sampler.facingRatio(voxel, eye);
         const bool line = std::pow(1.0f - facing, float(settings.rightAngleExponent)) >
                           float(settings.rightAngleThreshold);

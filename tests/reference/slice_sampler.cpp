@@ -14,10 +14,14 @@ SliceSampler::SliceSampler(const Volume& volume, const View& view)
       halfExtent_(view.halfExtent),
       dims_(volume.dims) {}
 
-glm::vec3 SliceSampler::eyePoint(int x, int y, float eyeDistance) const {
+glm::vec2 SliceSampler::fragmentNdc(int x, int y) const {
   // gl_FragCoord has its origin at the bottom-left.
   const glm::vec2 fragCoord(float(x) + 0.5f, float(view_.viewport.y - 1 - y) + 0.5f);
-  const glm::vec2 ndc = fragCoord / viewportSize_ * 2.0f - 1.0f;
+  return fragCoord / viewportSize_ * 2.0f - 1.0f;
+}
+
+glm::vec3 SliceSampler::eyePoint(int x, int y, float eyeDistance) const {
+  const glm::vec2 ndc = fragmentNdc(x, y);
   const float scale = view_.orthographic ? 1.0f : eyeDistance;
   const glm::vec2 xy = ndc * halfExtent_ * scale;
   return {xy.x, xy.y, -eyeDistance};
@@ -27,14 +31,23 @@ glm::vec3 SliceSampler::voxelFromEyePoint(glm::vec3 eye) const {
   return glm::vec3(voxelFromEye_ * glm::vec4(eye, 1.0f));
 }
 
-bool SliceSampler::insideVolume(glm::vec3 voxel) const {
-  return voxel.x >= -0.5f && voxel.y >= -0.5f && voxel.z >= -0.5f && voxel.x <= dims_.x - 0.5f &&
-         voxel.y <= dims_.y - 0.5f && voxel.z <= dims_.z - 0.5f;
+glm::vec3 SliceSampler::sliceTexCoord(int x, int y, const SliceTexCoords& slice) const {
+  const glm::vec2 ndc = fragmentNdc(x, y);
+  return ndc.x * slice.perNdcX + ndc.y * slice.perNdcY + slice.atNdcOrigin;
+}
+
+bool SliceSampler::insideTexture(glm::vec3 tex) const {
+  return glm::all(glm::greaterThanEqual(tex, glm::vec3(0.0f))) &&
+         glm::all(glm::lessThanEqual(tex, glm::vec3(1.0f)));
 }
 
 float SliceSampler::sample(glm::vec3 voxel) const {
-  // OpenGL: texture coordinate u = (voxel + 0.5) / dims, texel space u * dims - 0.5.
-  const glm::vec3 u = (voxel + 0.5f) / dims_;
+  // OpenGL: texture coordinate u = (voxel + 0.5) / dims.
+  return sampleTexture((voxel + 0.5f) / dims_);
+}
+
+float SliceSampler::sampleTexture(glm::vec3 u) const {
+  // OpenGL: texel space u * dims - 0.5, clamped to the edge.
   const glm::vec3 t = u * dims_ - 0.5f;
   const glm::vec3 base = glm::floor(t);
   const glm::vec3 f = t - base;

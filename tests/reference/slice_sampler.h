@@ -6,6 +6,7 @@
 
 #include "core/camera.h"
 #include "core/volume.h"
+#include "slicing/slicer.h"
 
 namespace vsil::reference {
 
@@ -16,12 +17,19 @@ class SliceSampler {
   // The eye-space point of pixel (x, y) (top-left origin) on the plane at `eyeDistance`.
   glm::vec3 eyePoint(int x, int y, float eyeDistance) const;
   glm::vec3 voxelFromEyePoint(glm::vec3 eye) const;
-  bool insideVolume(glm::vec3 voxel) const;
   float sample(glm::vec3 voxel) const;  // trilinear, clamp to edge
+
+  // What the slice passes sample (common.glsl sliceTexCoord): the texture coordinate of pixel
+  // (x, y) on a slice, whether it lies in the texture, and the trilinear value there.
+  glm::vec3 sliceTexCoord(int x, int y, const SliceTexCoords& slice) const;
+  bool insideTexture(glm::vec3 tex) const;
+  float sampleTexture(glm::vec3 tex) const;
   glm::vec3 gradientVoxel(glm::vec3 voxel) const;
   float facingRatio(glm::vec3 voxel, glm::vec3 eye) const;  // |n·v| as in common.glsl
 
  private:
+  glm::vec2 fragmentNdc(int x, int y) const;  // gl_FragCoord's NDC as common.glsl computes it
+
   const Volume& volume_;
   const View& view_;
   glm::mat4 voxelFromEye_;
