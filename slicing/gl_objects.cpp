@@ -111,6 +111,9 @@ GLint Program::location(const char* name) {
 void Program::set(const char* name, int value) {
   glUniform1i(location(name), value);
 }
+void Program::set(const char* name, unsigned value) {
+  glUniform1ui(location(name), value);
+}
 void Program::set(const char* name, float value) {
   glUniform1f(location(name), value);
 }
@@ -141,6 +144,8 @@ FormatInfo uploadFormat(GLenum internalFormat) {
   switch (internalFormat) {
     case GL_R8UI:
       return {GL_RED_INTEGER, GL_UNSIGNED_BYTE};
+    case GL_R32UI:
+      return {GL_RED_INTEGER, GL_UNSIGNED_INT};
     case GL_R8:
       return {GL_RED, GL_UNSIGNED_BYTE};
     case GL_R32F:

@@ -82,6 +82,7 @@ class Program {
   // Uniform setters; the program must be in use. Unknown names are ignored (GL optimises away
   // unused uniforms), so one setter can serve programs that share uniforms.
   void set(const char* name, int value);
+  void set(const char* name, unsigned value);
   void set(const char* name, float value);
   void set(const char* name, glm::vec2 value);
   void set(const char* name, glm::vec3 value);

@@ -30,7 +30,7 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
   const glm::ivec2 size = frame.view->viewport;
   if (!targets_ || targets_->footprint.size() != size) {
     targets_.reset();
-    gl::RenderTarget footprint(size, GL_R8UI, /*withDepthStencil=*/true);
+    gl::RenderTarget footprint(size, GL_R32UI, /*withDepthStencil=*/true);
     const GLuint depth = footprint.depthStencil();
     targets_.emplace(
         Targets{std::move(footprint),
@@ -61,8 +61,8 @@ void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContex
   const glm::ivec2 viewport = frame.view->viewport;
   if (pipeline_ == SilhouettePipeline::Fast) {
     if (slice.vertexCount > 0) {
-      // The in-place pass reads footprints within one pixel of this polygon.
-      drawFootprint(frame, slice, slice.recentUnion(1, 2, viewport));
+      // Tagged with this slice, the footprint needs no clearing (common.glsl footprintTag).
+      drawFootprint(frame, slice);
       decideInPlace(frame, slice);
       if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
         markDeadPixels(programs_->markDead, frame, slice, targets_->depthOnly,
@@ -75,13 +75,11 @@ void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContex
     // which needs the slice before that too. One pixel more for the contour's neighbourhood.
     const PixelRect bounds = slice.recentUnion(3, 1, viewport);
     if (!bounds.empty()) {
-      if (slice.vertexCount > 0) {
-        drawFootprint(frame, slice, bounds);
-      } else {  // the plane misses the box: every footprint pixel EMPTY
-        scissorTo(bounds, viewport);
-        targets_->footprint.bindForDrawing();
-        VSIL_GL(glClearBufferuiv(GL_COLOR, 0, kZeroU));
-      }
+      // Everything the next passes read outside this polygon must be EMPTY.
+      scissorTo(bounds, viewport);
+      targets_->footprint.bindForDrawing();
+      VSIL_GL(glClearBufferuiv(GL_COLOR, 0, kZeroU));
+      if (slice.vertexCount > 0) drawFootprint(frame, slice);
       contourPaper(frame, bounds);
       decidePaper(frame, slice.slice, bounds);
     }
@@ -89,12 +87,9 @@ void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContex
   previousSliceDepth_ = slice.slice->depth;
 }
 
-void SilhouetteTechnique::drawFootprint(const FrameContext& frame, const SliceContext& slice,
-                                        const PixelRect& clearBounds) {
-  // Everything the next passes read outside this polygon must be EMPTY: clear their region.
-  scissorTo(clearBounds, frame.view->viewport);
+void SilhouetteTechnique::drawFootprint(const FrameContext& frame, const SliceContext& slice) {
+  glDisable(GL_SCISSOR_TEST);
   targets_->footprint.bindForDrawing();
-  VSIL_GL(glClearBufferuiv(GL_COLOR, 0, kZeroU));
   if (pipeline_ == SilhouettePipeline::Fast) {
     // Slices come in depth order: GREATER passes every pixel but dead ones (depth 1), early;
     // FILLED fragments (not discarded) leave this slice's depth for the decision pass.
@@ -104,6 +99,7 @@ void SilhouetteTechnique::drawFootprint(const FrameContext& frame, const SliceCo
   }
   programs_->footprint.use();
   setSliceUniforms(programs_->footprint, frame, slice.slice);
+  programs_->footprint.set("footprintTag", footprintTag(slice));
   glBindVertexArray(frame.sliceVertexArray);
   VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
   glDisable(GL_DEPTH_TEST);
@@ -113,6 +109,7 @@ void SilhouetteTechnique::contourPaper(const FrameContext& frame, const PixelRec
   scissorTo(bounds, frame.view->viewport);
   targets_->contour.bindForDrawing();
   programs_->contour.use();
+  programs_->contour.set("footprintTag", 1u);
   programs_->contour.set("footprintTexture", 1);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, targets_->footprint.texture());
@@ -155,6 +152,7 @@ void SilhouetteTechnique::decideInPlace(const FrameContext& frame, const SliceCo
   program.set("footprintTexture", 1);
   program.set("intermediateTexture", 2);
   program.set("previousSliceDepth", float(previousSliceDepth_));
+  program.set("footprintTag", footprintTag(slice));
   gl::bindImage(0, targets_->intermediate[0]);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, targets_->footprint.texture());

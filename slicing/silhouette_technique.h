@@ -27,8 +27,12 @@ class SilhouetteTechnique : public Technique {
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:
-  void drawFootprint(const FrameContext& frame, const SliceContext& slice,
-                     const PixelRect& clearBounds);
+  void drawFootprint(const FrameContext& frame, const SliceContext& slice);
+  // What the footprint pass writes where a slice is FILLED (common.glsl footprintTag): the fast
+  // pipeline tags every slice differently and never clears; the paper one clears and uses 1.
+  unsigned footprintTag(const SliceContext& slice) const {
+    return pipeline_ == SilhouettePipeline::Fast ? unsigned(slice.index) + 1 : 1u;
+  }
   // Paper pipeline: contour pass, then the decision pass into the other ping-pong target over
   // `bounds`; `slice` null means the extra empty slice (every c EMPTY).
   void contourPaper(const FrameContext& frame, const PixelRect& bounds);
@@ -36,8 +40,8 @@ class SilhouetteTechnique : public Technique {
   void decideInPlace(const FrameContext& frame, const SliceContext& slice);
 
   struct Targets {
-    // R8UI: 0 EMPTY, 1 FILLED. Fast pipeline: its depth holds the slice depth of the latest
-    // FILLED sample (before any: where the ray enters occupied bricks), 1 at dead pixels.
+    // R32UI: footprintTag FILLED, else EMPTY. Fast pipeline: its depth holds the slice depth of the
+    // latest FILLED sample (before any: where the ray enters occupied bricks), 1 at dead pixels.
     gl::RenderTarget footprint;
     gl::RenderTarget contour;  // R8UI: EMPTY, FILLED, CONTOUR (paper pipeline)
     // RGBA32F records (common.glsl): ping-pong (paper) or [0] updated in place (fast); the

@@ -85,16 +85,21 @@ uint decide(uint t, uint c) { return decisionTable[t * 4u + c]; }
 // FILLED and SILHOUETTE never change again.
 bool isFinal(uint state) { return state == STATE_FILLED || state == STATE_SILHOUETTE; }
 
-// The contour value of a pixel from a footprint (0 EMPTY, 1 FILLED): STATE_CONTOUR for a
-// FILLED pixel whose 8-neighbourhood is not all FILLED; pixels beyond the image count as EMPTY.
+// Footprints: the footprint pass writes footprintTag where this slice is FILLED; any other
+// value is EMPTY. The fast pipeline tags each slice differently (its index + 1), so the
+// footprint never needs clearing between slices; the paper pipeline clears and tags with 1.
+uniform uint footprintTag;
+
+// The contour value of a pixel from a footprint: STATE_CONTOUR for a FILLED pixel whose
+// 8-neighbourhood is not all FILLED; pixels beyond the image count as EMPTY.
 uint contourAt(usampler2D footprint, ivec2 pixel) {
   ivec2 size = textureSize(footprint, 0);
-  if (texelFetch(footprint, pixel, 0).r == 0u) return STATE_EMPTY;
+  if (texelFetch(footprint, pixel, 0).r != footprintTag) return STATE_EMPTY;
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
       ivec2 neighbour = pixel + ivec2(dx, dy);
       if (any(lessThan(neighbour, ivec2(0))) || any(greaterThanEqual(neighbour, size)) ||
-          texelFetch(footprint, neighbour, 0).r == 0u) {
+          texelFetch(footprint, neighbour, 0).r != footprintTag) {
         return STATE_CONTOUR;
       }
     }

@@ -1,6 +1,6 @@
 // decision_inplace.frag (fast pipeline, pass 2 of 2): contour and decision table fused, the
 // record updated in place, run only where this slice's footprint is FILLED.
-// In:  footprintTexture (0 EMPTY, 1 FILLED); the depth buffer, where the footprint pass wrote
+// In:  footprintTexture (footprintTag FILLED, anything else EMPTY); the depth buffer, where the footprint pass wrote
 //      this slice's depth at FILLED pixels, limits the pass to those (early test EQUAL).
 // In/out: the record t (common.glsl), read through intermediateTexture and written through
 //      intermediateImage (the same texture). Each pixel reads and writes only its own record,
