@@ -63,8 +63,13 @@ void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContex
     if (slice.vertexCount > 0) {
       // Tagged with this slice, the footprint needs no clearing (common.glsl footprintTag).
       drawFootprint(frame, slice);
+      // The decision reads the records the previous slice's decision stored. The barrier
+      // comes after this footprint pass so that llvmpipe, which waits for all queued work at a
+      // barrier, waits once per slice: the decision's read of the footprint then finds it done.
+      glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
       decideInPlace(frame, slice);
       if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // marking reads this slice's records
         markDeadPixels(programs_->markDead, frame, slice, targets_->depthOnly,
                        targets_->intermediate[0]);
       }
@@ -162,8 +167,6 @@ void SilhouetteTechnique::decideInPlace(const FrameContext& frame, const SliceCo
   glBindVertexArray(frame.sliceVertexArray);
   VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
   glDisable(GL_DEPTH_TEST);
-  // The next slice's fetches see what this one stored.
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void SilhouetteTechnique::endFrame(const FrameContext& frame) {
@@ -172,7 +175,9 @@ void SilhouetteTechnique::endFrame(const FrameContext& frame) {
     const PixelRect all = wholeImage(frame.view->viewport);
     decidePaper(frame, nullptr, all);
   }
-  // (The fast pipeline's finishing pass turns remaining contours into silhouettes itself.)
+  // (The fast pipeline's finishing pass turns remaining contours into silhouettes itself; it
+  // reads the records the last decision stored.)
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   finishRecords(programs_->finish, frame, targets_->intermediate[current_],
                 targets_->intermediate[1 - current_]);
   current_ = 1 - current_;
