@@ -59,25 +59,60 @@ cv::Mat1f diagonalShare(const cv::Mat1b& lineMask, const cv::Mat1f& density) {
   return share;
 }
 
+namespace {
+
+// One side of the region broadenLines works on: at least `needed` pixels, rounded up to the
+// next of 64, 96, 128, 192, 256, 384, ... (at most the image's side), so that the FFT sizes of
+// consecutive frames repeat and their plans and kernel spectra are reused.
+int roundedSide(int needed, int imageSide) {
+  int side = 64;
+  while (side < needed) side = side % 3 == 0 ? side / 3 * 4 : side / 2 * 3;
+  return std::min(side, imageSide);
+}
+
+// [begin, begin + length) covering [lo, hi), kept inside [0, imageSide).
+std::pair<int, int> placedRange(int lo, int hi, int length, int imageSide) {
+  const int begin = std::clamp(lo - (length - (hi - lo)) / 2, 0, imageSide - length);
+  return {begin, length};
+}
+
+}  // namespace
+
 cv::Mat1b broadenLines(const cv::Mat1f& lineWidths, FftGaussianBlur& blur, double maxWidth) {
   if (lineWidths.empty()) throw std::invalid_argument("broadenLines: empty image");
   const cv::Mat1b lineMask = lineWidths > 0;
   if (maxWidth <= 0) cv::minMaxLoc(lineWidths, nullptr, &maxWidth);
   if (maxWidth <= 1.0) return lineMask;  // W = 1: the one-pixel lines themselves
+  const cv::Rect lines = cv::boundingRect(lineMask);
+  if (lines.empty()) return lineMask;
 
+  // The band reaches at most the blur's reach beyond the lines, and the density and the
+  // diagonal share need the lines' neighbourhood: work on the lines' bounding box grown by the
+  // blur's reach plus one pixel, rounded to a few sizes. Outside it the band is empty.
   const double sigma = blurSigmaForMaxWidth(maxWidth);
-  const cv::Mat1f density = lineDensity(lineMask);
-  cv::Mat1f intensity(lineWidths.size(), 0.0f);
-  for (int y = 0; y < lineWidths.rows; ++y) {
-    for (int x = 0; x < lineWidths.cols; ++x) {
-      const float width = lineWidths(y, x);
+  const int margin = gaussianReach(sigma, kBroadeningKernelShift) + 1;
+  const cv::Rect grown = (lines + cv::Point(-margin, -margin) + cv::Size(2 * margin, 2 * margin)) &
+                         cv::Rect(0, 0, lineWidths.cols, lineWidths.rows);
+  const auto [x0, width] = placedRange(grown.x, grown.br().x,
+                                       roundedSide(grown.width, lineWidths.cols), lineWidths.cols);
+  const auto [y0, height] = placedRange(
+      grown.y, grown.br().y, roundedSide(grown.height, lineWidths.rows), lineWidths.rows);
+  const cv::Rect region(x0, y0, width, height);
+  const cv::Mat1f widths = lineWidths(region);
+  const cv::Mat1b mask = lineMask(region);
+
+  const cv::Mat1f density = lineDensity(mask);
+  cv::Mat1f intensity(widths.size(), 0.0f);
+  for (int y = 0; y < widths.rows; ++y) {
+    for (int x = 0; x < widths.cols; ++x) {
+      const float width = widths(y, x);
       if (!(width > 0)) continue;
       const double perLength = lineIntensityForWidth(std::max(1.0f, width), sigma);
       intensity(y, x) = float(perLength / std::max(kMinimumDensity, double(density(y, x))));
     }
   }
   // The diagonal kernel's part of the intensity (broaden.h); blurSum adds the two blurs.
-  const cv::Mat1f share = diagonalShare(lineMask, density);
+  const cv::Mat1f share = diagonalShare(mask, density);
   cv::Mat1f blurred;
   if (cv::countNonZero(share) == 0) {
     blurred = blur.blur(intensity, sigma, kBroadeningKernelShift);
@@ -88,8 +123,10 @@ cv::Mat1b broadenLines(const cv::Mat1f& lineWidths, FftGaussianBlur& blur, doubl
                                                    {&diagonal, kDiagonalKernelShift}};
     blurred = blur.blurSum(parts, sigma);
   }
-  cv::Mat1b band = blurred >= float(kLineThreshold);
-  return band | lineMask;
+  cv::Mat1b band = lineMask.clone();
+  cv::Mat1b bandInRegion = band(region);  // a view into band
+  bandInRegion |= blurred >= float(kLineThreshold);
+  return band;
 }
 
 cv::Mat1b broadenMask(const cv::Mat1b& lineMask, double width, FftGaussianBlur& blur) {
