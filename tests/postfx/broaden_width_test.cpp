@@ -117,6 +117,31 @@ TEST(Broadening, LineTouchingOneBorderLeavesTheOppositeBorderUntouched) {
   EXPECT_EQ(cv::countNonZero(band.col(10)), 64);
 }
 
+// broadenLines works on the lines' bounding box grown by the blur's reach, rounded to a few
+// sizes: the band around a shape must not depend on where the shape lies in the image, on the
+// image's size, or on other lines far away (which grow the box and the FFT). Only rounding in
+// FFTs of other sizes may differ, which decides no pixel here.
+TEST(Broadening, TheBandDoesNotDependOnWhereTheLinesAre) {
+  const cv::Mat1b shape = test::silhouettePixels({64, 64}, test::discShape({31.6, 32.3}, 20.0));
+  FftGaussianBlur blur;
+  for (double width : {3.0, 9.0}) {
+    const cv::Mat1b alone = broadenMask(shape, width, blur);
+    ASSERT_GT(cv::countNonZero(alone), cv::countNonZero(shape));
+    for (const cv::Point at : {cv::Point(0, 0), cv::Point(300, 200), cv::Point(636, 436)}) {
+      for (bool farLine : {false, true}) {
+        cv::Mat1b lines(500, 700, std::uint8_t(0));
+        shape.copyTo(lines(cv::Rect(at, shape.size())));
+        // A short line far from the shape: the working region then spans most of the image.
+        if (farLine) lines(cv::Rect(at.x < 350 ? 650 : 20, at.y < 250 ? 470 : 10, 30, 1)) = 255;
+        const cv::Mat1b band = broadenMask(lines, width, blur);
+        const cv::Mat1b around = band(cv::Rect(at, shape.size()));
+        EXPECT_EQ(cv::countNonZero(around != alone), 0)
+            << "W=" << width << " at " << at << (farLine ? " with a far line" : "");
+      }
+    }
+  }
+}
+
 TEST(Broadening, WidthOneIsTheLineItself) {
   const cv::Mat1b lines = test::silhouettePixels({80, 80}, test::discShape({40.2, 39.7}, 25));
   FftGaussianBlur blur;
