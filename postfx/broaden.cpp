@@ -142,6 +142,10 @@ cv::Mat1f lineWidthsFromDepth(const cv::Mat1b& lineMask, const cv::Mat1f& depth,
     throw std::invalid_argument("lineWidthsFromDepth: mask and depth differ in size");
   }
   cv::Mat1f widths(lineMask.size(), 0.0f);
+  if (law.isFixed()) {  // every line pixel the same width: no per-pixel depth needed
+    widths.setTo(float(law.widthAt(0.0)), lineMask);
+    return widths;
+  }
   for (int y = 0; y < lineMask.rows; ++y) {
     for (int x = 0; x < lineMask.cols; ++x) {
       if (!lineMask(y, x)) continue;

@@ -15,23 +15,26 @@ cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& opti
   const cv::Mat1b band = lines.empty() ? broadenSilhouettes(frame, options.width, blur) : lines;
   const bool opaque = options.lineColor.a == 255 && options.background.a == 255 &&
                       (options.fill == FillMode::None || options.fillColor.a == 255);
+  const cv::Vec4b lineColor = options.lineColor.bgra(), fillColor = options.fillColor.bgra();
+  const bool shaded = options.fill == FillMode::Shaded && !frame.shade.empty();
   cv::Mat4b image(frame.state.size(), options.background.bgra());
   for (int y = 0; y < image.rows; ++y) {
+    cv::Vec4b* out = image[y];
+    const std::uint8_t* inBand = band[y];
+    const std::uint8_t* state = frame.state[y];
     for (int x = 0; x < image.cols; ++x) {
-      if (band(y, x)) {
-        image(y, x) = options.lineColor.bgra();
+      if (inBand[x]) {
+        out[x] = lineColor;
         continue;
       }
-      if (options.fill == FillMode::None || frame.state(y, x) == std::uint8_t(PixelState::Empty)) {
-        continue;
-      }
-      cv::Vec4b fill = options.fillColor.bgra();
-      if (options.fill == FillMode::Shaded && !frame.shade.empty()) {
+      if (options.fill == FillMode::None || state[x] == std::uint8_t(PixelState::Empty)) continue;
+      cv::Vec4b fill = fillColor;
+      if (shaded) {
         const float shade = frame.shade(y, x);
         const double k = std::isnan(shade) ? 1.0 : std::clamp(double(shade), 0.0, 1.0);
         for (int c = 0; c < 3; ++c) fill[c] = cv::saturate_cast<std::uint8_t>(fill[c] * k);
       }
-      image(y, x) = fill;
+      out[x] = fill;
     }
   }
   if (!opaque) return image;
