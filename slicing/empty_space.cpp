@@ -30,15 +30,18 @@ BrickMaxima::BrickMaxima(const Volume& volume)
   };
   const glm::ivec3 d = dims_, b = bricks_;
   std::vector<float> alongX(std::size_t(b.x) * d.y * d.z, lowest);
-  for (int z = 0; z < d.z; ++z) {
-    for (int y = 0; y < d.y; ++y) {
-      const float* row = &volume.samples[volume.index(0, y, z)];
-      for (int bx = 0; bx < b.x; ++bx) {
-        const auto [x0, x1] = voxelRange(bx, d.x);
-        alongX[(std::size_t(z) * d.y + y) * b.x + bx] = *std::max_element(row + x0, row + x1 + 1);
+  volume.visit([&](auto samples) {
+    for (int z = 0; z < d.z; ++z) {
+      for (int y = 0; y < d.y; ++y) {
+        const auto* row = &samples[volume.index(0, y, z)];
+        for (int bx = 0; bx < b.x; ++bx) {
+          const auto [x0, x1] = voxelRange(bx, d.x);
+          alongX[(std::size_t(z) * d.y + y) * b.x + bx] =
+              float(*std::max_element(row + x0, row + x1 + 1));
+        }
       }
     }
-  }
+  });
   std::vector<float> alongY(std::size_t(b.x) * b.y * d.z, lowest);
   for (int z = 0; z < d.z; ++z) {
     for (int by = 0; by < b.y; ++by) {

@@ -1,5 +1,6 @@
 #include "cli/cli_volume_options.h"
 
+#include <array>
 #include <limits>
 
 #include "core/error.h"
@@ -25,14 +26,55 @@ std::vector<std::string_view> splitThree(const std::string& flag, const std::str
 }
 
 SampleType parseSampleType(const std::string& name) {
-  for (SampleType type :
-       {SampleType::UInt8, SampleType::UInt16, SampleType::Int16, SampleType::Float32}) {
+  for (SampleType type : kSampleTypes) {
     if (name == sampleTypeName(type)) return type;
   }
   throwInputError("--type " + io::quote(name), "expected uint8, uint16, int16 or float32");
 }
 
+constexpr const char* kCropForm =
+    "X0:X1,Y0:Y1,Z0:Z1, half-open voxel index ranges (X1 excluded, as in Python "
+    "slices; an empty bound is the edge), e.g. 0:128,:,64:192";
+
 }  // namespace
+
+ReadRegion parseCrop(const std::string& text) {
+  ReadRegion region;
+  region.cropText = text;
+  const std::string flag = "--crop " + io::quote(text);
+  const auto axes = splitThree("--crop", text, ',', kCropForm);
+  static const char* kAxes[] = {"x", "y", "z"};
+  std::array<ReadRegion::Range, 3> crop;
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::string_view range = axes[std::size_t(axis)];
+    const std::size_t colon = range.find(':');
+    if (colon == std::string_view::npos || range.find(':', colon + 1) != std::string_view::npos) {
+      throwInputError(flag, std::string("expected ") + kCropForm);
+    }
+    auto bound = [&](std::string_view token, const char* which) -> std::optional<int> {
+      token = io::trim(token);
+      if (token.empty()) return std::nullopt;
+      const std::int64_t value =
+          io::parseInteger(flag, std::string(kAxes[axis]) + " " + which, token);
+      if (value < 0 || value > std::numeric_limits<int>::max()) {
+        throwInputError(flag,
+                        std::string(kAxes[axis]) + " " + which + " " + std::to_string(value) +
+                            (value < 0 ? " is not a voxel index (0 or more)" : " is out of range"));
+      }
+      return int(value);
+    };
+    ReadRegion::Range& r = crop[std::size_t(axis)];
+    r.begin = bound(range.substr(0, colon), "start");
+    r.end = bound(range.substr(colon + 1), "end");
+    if (r.end && *r.end <= r.begin.value_or(0)) {
+      throwInputError(flag, std::string(kAxes[axis]) + " range " +
+                                std::to_string(r.begin.value_or(0)) + ":" + std::to_string(*r.end) +
+                                " is empty (the end is excluded)");
+    }
+  }
+  region.crop = crop;
+  return region;
+}
 
 void addVolumeOptions(CLI::App& command, VolumeOptions& options) {
   const std::string group = "Raw volume layout (headerless files)";
@@ -47,6 +89,12 @@ void addVolumeOptions(CLI::App& command, VolumeOptions& options) {
       .add_option("--endian", options.endian, "byte order of multi-byte samples (default little)")
       ->check(CLI::IsMember({"little", "big"}))
       ->group(group);
+  command.add_option("--crop", options.crop,
+                     "read only voxels X0..X1-1, Y0..Y1-1, Z0..Z1-1: X0:X1,Y0:Y1,Z0:Z1, half-open "
+                     "like Python slices, an empty bound is the edge (e.g. 0:128,:,64:)");
+  command.add_option("--stride", options.stride,
+                     "read only every Nth sample along each axis (from the crop's start); the "
+                     "spacing grows N times");
   command.add_option("--max-memory", options.maxMemoryMiB,
                      "refuse work needing more than this many MiB of memory (default: half the "
                      "physical memory, " +
@@ -63,6 +111,15 @@ LoadOptions toLoadOptions(const VolumeOptions& options) {
           "must be between 1 and " + std::to_string(limits::kMaxMemoryMiBFlag) + " MiB");
     }
     load.limits.maxBytes = std::size_t(mib) << 20;
+  }
+  if (!options.crop.empty()) load.region = parseCrop(options.crop);
+  if (options.stride) {
+    const long long stride = *options.stride;
+    if (stride < 1 || stride > limits::kMaxStride) {
+      throwInputError("--stride " + std::to_string(stride),
+                      "must be a whole number from 1 to " + std::to_string(limits::kMaxStride));
+    }
+    load.region.stride = int(stride);
   }
 
   const bool raw = !options.dims.empty() || !options.type.empty();

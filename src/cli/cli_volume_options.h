@@ -1,6 +1,7 @@
 #pragma once
 // The volume flags every command that loads a volume shares (info, render, ...): the layout of
-// a headerless raw file and the memory limit. Usage in a command's setup:
+// a headerless raw file, the part of the volume to read (--crop, --stride) and the memory limit.
+// Usage in a command's setup:
 //
 //   auto options = std::make_shared<VolumeOptions>();
 //   addVolumeOptions(*command, *options);
@@ -20,14 +21,41 @@ struct VolumeOptions {
   std::string spacing;                    // --spacing a,b,c (raw files; default 1,1,1)
   std::string endian;                     // --endian little|big (raw files; default little)
   std::optional<long long> maxMemoryMiB;  // --max-memory MiB; unset keeps VolumeLimits' default
+  std::string crop;                       // --crop X0:X1,Y0:Y1,Z0:Z1 (half-open voxel ranges)
+  std::optional<long long> stride;        // --stride N (every Nth sample per axis)
 };
 
-// Adds --dims, --type, --spacing, --endian (group "Raw volume layout") and --max-memory.
+// Adds --dims, --type, --spacing, --endian (group "Raw volume layout"), --crop, --stride and
+// --max-memory.
 void addVolumeOptions(CLI::App& command, VolumeOptions& options);
 
 // Checks the flags together and turns them into LoadOptions. Throws InputError naming the flag
 // (e.g. "--dims '12x12': expected XxYxZ"); --spacing/--endian without --dims and --type, or
-// only one of --dims/--type, are errors.
+// only one of --dims/--type, are errors. A --crop range beyond the file is found when its
+// header is read (resolveRegion).
 LoadOptions toLoadOptions(const VolumeOptions& options);
+
+// "X0:X1,Y0:Y1,Z0:Z1" -> the crop of a ReadRegion; throws InputError naming --crop.
+ReadRegion parseCrop(const std::string& text);
+
+// For `info --json` and `render --meta-out`: what of the file a volume holds and how its
+// samples were converted, {"file_type", "inexact_samples", "file_dims", "crop", "stride"} as
+// they apply; null when it holds all of the file as stored.
+template <typename Json>
+Json describeRead(const Volume& volume) {
+  Json read = Json::object();
+  if (!volume.fileType.empty()) {
+    read["file_type"] = volume.fileType;
+    read["inexact_samples"] = volume.inexactSamples;
+  }
+  if (volume.subset) {
+    const VolumeSubset& subset = *volume.subset;
+    read["file_dims"] = {subset.fileDims.x, subset.fileDims.y, subset.fileDims.z};
+    read["crop"] = {
+        {subset.lo.x, subset.hi.x}, {subset.lo.y, subset.hi.y}, {subset.lo.z, subset.hi.z}};
+    read["stride"] = subset.stride;
+  }
+  return read.empty() ? Json() : read;
+}
 
 }  // namespace vsil::cli

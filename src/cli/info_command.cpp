@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_progress.h"
 #include "cli/cli_volume_options.h"
 #include "cli/commands.h"
 #include "io/volume_loader.h"
@@ -27,27 +28,55 @@ struct Summary {
   std::vector<float> percentiles;      // nearest-rank, one per kPercentiles entry
 };
 
+// The nearest-rank percentiles of the samples: counted for integer types (no copy of the
+// volume), from a sorted copy for floats.
+std::vector<float> percentilesOf(const Volume& volume, ValueRange range) {
+  const double n = double(volume.voxelCount());
+  std::vector<std::size_t> ranks;
+  for (double p : kPercentiles) ranks.push_back(std::size_t(std::ceil(p / 100.0 * n)) - 1);
+  std::vector<float> result;
+  if (volume.type() == SampleType::Float32) {
+    const auto samples = volume.samples<float>();
+    std::vector<float> sorted(samples.begin(), samples.end());
+    for (std::size_t rank : ranks) {
+      std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(rank), sorted.end());
+      result.push_back(sorted[rank]);
+    }
+    return result;
+  }
+  // Integer samples: at most 65536 distinct values from range.min on.
+  const auto lowest = std::int64_t(range.min);
+  std::vector<std::size_t> counts(std::size_t(std::int64_t(range.max) - lowest + 1), 0);
+  volume.visit([&](auto samples) {
+    for (auto v : samples) ++counts[std::size_t(std::int64_t(v) - lowest)];
+  });
+  std::size_t below = 0, value = 0;
+  for (std::size_t rank : ranks) {  // ranks grow, so one walk over the counts serves them all
+    while (below + counts[value] <= rank) below += counts[value++];
+    result.push_back(float(lowest + std::int64_t(value)));
+  }
+  return result;
+}
+
 Summary summarize(const Volume& volume) {
   Summary s;
   s.range = valueRange(volume);
   double sum = 0.0, sumSquares = 0.0;
   s.histogram.assign(kHistogramBins, 0);
   const double width = double(s.range.max) - double(s.range.min);
-  for (float value : volume.samples) {
-    sum += value;
-    sumSquares += double(value) * value;
-    const int bin = width > 0 ? int((value - s.range.min) / width * kHistogramBins) : 0;
-    ++s.histogram[std::min(bin, kHistogramBins - 1)];
-  }
-  const double n = double(volume.samples.size());
+  volume.visit([&](auto samples) {
+    for (auto sample : samples) {
+      const float value = float(sample);
+      sum += value;
+      sumSquares += double(value) * value;
+      const int bin = width > 0 ? int((value - s.range.min) / width * kHistogramBins) : 0;
+      ++s.histogram[std::min(bin, kHistogramBins - 1)];
+    }
+  });
+  const double n = double(volume.voxelCount());
   s.mean = sum / n;
   s.stddev = std::sqrt(std::max(0.0, sumSquares / n - s.mean * s.mean));
-  std::vector<float> sorted = volume.samples;
-  for (double p : kPercentiles) {
-    const auto rank = std::size_t(std::ceil(p / 100.0 * n)) - 1;
-    std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(rank), sorted.end());
-    s.percentiles.push_back(sorted[rank]);
-  }
+  s.percentiles = percentilesOf(volume, s.range);
   return s;
 }
 
@@ -60,20 +89,23 @@ nlohmann::ordered_json toJson(const Volume& volume, const Summary& s) {
   for (std::size_t i = 0; i < std::size(kPercentiles); ++i) {
     percentiles[std::to_string(int(kPercentiles[i]))] = s.percentiles[i];
   }
-  return {
+  nlohmann::ordered_json json = {
       {"source", volume.source},
       {"name", volume.name},
       {"dims", {volume.dims.x, volume.dims.y, volume.dims.z}},
       {"samples", volume.voxelCount()},
-      {"type", sampleTypeName(volume.type)},
+      {"type", sampleTypeName(volume.type())},
       {"spacing", {volume.spacing.x, volume.spacing.y, volume.spacing.z}},
-      {"min", s.range.min},
-      {"max", s.range.max},
-      {"mean", s.mean},
-      {"stddev", s.stddev},
-      {"percentiles", percentiles},
-      {"histogram", {{"min", s.range.min}, {"max", s.range.max}, {"counts", s.histogram}}},
   };
+  if (auto read = describeRead<nlohmann::ordered_json>(volume); !read.is_null())
+    json["read"] = read;
+  json["min"] = s.range.min;
+  json["max"] = s.range.max;
+  json["mean"] = s.mean;
+  json["stddev"] = s.stddev;
+  json["percentiles"] = percentiles;
+  json["histogram"] = {{"min", s.range.min}, {"max", s.range.max}, {"counts", s.histogram}};
+  return json;
 }
 
 std::string toText(const Volume& volume, const Summary& s) {
@@ -82,8 +114,18 @@ std::string toText(const Volume& volume, const Summary& s) {
       << "name      " << volume.name << "\n"
       << "dims      " << volume.dims.x << " x " << volume.dims.y << " x " << volume.dims.z << " ("
       << volume.voxelCount() << " samples)\n"
-      << "type      " << sampleTypeName(volume.type) << "\n"
-      << "spacing   " << volume.spacing.x << " " << volume.spacing.y << " " << volume.spacing.z
+      << "type      " << sampleTypeName(volume.type());
+  if (!volume.fileType.empty()) {
+    out << " (the file's " << volume.fileType << "; " << volume.inexactSamples
+        << " samples rounded)";
+  }
+  out << "\n";
+  if (volume.subset) {
+    const VolumeSubset& subset = *volume.subset;
+    out << "read      --crop " << subset.cropText() << " --stride " << subset.stride << " of "
+        << subset.fileDims.x << " x " << subset.fileDims.y << " x " << subset.fileDims.z << "\n";
+  }
+  out << "spacing   " << volume.spacing.x << " " << volume.spacing.y << " " << volume.spacing.z
       << "\n"
       << "range     " << s.range.min << " .. " << s.range.max << "\n"
       << "mean      " << s.mean << "  (stddev " << s.stddev << ")\n"
@@ -110,7 +152,15 @@ struct InfoOptions {
 };
 
 void runInfo(const InfoOptions& options) {
-  const LoadOptions load = toLoadOptions(options.load);
+  LoadOptions load = toLoadOptions(options.load);
+  // The samples, and for floats the sorted copy the percentiles need (integers are counted).
+  load.limits.taskBytes = [](glm::ivec3 dims, SampleType type) {
+    const std::uint64_t voxels = std::uint64_t(dims.x) * std::uint64_t(dims.y) * dims.z;
+    return voxels * sampleTypeSize(type) +
+           (type == SampleType::Float32 ? voxels * 4 : 65536 * sizeof(std::size_t));
+  };
+  ProgressLine progress("reading " + options.volume);
+  load.progress = progress.callback();
   if (validateOnly()) return;
   const Volume volume = loadVolume(options.volume, load);
   const Summary summary = summarize(volume);

@@ -9,6 +9,7 @@
 
 #include "cli/cli_parse.h"
 #include "cli/cli_postfx_options.h"
+#include "cli/cli_progress.h"
 #include "cli/cli_volume_options.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
@@ -113,21 +114,31 @@ RenderSettings checkedSettings(const RenderOptions& options, const LoadOptions& 
   return settings;
 }
 
-// Once the volume is known: slices per frame and the whole render's memory.
-void checkVolumeWork(const Volume& volume, const RenderSettings& settings,
-                     const RenderOptions& options, const LoadOptions& loadOptions,
-                     const PostfxOptions& postfx) {
+// Once the volume is known: slices per frame. (Its memory is checked before it is read:
+// renderLoadOptions.)
+void checkVolumeWork(const Volume& volume, const RenderSettings& settings) {
   const std::int64_t slices = limits::sliceCountBound(volume.dims, settings.samplesPerVoxel);
   if (slices > limits::kMaxSlices) {
     throw InputError("--sampling " + std::to_string(settings.samplesPerVoxel) + ": " +
                      volume.source + " would need up to " + std::to_string(slices) +
                      " slices per frame, over the limit of " + std::to_string(limits::kMaxSlices));
   }
+}
+
+// The loader checks the whole render's memory (the volume's samples, texture and brick maxima,
+// and the image) against --max-memory, and that the texture can exist, from the file's header,
+// before reading any payload.
+LoadOptions renderLoadOptions(LoadOptions load, const RenderSettings& settings,
+                              const RenderOptions& options, const PostfxOptions& postfx) {
   const double maxWidth = std::max(postfx.width.near, postfx.width.far);
-  const std::uint64_t bytes =
-      limits::renderVolumeBytes(volume.dims) + limits::renderImageBytes(settings.size, maxWidth);
-  limits::checkMemory("rendering " + volume.source + " at --size " + options.size, bytes,
-                      loadOptions.limits.maxBytes);
+  const std::uint64_t imageBytes = limits::renderImageBytes(settings.size, maxWidth);
+  load.limits.taskBytes = [imageBytes](glm::ivec3 dims, SampleType type) {
+    return limits::renderVolumeBytes(dims, sampleTypeSize(type)) + imageBytes;
+  };
+  load.limits.maxTextureBytes = limits::kMaxTextureBytes;
+  load.limits.task = "rendering";
+  load.limits.taskDetail = " at --size " + options.size;
+  return load;
 }
 
 void run(const RenderOptions& options, const LoadOptions& loadOptions,
@@ -137,14 +148,19 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions,
   if (validateOnly()) return;
   const glm::dvec2 view{settings.camera.azimuthDeg, settings.camera.elevationDeg};
 
-  const Volume volume = loadVolume(options.input, loadOptions);
-  checkVolumeWork(volume, settings, options, loadOptions, postfx);
+  ProgressLine progress("reading " + options.input);
+  LoadOptions load = renderLoadOptions(loadOptions, settings, options, postfx);
+  load.progress = progress.callback();
+  const Volume volume = loadVolume(options.input, load);
+  checkVolumeWork(volume, settings);
   const ValueRange range = valueRange(volume);
   settings.iso = float(options.iso.value_or(0.5 * (double(range.min) + double(range.max))));
 
   gl::GlContext context;
   Renderer renderer(context);
+  progress.step("uploading the volume");
   renderer.setVolume(volume);
+  progress.finish();
   const RenderResult result = renderer.render(settings);
 
   const auto postStart = std::chrono::steady_clock::now();
@@ -185,10 +201,13 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions,
                                                                    : "shaded"}};
     meta["dataset"] = {{"name", volume.name},
                        {"source", volume.source},
-                       {"type", sampleTypeName(volume.type)},
+                       {"type", sampleTypeName(volume.type())},
                        {"dims", {volume.dims.x, volume.dims.y, volume.dims.z}},
                        {"spacing", {volume.spacing.x, volume.spacing.y, volume.spacing.z}},
                        {"value_range", {range.min, range.max}}};
+    if (auto read = describeRead<nlohmann::json>(volume); !read.is_null()) {
+      meta["dataset"]["read"] = read;
+    }
     meta["slices"] = result.sliceCount;
     meta["slice_step_eye"] = result.sliceStepEye;
     meta["camera"] = {{"eye_from_voxel", matrixRowMajor(result.view.eyeFromVoxel)},

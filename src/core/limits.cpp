@@ -30,9 +30,14 @@ std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth) {
   return bytes >= 1.8e19 ? std::uint64_t(1.8e19) : std::uint64_t(bytes);
 }
 
-std::uint64_t renderVolumeBytes(glm::ivec3 dims) {
-  return std::uint64_t(std::max(dims.x, 0)) * std::uint64_t(std::max(dims.y, 0)) *
-         std::uint64_t(std::max(dims.z, 0)) * kVolumeBytesPerVoxel;
+std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample) {
+  const glm::u64vec3 d(glm::max(dims, glm::ivec3(0)));
+  const std::uint64_t voxels = d.x * d.y * d.z;
+  const std::uint64_t textureBytes = bytesPerSample == 1 ? 2 : 4;
+  const glm::u64vec3 b = (d + std::uint64_t(7)) / std::uint64_t(8);  // 8³ bricks
+  const std::uint64_t maximaBytes = 4 * (b.x * d.y * d.z + b.x * b.y * d.z + b.x * b.y * b.z);
+  const std::uint64_t slabBytes = std::max<std::uint64_t>(kUploadSlabBytes, d.x * d.y * 4);
+  return voxels * (bytesPerSample + textureBytes) + maximaBytes + 2 * slabBytes;
 }
 
 std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel) {

@@ -12,6 +12,13 @@ namespace vsil::limits {
 
 // Samples per volume axis (llvmpipe's and most GPUs' GL_MAX_3D_TEXTURE_SIZE).
 inline constexpr int kMaxVolumeSide = 2048;
+// Bytes of one 3D texture beyond which llvmpipe creates none (measured with
+// GL_PROXY_TEXTURE_3D, Mesa 22.3: 2048²·112 R32F = 1.75 GiB is created, 2048²·113 is not; with
+// its row padding 720³ R32F fits, 800³ does not). A render refuses, before reading, a volume
+// whose texture exceeds this even as R16F (2 bytes per voxel, the smallest it uses); the exact
+// test is the proxy texture at upload (slicing/volume_texture.h, textureFits).
+inline constexpr std::uint64_t kMaxTextureBytes =
+    (std::uint64_t(7) << 28) + (std::uint64_t(16) << 20);
 // Pixels per image side (--size), and slices per voxel along the view (--sampling).
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr double kMaxSamplesPerVoxel = 64.0;
@@ -21,6 +28,8 @@ inline constexpr double kMaxLineWidth = 1024.0;
 inline constexpr std::int64_t kMaxSlices = std::int64_t(1) << 17;
 // Bytes of a header or text file read whole (NRRD headers, rule, style, transfer functions).
 inline constexpr std::size_t kMaxHeaderBytes = std::size_t(1) << 20;
+// --stride accepts 1 .. this (a larger stride keeps one sample per axis of any volume).
+inline constexpr int kMaxStride = 1 << 16;
 // --max-memory accepts 1 MiB .. 1 TiB.
 inline constexpr std::int64_t kMaxMemoryMiBFlag = std::int64_t(1) << 20;
 
@@ -29,15 +38,19 @@ inline constexpr std::int64_t kMaxMemoryMiBFlag = std::int64_t(1) << 20;
 std::size_t defaultMemoryBytes();
 
 // What a render holds at its peak, by the render's own shapes:
-//   volume: the Volume's floats plus the R32F 3D texture (llvmpipe keeps it in host memory),
-//           8 bytes per voxel;
+//   volume: per voxel, the samples in their own type (1, 2 or 4 bytes), the 3D texture, which
+//           llvmpipe keeps in host memory (R16F, 2 bytes, for 8-bit samples; 4 bytes for the
+//           others, which are R16F only when every sample turns out to be a small integer:
+//           the check runs before reading, so it assumes R32F), and the empty-space brick
+//           maxima while they are built (a float per 8 voxels along x, then per 8² and 8³);
+//           plus the upload's staging slabs (slicing/volume_texture.cpp, two in flight);
 //   image:  render targets (ping-pong RGBA32F + two R8UI), readback copies, frame buffers,
 //           the FFT broadening's padded float/complex buffers and the composed image,
 //           bounded by kRenderBytesPerPixel per pixel of the padded image.
-inline constexpr std::size_t kVolumeBytesPerVoxel = 8;
 inline constexpr std::size_t kRenderBytesPerPixel = 128;
+inline constexpr std::size_t kUploadSlabBytes = std::size_t(8) << 20;
 std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth);
-std::uint64_t renderVolumeBytes(glm::ivec3 dims);
+std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample);
 // An upper bound of the slices a frame draws: ceil(|dims| * samplesPerVoxel) + 1.
 std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel);
 

@@ -11,6 +11,8 @@ const char* sampleTypeName(SampleType type) {
   switch (type) {
     case SampleType::UInt8:
       return "uint8";
+    case SampleType::Int8:
+      return "int8";
     case SampleType::UInt16:
       return "uint16";
     case SampleType::Int16:
@@ -24,9 +26,9 @@ const char* sampleTypeName(SampleType type) {
 std::size_t sampleTypeSize(SampleType type) {
   switch (type) {
     case SampleType::UInt8:
+    case SampleType::Int8:
       return 1;
     case SampleType::UInt16:
-      return 2;
     case SampleType::Int16:
       return 2;
     case SampleType::Float32:
@@ -35,33 +37,122 @@ std::size_t sampleTypeSize(SampleType type) {
   return 0;
 }
 
-ValueRange valueRange(const Volume& volume) {
-  if (volume.samples.empty()) return {};
-  auto [lo, hi] = std::minmax_element(volume.samples.begin(), volume.samples.end());
-  return {*lo, *hi};
+bool isIntegerType(SampleType type) {
+  return type != SampleType::Float32;
 }
 
-void checkVolumeSize(const std::string& where, glm::ivec3 dims, const VolumeLimits& limits) {
+void Volume::allocate(SampleType type) {
+  const std::size_t count = voxelCount();
+  switch (type) {
+    case SampleType::UInt8:
+      samples_.emplace<std::vector<std::uint8_t>>(count);
+      break;
+    case SampleType::Int8:
+      samples_.emplace<std::vector<std::int8_t>>(count);
+      break;
+    case SampleType::UInt16:
+      samples_.emplace<std::vector<std::uint16_t>>(count);
+      break;
+    case SampleType::Int16:
+      samples_.emplace<std::vector<std::int16_t>>(count);
+      break;
+    case SampleType::Float32:
+      samples_.emplace<std::vector<float>>(count);
+      break;
+  }
+}
+
+std::size_t Volume::sampleCount() const {
+  return std::visit([](const auto& samples) { return samples.size(); }, samples_);
+}
+
+ValueRange valueRange(const Volume& volume) {
+  return volume.visit([](auto samples) -> ValueRange {
+    if (samples.empty()) return {};
+    const auto [lo, hi] = std::minmax_element(samples.begin(), samples.end());
+    return {float(*lo), float(*hi)};
+  });
+}
+
+namespace {
+
+std::string dimsText(glm::ivec3 dims) {
+  return std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z);
+}
+
+void checkDims(const std::string& where, glm::ivec3 dims, int maxDimension) {
   for (int axis = 0; axis < 3; ++axis) {
     if (dims[axis] <= 0) {
-      throwInputError(where, "dimensions " + std::to_string(dims.x) + "x" + std::to_string(dims.y) +
-                                 "x" + std::to_string(dims.z) + " are not all positive");
+      throwInputError(where, "dimensions " + dimsText(dims) + " are not all positive");
     }
-    if (dims[axis] > limits.maxDimension) {
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    if (dims[axis] > maxDimension) {
       throwInputError(where, "dimension " + std::to_string(dims[axis]) + " exceeds the limit of " +
-                                 std::to_string(limits.maxDimension) + " samples per axis");
+                                 std::to_string(maxDimension) + " samples per axis");
     }
   }
-  // Each axis is at most maxDimension (<= 2^31), so the product of three fits 2^93: check in
-  // long double first, then exactly.
-  const long double bytes = (long double)dims.x * dims.y * dims.z * sizeof(float);
-  if (bytes > (long double)limits.maxBytes) {
-    throwInputError(where, "volume of " + std::to_string(dims.x) + "x" + std::to_string(dims.y) +
-                               "x" + std::to_string(dims.z) + " samples needs " +
-                               std::to_string((unsigned long long)(bytes / (1 << 20))) +
-                               " MiB, over the memory limit of " +
-                               std::to_string(limits.maxBytes >> 20) + " MiB");
+}
+
+}  // namespace
+
+VolumeSubset planVolume(const std::string& where, glm::ivec3 fileDims, SampleType type,
+                        const VolumeLimits& limits, const ReadRegion& region, int minTexelBytes) {
+  // Without a region the file's dims are the volume's and must be within the limits; with one,
+  // only what is kept must be, and the file may be larger (up to 2^40 samples per axis product
+  // of bytes, so that every size computed from them fits 64 bits).
+  if (region.whole()) {
+    checkDims(where, fileDims, limits.maxDimension);
+  } else {
+    checkDims(where, fileDims, std::numeric_limits<int>::max());
+    const long double fileBytes = (long double)fileDims.x * fileDims.y * fileDims.z * 8;
+    if (fileBytes > (long double)(std::uint64_t(1) << 62)) {
+      throwInputError(where, "dimensions " + dimsText(fileDims) + " are too large for any file");
+    }
   }
+  const VolumeSubset subset = resolveRegion(where, fileDims, region);
+  const glm::ivec3 dims = subset.dims();
+  if (!region.whole()) {
+    for (int axis = 0; axis < 3; ++axis) {
+      if (dims[axis] > limits.maxDimension) {
+        throwInputError(where, std::string(region.crop ? "--crop" : "--stride") + " keeps " +
+                                   dimsText(dims) + " samples; " + std::to_string(dims[axis]) +
+                                   " exceeds the limit of " + std::to_string(limits.maxDimension) +
+                                   " samples per axis");
+      }
+    }
+  }
+  // Each kept axis is at most maxDimension (<= 2^31), so the product of three fits 2^93: count in
+  // long double first, then exactly.
+  const long double samples = (long double)dims.x * dims.y * dims.z * sampleTypeSize(type);
+  std::uint64_t bytes = std::numeric_limits<std::uint64_t>::max();
+  if (samples < 1e18L) {  // task bytes are a few times the samples' bytes: no overflow
+    bytes = std::uint64_t(dims.x) * std::uint64_t(dims.y) * std::uint64_t(dims.z) *
+            sampleTypeSize(type);
+    if (limits.taskBytes) bytes = limits.taskBytes(dims, type);
+  }
+  const std::string what = limits.task + " " + dimsText(dims) + " " + sampleTypeName(type) +
+                           " samples" + limits.taskDetail;
+  const std::string options = "; read less with --crop X0:X1,Y0:Y1,Z0:Z1 or --stride N";
+  const long double textureBytes = (long double)dims.x * dims.y * dims.z * minTexelBytes;
+  if (limits.maxTextureBytes && textureBytes > (long double)limits.maxTextureBytes) {
+    throwInputError(where, what + " needs a 3D texture of at least " +
+                               std::to_string((unsigned long long)(textureBytes / (1 << 20))) +
+                               " MiB, more than the " +
+                               std::to_string(limits.maxTextureBytes >> 20) +
+                               " MiB one texture can hold" + options);
+  }
+  if (bytes > limits.maxBytes) {
+    const auto mib = [](std::uint64_t b) {
+      return b == std::numeric_limits<std::uint64_t>::max()
+                 ? std::string("more than 2^64 bytes")
+                 : std::to_string((b + (1u << 20) - 1) >> 20) + " MiB";
+    };
+    throwInputError(where, what + " needs " + mib(bytes) + ", over the --max-memory limit of " +
+                               std::to_string(limits.maxBytes >> 20) + " MiB" + options +
+                               ", or raise --max-memory");
+  }
+  return subset;
 }
 
 }  // namespace vsil

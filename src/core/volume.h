@@ -1,31 +1,78 @@
 #pragma once
 // A scalar volume on a regular grid: the single in-memory form every reader and generator
-// produces and every technique consumes.
+// produces and every technique consumes. Samples stay in their file's own type (one byte per
+// voxel for 8-bit data), so a volume costs what its file holds; consumers read them through a
+// typed view for fast loops (visit, samples<T>) or as floats one at a time (at, value).
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "core/limits.h"
+#include "core/volume_region.h"
 
 namespace vsil {
 
-// The type of the samples in the file (what the user's --iso units mean). In memory every
-// sample is a float in the data's own units: exact for all four types.
-enum class SampleType { UInt8, UInt16, Int16, Float32 };
+// The types a volume keeps its samples in, in the data's own units. Files with other types
+// convert when read (io/sample_codec.h): float64 (and, later, 32/64-bit integers) to Float32,
+// counting the samples whose value changed (Volume::inexactSamples).
+enum class SampleType { UInt8, Int8, UInt16, Int16, Float32 };
+inline constexpr SampleType kSampleTypes[] = {SampleType::UInt8, SampleType::Int8,
+                                              SampleType::UInt16, SampleType::Int16,
+                                              SampleType::Float32};
 
-const char* sampleTypeName(SampleType type);
-std::size_t sampleTypeSize(SampleType type);
+const char* sampleTypeName(SampleType type);  // "uint8", "int8", "uint16", "int16", "float32"
+std::size_t sampleTypeSize(SampleType type);  // bytes per sample
+bool isIntegerType(SampleType type);
 
-struct Volume {
+// The C++ type of each SampleType, and back.
+using SampleStorage = std::variant<std::vector<std::uint8_t>, std::vector<std::int8_t>,
+                                   std::vector<std::uint16_t>, std::vector<std::int16_t>,
+                                   std::vector<float>>;  // in SampleType's order
+template <SampleType T>
+using SampleCType = typename std::variant_alternative_t<std::size_t(T), SampleStorage>::value_type;
+template <typename C>
+constexpr SampleType sampleTypeFor() {
+  if constexpr (std::is_same_v<C, std::uint8_t>)
+    return SampleType::UInt8;
+  else if constexpr (std::is_same_v<C, std::int8_t>)
+    return SampleType::Int8;
+  else if constexpr (std::is_same_v<C, std::uint16_t>)
+    return SampleType::UInt16;
+  else if constexpr (std::is_same_v<C, std::int16_t>)
+    return SampleType::Int16;
+  else if constexpr (std::is_same_v<C, float>)
+    return SampleType::Float32;
+  else
+    static_assert(sizeof(C) == 0, "not a sample type");
+}
+
+class Volume {
+ public:
   std::string name;    // dataset name: a file's base name without extension, or the generator's
   std::string source;  // the path or generator spec it was made from
   glm::ivec3 dims{0};  // samples along x (fastest in memory), y, z
   glm::dvec3 spacing{1.0};  // distance between sample centres along x, y, z (any unit)
-  SampleType type = SampleType::UInt8;
-  std::vector<float> samples;  // dims.x*dims.y*dims.z values, x fastest, then y, then z
+  // The file's sample type when the volume keeps another ("float64" kept as float32), else "".
+  std::string fileType;
+  // Samples whose value changed in that conversion (float64 values that float32 rounds).
+  std::uint64_t inexactSamples = 0;
+  // Set when only part of the file was read (--crop, --stride): which part.
+  std::optional<VolumeSubset> subset;
+
+  // Sizes the samples for `dims` in `type`, all zero (replacing any previous samples).
+  void allocate(SampleType type);
+  SampleType type() const { return SampleType(samples_.index()); }
+  std::size_t sampleCount() const;
+  std::size_t sampleBytes() const { return sampleCount() * sampleTypeSize(type()); }
 
   std::size_t voxelCount() const {
     return std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z);
@@ -34,7 +81,42 @@ struct Volume {
     return (std::size_t(z) * std::size_t(dims.y) + std::size_t(y)) * std::size_t(dims.x) +
            std::size_t(x);
   }
-  float at(int x, int y, int z) const { return samples[index(x, y, z)]; }
+  // One sample as a float (exact for every SampleType), for CPU references and statistics.
+  float value(std::size_t index) const {
+    return std::visit([index](const auto& samples) { return float(samples[index]); }, samples_);
+  }
+  float at(int x, int y, int z) const { return value(index(x, y, z)); }
+
+  // The samples in their own C++ type, x fastest, then y, then z. C must be type()'s type
+  // (std::logic_error otherwise).
+  template <typename C>
+  std::span<C> samples() {
+    return checkedVector<C>(samples_);
+  }
+  template <typename C>
+  std::span<const C> samples() const {
+    return checkedVector<C>(samples_);
+  }
+  // Calls f(std::span<const C>) (or std::span<C> on a non-const volume) with the samples in
+  // their own type; returns what f returns. One instantiation of f per SampleType.
+  template <typename F>
+  decltype(auto) visit(F&& f) const {
+    return std::visit([&f](const auto& v) -> decltype(auto) { return f(std::span(v)); }, samples_);
+  }
+  template <typename F>
+  decltype(auto) visit(F&& f) {
+    return std::visit([&f](auto& v) -> decltype(auto) { return f(std::span(v)); }, samples_);
+  }
+
+ private:
+  template <typename C, typename Storage>
+  static auto& checkedVector(Storage& storage) {
+    auto* vector = std::get_if<std::vector<C>>(&storage);
+    if (!vector) throw std::logic_error("Volume::samples: not the volume's sample type");
+    return *vector;
+  }
+
+  SampleStorage samples_;
 };
 
 struct ValueRange {
@@ -43,16 +125,35 @@ struct ValueRange {
 };
 ValueRange valueRange(const Volume& volume);
 
-// Limits checked before anything is allocated. maxBytes bounds the in-memory volume
-// (4 bytes per sample; default: half the physical memory, core/limits.h); maxDimension bounds
-// each axis (the GL 3D texture limit, 2048).
+// Limits checked before a reader allocates or reads any payload. maxBytes bounds the memory of
+// the whole task the volume is read for (default: half the physical memory, core/limits.h);
+// maxDimension bounds each axis of the volume as kept (the GL 3D texture limit, 2048).
 struct VolumeLimits {
   std::size_t maxBytes = limits::defaultMemoryBytes();
   int maxDimension = limits::kMaxVolumeSide;
+  // What the whole task needs, samples included, for a volume of these dims and type (a render:
+  // samples, texture, brick maxima and images; limits::renderVolumeBytes), and how the error
+  // names the task: "<task> 512x512x512 uint8 samples<taskDetail> needs ...". Unset: the
+  // samples alone.
+  std::function<std::uint64_t(glm::ivec3 dims, SampleType type)> taskBytes;
+  std::string task = "reading";
+  std::string taskDetail;  // e.g. " at --size 512x512"
+  // Set for a render: the volume must fit one 3D texture of this many bytes at the smallest
+  // texel it may get (planVolume's minTexelBytes; limits::kMaxTextureBytes); 0: not checked.
+  std::uint64_t maxTextureBytes = 0;
 };
 
-// Throws InputError naming `where` when dims are not positive, exceed the limits, or the
-// in-memory size would overflow or exceed maxBytes.
-void checkVolumeSize(const std::string& where, glm::ivec3 dims, const VolumeLimits& limits);
+// Resolves what a reader keeps of a file of `fileDims` and checks it against the limits:
+// throws InputError naming `where` when fileDims are not positive, the region (--crop) lies
+// outside them, an axis of the kept volume exceeds maxDimension, or the samples in `type`
+// (or taskBytes) exceed maxBytes, or its texture would exceed maxTextureBytes at
+// `minTexelBytes` per voxel (2: R16F, which any type may get; 4 for values known not to be
+// small integers):
+// "<where>: reading 512x512x512 uint8 samples needs 128 MiB,
+// over the --max-memory limit of 100 MiB; read less with --crop ... or --stride N, or raise
+// --max-memory". Nothing is allocated.
+VolumeSubset planVolume(const std::string& where, glm::ivec3 fileDims, SampleType type,
+                        const VolumeLimits& limits, const ReadRegion& region = {},
+                        int minTexelBytes = 2);
 
 }  // namespace vsil

@@ -23,16 +23,21 @@ double clamp01(double t) {
 // A sample's value from its voxel coordinates (integers: samples sit at integer positions).
 using Field = std::function<double(int x, int y, int z)>;
 
-// Fills every sample of an N³ volume, slices in parallel. Each sample depends only on its own
+// Fills every sample of the volume, the field evaluated at the generator's voxel coordinates
+// of the subset's samples, slices in parallel. Each sample depends only on its own
 // coordinates, so the result does not depend on the number of threads.
-void fill(Volume& volume, const Field& field) {
-  const int n = volume.dims.x;
+void fill(Volume& volume, const VolumeSubset& subset, const Field& field) {
+  const glm::ivec3 dims = volume.dims;
+  const std::span<float> samples = volume.samples<float>();
   const int threads = std::clamp(int(std::thread::hardware_concurrency()), 1, 16);
   auto work = [&](int first) {
-    for (int z = first; z < n; z += threads) {
-      for (int y = 0; y < n; ++y) {
-        float* row = &volume.samples[volume.index(0, y, z)];
-        for (int x = 0; x < n; ++x) row[x] = float(field(x, y, z));
+    for (int z = first; z < dims.z; z += threads) {
+      for (int y = 0; y < dims.y; ++y) {
+        float* row = &samples[volume.index(0, y, z)];
+        const glm::ivec3 at = subset.lo + glm::ivec3(0, y, z) * subset.stride;
+        for (int x = 0; x < dims.x; ++x) {
+          row[x] = float(field(at.x + x * subset.stride, at.y, at.z));
+        }
       }
     }
   };
@@ -161,7 +166,8 @@ std::vector<std::string> generatorNames() {
   return names;
 }
 
-Volume generateVolume(const std::string& spec, const VolumeLimits& limits) {
+Volume generateVolume(const std::string& spec, const VolumeLimits& limits,
+                      const ReadRegion& region) {
   const auto colon = spec.find(':');
   const std::string name = spec.substr(0, colon);
   int n = kDefaultEdge;
@@ -180,11 +186,14 @@ Volume generateVolume(const std::string& spec, const VolumeLimits& limits) {
   Volume volume;
   volume.name = name;
   volume.source = "gen:" + name + ":" + std::to_string(n);
-  volume.dims = glm::ivec3(n);
-  checkVolumeSize(volume.source, volume.dims, limits);
-  volume.type = SampleType::Float32;
-  volume.samples.resize(volume.voxelCount());
-  fill(volume, generator->make(n));
+  const VolumeSubset subset =
+      planVolume(volume.source, glm::ivec3(n), SampleType::Float32, limits, region,
+                 /*minTexelBytes=*/4);  // values in [0, 1], not whole numbers: R32F
+  volume.dims = subset.dims();
+  volume.spacing = glm::dvec3(subset.stride);
+  if (!subset.whole()) volume.subset = subset;
+  volume.allocate(SampleType::Float32);
+  fill(volume, subset, generator->make(n));
   return volume;
 }
 

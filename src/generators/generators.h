@@ -1,7 +1,8 @@
 #pragma once
 // Procedural volumes with known geometry, for the demo, tests and analytic ground truth.
 // Spec: gen:NAME[:N], N the edge length in samples (default 64, at least 2). All are N×N×N
-// float32 volumes with values in [0, 1] and spacing 1.
+// float32 volumes (their native type: the values are not whole numbers) with values in [0, 1]
+// and spacing 1.
 //
 // Formulas, in voxel coordinates p = (x, y, z) with x, y, z in 0..N-1 (sample centres) and the
 // centre c = ((N-1)/2, (N-1)/2, (N-1)/2). clamp01(t) = min(max(t, 0), 1).
@@ -50,7 +51,9 @@ namespace vsil {
 std::vector<std::string> generatorNames();
 // `spec` without the "gen:" prefix, e.g. "sphere:128". Throws InputError (naming the spec and
 // listing the valid names) for an unknown name or a bad N; N is checked against `limits`.
-// The result's name is NAME and its source "gen:NAME:N".
-Volume generateVolume(const std::string& spec, const VolumeLimits& limits = {});
+// The result's name is NAME and its source "gen:NAME:N". With a `region` (--crop, --stride)
+// only its samples are computed, as a file of the whole volume read with that region holds.
+Volume generateVolume(const std::string& spec, const VolumeLimits& limits = {},
+                      const ReadRegion& region = {});
 
 }  // namespace vsil

@@ -1,5 +1,8 @@
 #include "io/file_access.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -50,6 +53,31 @@ std::vector<std::uint8_t> readFileBytes(const std::string& path, std::uint64_t o
                               std::to_string(offset) + " (file changed or unreadable)");
   }
   return bytes;
+}
+
+FileReader::FileReader(const std::string& path) : path_(path) {
+  errno = 0;
+  fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd_ < 0) {
+    throwInputError(path, std::string("cannot be opened for reading: ") + std::strerror(errno));
+  }
+}
+
+FileReader::~FileReader() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void FileReader::readAt(std::uint64_t offset, std::span<std::uint8_t> out) const {
+  std::size_t done = 0;
+  while (done < out.size()) {
+    const ssize_t got = ::pread(fd_, out.data() + done, out.size() - done, off_t(offset + done));
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) {
+      throwInputError(path_, "could not read " + std::to_string(out.size()) + " bytes at offset " +
+                                 std::to_string(offset) + " (file changed or unreadable)");
+    }
+    done += std::size_t(got);
+  }
 }
 
 std::string readWholeFile(const std::string& path, std::uint64_t maxBytes) {

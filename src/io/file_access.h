@@ -2,6 +2,7 @@
 // Reading files with every failure turned into an InputError that names the path: missing,
 // a directory, empty, unreadable, shorter than needed, or larger than a caller's bound.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,24 @@ std::uint64_t regularFileSize(const std::string& path);
 // a short read still throws).
 std::vector<std::uint8_t> readFileBytes(const std::string& path, std::uint64_t offset,
                                         std::uint64_t count);
+
+// A file open for reading at any offset, from several threads at once (pread).
+class FileReader {
+ public:
+  // Throws InputError naming the path when it cannot be opened.
+  explicit FileReader(const std::string& path);
+  ~FileReader();
+  FileReader(const FileReader&) = delete;
+  FileReader& operator=(const FileReader&) = delete;
+
+  const std::string& path() const { return path_; }
+  // Exactly out.size() bytes at `offset`; a short read throws InputError naming the path.
+  void readAt(std::uint64_t offset, std::span<std::uint8_t> out) const;
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
 
 // The whole file as bytes in a string, refusing files larger than `maxBytes` before reading.
 std::string readWholeFile(const std::string& path, std::uint64_t maxBytes);

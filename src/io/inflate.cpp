@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <vector>
 
 #include <zlib.h>
 
@@ -68,35 +69,36 @@ void checkInflatable(const std::string& where, const std::string& what,
   }
 }
 
-void inflateExactly(const std::string& where, const std::string& what,
-                    std::span<const std::uint8_t> compressed, std::span<std::uint8_t> out,
-                    DeflateWrapper wrapper) {
+void inflateStream(const std::string& where, const std::string& what, DeflateWrapper wrapper,
+                   std::uint64_t expected,
+                   const std::function<std::span<const std::uint8_t>()>& read,
+                   const std::function<void(std::span<const std::uint8_t>)>& write) {
+  constexpr std::size_t kPiece = std::size_t(1) << 20;
   InflateStream stream(where, what, wrapper);
-  const std::size_t expected = out.size();
-  std::span<std::uint8_t> rest = out;
+  std::vector<std::uint8_t> buffer(std::size_t(std::min<std::uint64_t>(expected, kPiece)) + 1);
+  std::span<const std::uint8_t> in;
+  std::uint64_t produced = 0;
   bool ended = false;
   while (!ended) {
-    if (rest.empty()) {
-      // Full: the stream must end now, without a single further byte.
-      std::uint8_t extra = 0;
-      std::span<std::uint8_t> probe(&extra, 1);
-      const std::size_t inputBefore = compressed.size();
-      ended = stream.step(compressed, probe);
-      if (probe.empty()) {
-        stream.fail("inflates to more than the " + std::to_string(expected) + " bytes expected");
-      }
-      if (!ended && compressed.empty()) stream.fail("is truncated");
-      if (!ended && compressed.size() == inputBefore) stream.fail("makes no progress");
-      continue;
+    if (in.empty()) in = read();  // empty again: no more input, and step() says "truncated"
+    // Room for what is still expected plus one byte: a byte beyond it is a bomb (or a header
+    // that lies), found without inflating further.
+    std::span<std::uint8_t> out(
+        buffer.data(),
+        std::size_t(std::min<std::uint64_t>(buffer.size() - 1, expected - produced)) + 1);
+    const std::size_t before = in.size() + out.size();
+    ended = stream.step(in, out);
+    const auto made = std::size_t(out.data() - buffer.data());
+    if (produced + made > expected) {
+      stream.fail("inflates to more than the " + std::to_string(expected) + " bytes expected");
     }
-    const std::size_t before = rest.size() + compressed.size();
-    ended = stream.step(compressed, rest);
-    if (!ended && compressed.empty() && !rest.empty()) stream.fail("is truncated");
-    if (!ended && rest.size() + compressed.size() == before) stream.fail("makes no progress");
+    if (made) write(std::span<const std::uint8_t>(buffer.data(), made));
+    produced += made;
+    if (!ended && in.size() + out.size() == before && !in.empty()) stream.fail("makes no progress");
   }
-  if (!rest.empty()) {
-    stream.fail("inflates to " + std::to_string(expected - rest.size()) + " bytes, " +
-                std::to_string(expected) + " expected");
+  if (produced != expected) {
+    stream.fail("inflates to " + std::to_string(produced) + " bytes, " + std::to_string(expected) +
+                " expected");
   }
 }
 

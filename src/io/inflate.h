@@ -1,8 +1,9 @@
 #pragma once
-// zlib inflation into a buffer of known size. The output never grows: a stream that would
-// decompress to more than expected (a "zip bomb", or a wrong header) is an error, found after
-// at most one extra byte of output.
+// zlib inflation of a stream of known inflated size, streamed in pieces. The output never
+// grows: a stream that would decompress to more than expected (a "zip bomb", or a wrong header)
+// is an error, found after at most one extra piece of output.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 
@@ -10,12 +11,15 @@ namespace vsil::io {
 
 enum class DeflateWrapper { Zlib, Gzip };
 
-// Inflates one complete stream from `compressed` into exactly `out.size()` bytes. Throws
-// InputError naming `where` (and `what`, e.g. "zlib block 3") if the stream is corrupt,
-// truncated, or inflates to any other size. Bytes after the end of the stream are ignored.
-void inflateExactly(const std::string& where, const std::string& what,
-                    std::span<const std::uint8_t> compressed, std::span<std::uint8_t> out,
-                    DeflateWrapper wrapper);
+// Inflates one complete stream into exactly `expected` bytes: `read` hands out the compressed
+// bytes in pieces (an empty piece when there are no more), `write` receives the inflated bytes
+// in order, in pieces of at most 1 MiB + 1. Throws InputError naming `where` (and `what`, e.g.
+// "zlib block 3") if the stream is corrupt, truncated, or inflates to any other size; bytes
+// after the end of the stream are ignored.
+void inflateStream(const std::string& where, const std::string& what, DeflateWrapper wrapper,
+                   std::uint64_t expected,
+                   const std::function<std::span<const std::uint8_t>()>& read,
+                   const std::function<void(std::span<const std::uint8_t>)>& write);
 
 // Deflate packs at most 1032:1; fewer compressed bytes than expected/1032 cannot hold the data.
 // Throws InputError before anything is allocated for them.

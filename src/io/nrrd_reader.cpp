@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <vector>
 
 #include "core/error.h"
 #include "io/file_access.h"
@@ -175,7 +176,7 @@ Payload locatePayload(const std::string& path, const NrrdHeader& header, std::ui
 
 }  // namespace
 
-Volume readNrrd(const std::string& path, const VolumeLimits& limits) {
+Volume readNrrd(const std::string& path, const LoadOptions& options) {
   const std::uint64_t fileSize = regularFileSize(path);
   const NrrdHeader header = parseHeader(path, fileSize);
   auto required = [&](std::initializer_list<const char*> names) -> const std::string& {
@@ -190,16 +191,14 @@ Volume readNrrd(const std::string& path, const VolumeLimits& limits) {
   }
   const StoredType type = parseType(path, required({"type"}));
   const glm::ivec3 dims = parseDims(path, "sizes", required({"sizes"}));
-  checkVolumeSize(path, dims, limits);
+  planVolume(path, dims, keptSampleType(type), options.limits, options.region);
   const std::string encoding = toLower(required({"encoding"}));
 
-  Volume volume = namedVolume(path);
-  volume.dims = dims;
-  volume.type = sampleTypeOf(type);
+  glm::dvec3 spacing(1.0);
   if (const std::string* directions = header.find({"space directions"})) {
-    volume.spacing = spacingFromDirections(path, *directions);
+    spacing = spacingFromDirections(path, *directions);
   } else if (const std::string* spacings = header.find({"spacings"})) {
-    volume.spacing = parseSpacing(path, "spacings", *spacings);
+    spacing = parseSpacing(path, "spacings", *spacings);
   }
 
   bool bigEndian = false;
@@ -225,7 +224,7 @@ Volume readNrrd(const std::string& path, const VolumeLimits& limits) {
   }
 
   const Payload payload = locatePayload(path, header, fileSize);
-  const std::size_t expected = payloadBytes(dims, type);
+  const std::uint64_t expected = payloadBytes(dims, type);
   const std::string layout = " (" + describeLayout(dims, type) + ")";
 
   if (encoding == "raw") {
@@ -245,9 +244,12 @@ Volume readNrrd(const std::string& path, const VolumeLimits& limits) {
       throwInputError(path, payload.label + " holds " + std::to_string(available) + " bytes, " +
                                 std::to_string(expected) + " expected" + layout);
     }
-    volume.samples =
-        decodeSamples(path, readFileBytes(payload.path, offset, expected), type, bigEndian);
-  } else if (encoding == "gzip" || encoding == "gz") {
+    Volume volume = startVolume(path, dims, type, spacing, options);
+    SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
+    readUncompressed(FileReader(payload.path), offset, sink, options);
+    return volume;
+  }
+  if (encoding == "gzip" || encoding == "gz") {
     if (byteSkip < 0) throwInputError(path, "byte skip -1 is only allowed with raw encoding");
     // Deflate never grows data by more than a few bytes per 16 KiB block: anything larger than
     // this bound is not a stream of the expected size, and is refused before reading it.
@@ -258,26 +260,49 @@ Volume readNrrd(const std::string& path, const VolumeLimits& limits) {
                                 " bytes, more than a gzip stream of " + std::to_string(inflated) +
                                 " bytes can take" + layout);
     }
-    checkInflatable(path, "gzip " + payload.label, payload.size, inflated);
-    const auto compressed = readFileBytes(payload.path, payload.offset, payload.size);
-    std::vector<std::uint8_t> bytes(inflated);
-    inflateExactly(path, "gzip " + payload.label, compressed, bytes, DeflateWrapper::Gzip);
-    volume.samples = decodeSamples(
-        path, std::span<const std::uint8_t>(bytes).subspan(std::size_t(byteSkip)), type, bigEndian);
-  } else if (textEncoding) {
+    const std::string what = "gzip " + payload.label;
+    checkInflatable(path, what, payload.size, inflated);
+    Volume volume = startVolume(path, dims, type, spacing, options);
+    SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
+    // Streamed: compressed pieces in, inflated pieces straight into the sink, which keeps only
+    // the samples of the subset (a compressed stream cannot be entered in the middle).
+    const FileReader file(payload.path);
+    constexpr std::uint64_t kPiece = std::uint64_t(1) << 20;
+    std::vector<std::uint8_t> compressed;
+    std::uint64_t read = 0, skipped = 0;
+    inflateStream(
+        path, what, DeflateWrapper::Gzip, inflated,
+        [&]() -> std::span<const std::uint8_t> {
+          compressed.resize(std::size_t(std::min(kPiece, payload.size - read)));
+          file.readAt(payload.offset + read, compressed);
+          read += compressed.size();
+          if (options.progress) options.progress(read, payload.size);
+          return compressed;
+        },
+        [&](std::span<const std::uint8_t> bytes) {
+          const auto skip =
+              std::size_t(std::min<std::uint64_t>(bytes.size(), std::uint64_t(byteSkip) - skipped));
+          skipped += skip;
+          sink.append(bytes.subspan(skip));
+        });
+    sink.finishAppending();
+    return volume;
+  }
+  if (textEncoding) {
     // Up to 64 characters per sample is generous for any printed number.
-    const std::uint64_t maxText = std::uint64_t(volume.voxelCount()) * 64 + 4096;
+    const std::uint64_t maxText = payloadBytes(dims, StoredType::UInt8) * 64 + 4096;
     if (payload.size > maxText) {
       throwInputError(path, payload.label + " holds " + std::to_string(payload.size) +
                                 " bytes, too many for ascii text of" + layout);
     }
+    Volume volume = startVolume(path, dims, type, spacing, options);
+    SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
     const auto bytes = readFileBytes(payload.path, payload.offset, payload.size);
     const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    volume.samples = parseTextSamples(path, text, volume.voxelCount(), type);
-  } else {
-    throwInputError(path, "encoding " + quote(encoding) + " is not supported (raw, gzip, ascii)");
+    parseTextSamples(path, text, type, sink);
+    return volume;
   }
-  return volume;
+  throwInputError(path, "encoding " + quote(encoding) + " is not supported (raw, gzip, ascii)");
 }
 
 }  // namespace vsil::io

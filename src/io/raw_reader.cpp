@@ -2,27 +2,25 @@
 #include "core/error.h"
 #include "io/file_access.h"
 #include "io/readers.h"
-#include "io/sample_codec.h"
 #include "io/text_fields.h"
 
 namespace vsil::io {
 
-Volume readRaw(const std::string& path, const RawLayout& layout, const VolumeLimits& limits) {
-  checkVolumeSize(path, layout.dims, limits);
+Volume readRaw(const std::string& path, const RawLayout& layout, const LoadOptions& options) {
+  // The layout is checked against the limits before the file is even examined.
+  planVolume(path, layout.dims, layout.type, options.limits, options.region);
   checkSpacing(path, "spacing", layout.spacing);
   const StoredType type = storedTypeOf(layout.type);
   const std::uint64_t size = regularFileSize(path);
-  const std::size_t expected = payloadBytes(layout.dims, type);
+  const std::uint64_t expected = payloadBytes(layout.dims, type);
   if (size != expected) {
     throwInputError(path, "raw file holds " + std::to_string(size) + " bytes, " +
                               std::to_string(expected) + " expected (" +
                               describeLayout(layout.dims, type) + ")");
   }
-  Volume volume = namedVolume(path);
-  volume.dims = layout.dims;
-  volume.spacing = layout.spacing;
-  volume.type = layout.type;
-  volume.samples = decodeSamples(path, readFileBytes(path, 0, size), type, layout.bigEndian);
+  Volume volume = startVolume(path, layout.dims, type, layout.spacing, options);
+  SampleSink sink(path, volume, subsetOf(volume), type, layout.bigEndian);
+  readUncompressed(FileReader(path), 0, sink, options);
   return volume;
 }
 

@@ -1,25 +1,37 @@
 #pragma once
 // The file readers behind loadVolume(), one per format, each in its own file. Each validates
-// the header and the payload size before allocating, and throws InputError naming the path.
+// the header, checks the volume it will keep against the limits (planVolume) and the payload
+// size before allocating or reading any payload, then reads the samples straight into the
+// volume's buffer (io/sample_sink.h), and throws InputError naming the path.
 #include <filesystem>
 #include <string>
 
 #include "core/volume.h"
+#include "io/sample_codec.h"
+#include "io/sample_sink.h"
 #include "io/volume_loader.h"
 
 namespace vsil::io {
 
-Volume readNrrd(const std::string& path, const VolumeLimits& limits);       // .nrrd, .nhdr
-Volume readVti(const std::string& path, const VolumeLimits& limits);        // VTK XML ImageData
-Volume readLegacyVtk(const std::string& path, const VolumeLimits& limits);  // STRUCTURED_POINTS
-Volume readRaw(const std::string& path, const RawLayout& layout, const VolumeLimits& limits);
+class FileReader;
 
-// A volume's identity: name = the file's base name without extension, source = the path.
-inline Volume namedVolume(const std::string& path) {
-  Volume volume;
-  volume.name = std::filesystem::path(path).stem().string();
-  volume.source = path;
-  return volume;
-}
+Volume readNrrd(const std::string& path, const LoadOptions& options);       // .nrrd, .nhdr
+Volume readVti(const std::string& path, const LoadOptions& options);        // VTK XML ImageData
+Volume readLegacyVtk(const std::string& path, const LoadOptions& options);  // STRUCTURED_POINTS
+Volume readRaw(const std::string& path, const RawLayout& layout, const LoadOptions& options);
+
+// A new volume read from `path`: name = the file's base name without extension, source = the
+// path; dims, sample type, spacing (times the stride) and subset from the file's `fileDims`,
+// `type` and `spacing` and options.region, checked against options.limits (planVolume) before
+// its samples are allocated.
+Volume startVolume(const std::string& path, glm::ivec3 fileDims, StoredType type,
+                   glm::dvec3 spacing, const LoadOptions& options);
+// The subset a volume from startVolume keeps (the whole file when it has none).
+VolumeSubset subsetOf(const Volume& volume);
+
+// Reads the samples `sink` keeps from an uncompressed payload at `offset` of `file`: only the
+// rows it keeps, each from its first to its last kept sample, in pieces of a few MiB.
+void readUncompressed(const FileReader& file, std::uint64_t offset, SampleSink& sink,
+                      const LoadOptions& options);
 
 }  // namespace vsil::io

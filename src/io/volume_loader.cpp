@@ -11,14 +11,16 @@
 namespace vsil {
 
 Volume loadVolume(const std::string& spec, const LoadOptions& options) {
-  if (spec.starts_with("gen:")) return generateVolume(spec.substr(4), options.limits);
+  if (spec.starts_with("gen:")) {
+    return generateVolume(spec.substr(4), options.limits, options.region);
+  }
   if (spec.empty()) throw InputError("no volume given (a file path or gen:NAME[:N])");
-  if (options.raw) return io::readRaw(spec, *options.raw, options.limits);
+  if (options.raw) return io::readRaw(spec, *options.raw, options);
 
   const std::string extension = io::toLower(std::filesystem::path(spec).extension().string());
-  if (extension == ".nrrd" || extension == ".nhdr") return io::readNrrd(spec, options.limits);
-  if (extension == ".vti") return io::readVti(spec, options.limits);
-  if (extension == ".vtk") return io::readLegacyVtk(spec, options.limits);
+  if (extension == ".nrrd" || extension == ".nhdr") return io::readNrrd(spec, options);
+  if (extension == ".vti") return io::readVti(spec, options);
+  if (extension == ".vtk") return io::readLegacyVtk(spec, options);
 
   io::regularFileSize(spec);  // a missing file or a directory says so first
   throwInputError(spec, "unknown volume format" +

@@ -1,5 +1,7 @@
 #pragma once
 // One entry point for every volume source: files (by extension or content) and generators.
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -18,13 +20,20 @@ struct RawLayout {
 struct LoadOptions {
   VolumeLimits limits;
   std::optional<RawLayout> raw;  // set: the file is read as raw samples with this layout
+  ReadRegion region;             // --crop, --stride: keep (and where possible read) only these
+  // Called now and then while the payload is read, with the bytes read so far and in all
+  // (compressed bytes for compressed payloads); from the loading thread.
+  std::function<void(std::uint64_t done, std::uint64_t total)> progress;
 };
 
 // `spec` is a path (.nrrd, .nhdr, .vti, .vtk, or any file with options.raw set) or a generator
 // `gen:NAME[:N]` (see generators/generators.h). Throws InputError naming the file and problem.
 // Readers (src/io/*_reader.cpp): NRRD raw/gzip/ascii, attached or detached; VTK XML ImageData
 // ascii/base64/appended, zlib or not; legacy VTK STRUCTURED_POINTS ASCII/BINARY; raw.
-// Stored int8 samples load as Int16 and float64 as Float32 (refused unless finite in float).
+// Samples keep their file's type (io/sample_codec.h): float64 is kept as Float32 (refused unless
+// finite in float; rounded values counted in Volume::inexactSamples). With options.region the
+// volume holds only those samples, its spacing multiplied by the stride, and Volume::subset
+// says which; headers are checked against options.limits before any payload is read.
 Volume loadVolume(const std::string& spec, const LoadOptions& options = {});
 
 }  // namespace vsil

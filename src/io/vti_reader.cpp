@@ -4,8 +4,13 @@
 // Format notes: docs.vtk.org "VTK File Formats" (XML section) and the Kitware wiki
 // "VTK_XML_Formats"; a binary block starts with a byte count, or with the compression header
 // [#blocks][block size][last partial block size][compressed size of each block].
+#include <algorithm>
+#include <atomic>
+#include <exception>
 #include <limits>
 #include <optional>
+#include <thread>
+#include <vector>
 
 #include <tinyxml2.h>
 
@@ -74,28 +79,66 @@ glm::ivec3 dimsFromExtent(const std::string& path, const std::string& extent) {
   return dims;
 }
 
-// Reads one binary data block (the header words, then the data), checking every size against
-// what is there before touching it, and returns the `expected` payload bytes.
+// The bytes of one DataArray's binary block: in memory (decoded base64) or in the file
+// (appended raw data, read as needed).
+class BlockSource {
+ public:
+  explicit BlockSource(std::span<const std::uint8_t> memory)
+      : memory_(memory), size_(memory.size()) {}
+  BlockSource(const FileReader& file, std::uint64_t offset, std::uint64_t size)
+      : file_(&file), offset_(offset), size_(size) {}
+
+  std::uint64_t size() const { return size_; }
+  const FileReader* file() const { return file_; }
+  std::uint64_t fileOffset() const { return offset_; }
+  // Bytes [at, at + count), which the caller has checked lie within size(); read into
+  // `scratch` when they are in the file.
+  std::span<const std::uint8_t> view(std::uint64_t at, std::uint64_t count,
+                                     std::vector<std::uint8_t>& scratch) const {
+    if (!file_) return memory_.subspan(std::size_t(at), std::size_t(count));
+    scratch.resize(std::size_t(count));
+    file_->readAt(offset_ + at, scratch);
+    return scratch;
+  }
+
+ private:
+  std::span<const std::uint8_t> memory_;
+  const FileReader* file_ = nullptr;
+  std::uint64_t offset_ = 0;
+  std::uint64_t size_ = 0;
+};
+
+// Reads one binary data block (the header words, then the data) into the sink, checking every
+// size against what is there before touching it.
 class BlockReader {
  public:
-  BlockReader(const std::string& path, std::span<const std::uint8_t> block, Encoding encoding)
-      : path_(path), block_(block), encoding_(encoding) {}
+  BlockReader(const std::string& path, const BlockSource& block, Encoding encoding,
+              const LoadOptions& options)
+      : path_(path), block_(block), encoding_(encoding), options_(options) {}
 
-  std::vector<std::uint8_t> read(std::size_t expected, const std::string& layout) {
+  void read(std::uint64_t expected, const std::string& layout, SampleSink& sink) {
+    const std::uint64_t wordSize = encoding_.headerWordSize;
     if (!encoding_.compressed) {
+      readHeader(1);
       const std::uint64_t count = word(0);
       if (count != expected) {
         throwInputError(path_, "DataArray header says " + std::to_string(count) + " bytes, " +
                                    std::to_string(expected) + " expected" + layout);
       }
-      const std::size_t start = encoding_.headerWordSize;
-      if (block_.size() - start < expected) {
-        throwInputError(path_, "DataArray holds " + std::to_string(block_.size() - start) +
+      if (block_.size() - wordSize < expected) {
+        throwInputError(path_, "DataArray holds " + std::to_string(block_.size() - wordSize) +
                                    " bytes, " + std::to_string(expected) + " expected" + layout);
       }
-      const auto data = block_.subspan(start, expected);
-      return {data.begin(), data.end()};
+      if (block_.file()) {
+        readUncompressed(*block_.file(), block_.fileOffset() + wordSize, sink, options_);
+      } else {
+        std::vector<std::uint8_t> unused;
+        sink.put(0, block_.view(wordSize, expected, unused));
+        sink.finish();
+      }
+      return;
     }
+    readHeader(3);
     const std::uint64_t blocks = word(0), blockSize = word(1), lastSize = word(2);
     if (blocks == 0 || blockSize == 0 || lastSize > blockSize) {
       throwInputError(path_, "compression header (" + std::to_string(blocks) + " blocks of " +
@@ -109,82 +152,182 @@ class BlockReader {
                                  " blocks of " + std::to_string(blockSize) + " bytes, not the " +
                                  std::to_string(expected) + " bytes expected" + layout);
     }
-    word(2 + blocks);  // the header is all there
-    std::uint64_t offset = (3 + blocks) * encoding_.headerWordSize;
-    checkInflatable(path_, "zlib data", block_.size() - offset, expected);
-    std::vector<std::uint8_t> bytes(expected);
-    for (std::uint64_t i = 0; i < blocks; ++i) {
-      const std::uint64_t size = word(3 + i);
-      if (size > block_.size() - offset) {
-        throwInputError(path_, "zlib block " + std::to_string(i) + " is truncated (" +
-                                   std::to_string(block_.size() - offset) + " of " +
-                                   std::to_string(size) + " bytes)");
-      }
-      const std::uint64_t outSize = i + 1 == blocks ? last : blockSize;
-      inflateExactly(path_, "zlib block " + std::to_string(i),
-                     block_.subspan(std::size_t(offset), std::size_t(size)),
-                     std::span(bytes).subspan(std::size_t(i * blockSize), std::size_t(outSize)),
-                     DeflateWrapper::Zlib);
-      offset += size;
-    }
-    return bytes;
+    readHeader(3 + blocks);  // the header is all there
+    const std::uint64_t dataStart = (3 + blocks) * wordSize;
+    checkInflatable(path_, "zlib data", block_.size() - dataStart, expected);
+    inflateBlocks(dataStart, blocks, blockSize, last, sink);
   }
 
  private:
-  std::uint64_t word(std::uint64_t index) const {
-    const std::size_t size = encoding_.headerWordSize;
-    if (index >= block_.size() / size) {
+  // Reads the first `count` header words, or throws when the block is shorter (or the header
+  // alone would be larger than the memory limit).
+  void readHeader(std::uint64_t count) {
+    if (count > block_.size() / encoding_.headerWordSize) {
       throwInputError(path_, "DataArray block header is truncated (" +
                                  std::to_string(block_.size()) + " bytes)");
     }
+    if (count * encoding_.headerWordSize > options_.limits.maxBytes) {
+      throwInputError(path_, "compression header of " + std::to_string(count - 3) +
+                                 " blocks is larger than the --max-memory limit");
+    }
+    header_ = block_.view(0, count * encoding_.headerWordSize, headerBytes_);
+  }
+
+  std::uint64_t word(std::uint64_t index) const {
+    const std::size_t size = encoding_.headerWordSize;
     std::uint64_t value = 0;
     for (std::size_t i = 0; i < size; ++i) {
       const std::size_t shift = 8 * (encoding_.bigEndian ? size - 1 - i : i);
-      value |= std::uint64_t(block_[std::size_t(index) * size + i]) << shift;
+      value |= std::uint64_t(header_[std::size_t(index) * size + i]) << shift;
     }
     return value;
   }
 
+  // The zlib blocks, in batches of a few MiB of compressed bytes; within a batch the blocks are
+  // inflated on every core (each block is an independent stream whose output has its own place
+  // in the volume). Errors are those a block-by-block reading meets first: the lowest block's.
+  void inflateBlocks(std::uint64_t dataStart, std::uint64_t blocks, std::uint64_t blockSize,
+                     std::uint64_t lastSize, SampleSink& sink) {
+    constexpr std::uint64_t kBatchBytes = std::uint64_t(16) << 20;
+    const std::size_t sampleSize = sink.sampleSize();
+    // Blocks that start within a sample cannot be placed on their own: one thread, in order.
+    const bool aligned = blockSize % sampleSize == 0;
+    const int threads = aligned ? std::clamp(int(std::thread::hardware_concurrency()), 1, 16) : 1;
+    SampleSink::Appender inOrder(sink, 0);
+    const std::uint64_t compressedTotal = block_.size() - dataStart;
+    std::vector<std::uint8_t> batchBytes;
+    std::uint64_t offset = dataStart;  // of block `first`
+    for (std::uint64_t first = 0; first < blocks;) {
+      // Blocks first .. end - 1: at most kBatchBytes (at least one block), none truncated.
+      std::vector<std::uint64_t> starts;  // offsets within the batch
+      std::uint64_t bytes = 0, end = first;
+      std::optional<std::uint64_t> truncated;
+      while (end < blocks && (end == first || bytes + word(3 + end) <= kBatchBytes)) {
+        const std::uint64_t size = word(3 + end);
+        if (size > block_.size() - (offset + bytes)) {
+          truncated = end;
+          break;
+        }
+        starts.push_back(bytes);
+        bytes += size;
+        ++end;
+      }
+      const auto batch = block_.view(offset, bytes, batchBytes);
+      std::atomic<std::uint64_t> failed{blocks};
+      std::vector<std::pair<std::uint64_t, std::exception_ptr>> errors(std::size_t(threads),
+                                                                       {blocks, nullptr});
+      auto work = [&](int thread) {
+        for (std::uint64_t b = first + std::uint64_t(thread); b < end && b < failed;
+             b += std::uint64_t(threads)) {
+          try {
+            const auto compressed =
+                batch.subspan(std::size_t(starts[b - first]), std::size_t(word(3 + b)));
+            const std::uint64_t outSize = b + 1 == blocks ? lastSize : blockSize;
+            SampleSink::Appender own(sink, b * blockSize / sampleSize);
+            SampleSink::Appender& appender = aligned ? own : inOrder;
+            bool given = false;
+            inflateStream(
+                path_, "zlib block " + std::to_string(b), DeflateWrapper::Zlib, outSize,
+                [&] {
+                  const auto piece = given ? std::span<const std::uint8_t>() : compressed;
+                  given = true;
+                  return piece;
+                },
+                [&](std::span<const std::uint8_t> out) { appender.append(out); });
+          } catch (...) {
+            errors[std::size_t(thread)] = {b, std::current_exception()};
+            for (std::uint64_t seen = failed; b < seen && !failed.compare_exchange_weak(seen, b);) {
+            }
+            return;
+          }
+        }
+      };
+      {
+        std::vector<std::jthread> pool;
+        for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+        work(0);
+      }
+      const auto error =
+          std::min_element(errors.begin(), errors.end(),
+                           [](const auto& a, const auto& b) { return a.first < b.first; });
+      if (error->second) std::rethrow_exception(error->second);
+      if (truncated) {
+        throwInputError(path_, "zlib block " + std::to_string(*truncated) + " is truncated (" +
+                                   std::to_string(block_.size() - (offset + bytes)) + " of " +
+                                   std::to_string(word(3 + *truncated)) + " bytes)");
+      }
+      offset += bytes;
+      first = end;
+      if (options_.progress) options_.progress(offset - dataStart, compressedTotal);
+    }
+    sink.finish();
+  }
+
   const std::string& path_;
-  std::span<const std::uint8_t> block_;
+  const BlockSource& block_;
   Encoding encoding_;
+  const LoadOptions& options_;
+  std::vector<std::uint8_t> headerBytes_;
+  std::span<const std::uint8_t> header_;
 };
 
-// The file split into the XML to parse and the appended data after the '_' marker (raw bytes
-// that an XML parser must not see).
-struct SplitFile {
+// The part of the file to parse as XML: all of it, or, when it has appended data, what comes
+// before the data's '_' marker (raw bytes that an XML parser must not see, and that are read
+// later, only as far as needed), with the open elements closed.
+struct XmlPart {
   std::string xml;
-  std::string_view appended;  // starts just after '_'
-  std::string appendedEncoding;
+  std::optional<std::uint64_t> appendedOffset;  // the file offset just after '_'
 };
 
-SplitFile splitAppendedData(const std::string& path, const std::string& file) {
-  SplitFile split;
-  const std::size_t tag = file.find("<AppendedData");
-  if (tag == std::string::npos) {
-    split.xml = file;
-    return split;
+XmlPart readXmlPart(const std::string& path, const FileReader& file, std::uint64_t fileSize,
+                    std::uint64_t maxXmlBytes) {
+  constexpr std::size_t kPiece = std::size_t(1) << 20;
+  const std::string tagName = "<AppendedData";
+  std::string head;
+  std::size_t tag = std::string::npos;
+  while (true) {
+    const std::size_t searched = head.size();
+    const std::size_t piece = std::size_t(std::min<std::uint64_t>(kPiece, fileSize - searched));
+    if (searched >= maxXmlBytes && piece > 0) {
+      throwInputError(path, "holds more than " + std::to_string(maxXmlBytes) +
+                                " bytes of XML, more than this format may need within the memory "
+                                "limit");
+    }
+    head.resize(searched + piece);
+    file.readAt(searched,
+                std::span(reinterpret_cast<std::uint8_t*>(head.data()) + searched, piece));
+    if (tag == std::string::npos) {
+      tag = head.find(tagName, searched >= tagName.size() ? searched - tagName.size() : 0);
+    }
+    if (tag != std::string::npos) {
+      const std::size_t close = head.find('>', tag);
+      const std::size_t underscore = close == std::string::npos ? close : head.find('_', close);
+      if (underscore != std::string::npos) {
+        head.resize(underscore);
+        return {head + "</AppendedData></VTKFile>", underscore + 1};
+      }
+    }
+    if (head.size() == fileSize) {
+      if (tag != std::string::npos) {
+        throwInputError(path, "<AppendedData> has no '_' marker before its data");
+      }
+      return {head, std::nullopt};
+    }
   }
-  const std::size_t close = file.find('>', tag);
-  const std::size_t underscore = close == std::string::npos ? close : file.find('_', close);
-  if (underscore == std::string::npos) {
-    throwInputError(path, "<AppendedData> has no '_' marker before its data");
-  }
-  split.xml = file.substr(0, underscore) + "</AppendedData></VTKFile>";
-  split.appended = std::string_view(file).substr(underscore + 1);
-  return split;
 }
 
 }  // namespace
 
-Volume readVti(const std::string& path, const VolumeLimits& limits) {
-  // A valid file holds at most the volume in base64 (4/3 of its float bytes) or ascii; twice
+Volume readVti(const std::string& path, const LoadOptions& options) {
+  const std::uint64_t fileSize = regularFileSize(path);
+  const FileReader file(path);
+  // A valid file's XML holds at most the volume in base64 (4/3 of its bytes) or ascii; twice
   // the memory limit bounds it without reading hostile sizes.
-  const std::string file = readWholeFile(path, std::uint64_t(limits.maxBytes) * 2 + (16u << 20));
-  const SplitFile split = splitAppendedData(path, file);
+  const std::uint64_t maxXmlBytes = std::uint64_t(options.limits.maxBytes) * 2 + (16u << 20);
+  const XmlPart part = readXmlPart(path, file, fileSize, maxXmlBytes);
 
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(split.xml.data(), split.xml.size()) != tinyxml2::XML_SUCCESS) {
+  if (doc.Parse(part.xml.data(), part.xml.size()) != tinyxml2::XML_SUCCESS) {
     throwInputError(path, std::string("is not valid XML: ") + doc.ErrorName() + " at line " +
                               std::to_string(doc.ErrorLineNum()));
   }
@@ -216,7 +359,6 @@ Volume readVti(const std::string& path, const VolumeLimits& limits) {
 
   const XMLElement* image = requireChild(path, root, "ImageData");
   const glm::ivec3 dims = dimsFromExtent(path, attribute(image, "WholeExtent"));
-  checkVolumeSize(path, dims, limits);
   const XMLElement* piece = requireChild(path, image, "Piece");
   if (piece->NextSiblingElement("Piece")) {
     throwInputError(path, "holds several pieces; only single-piece files are read");
@@ -245,42 +387,53 @@ Volume readVti(const std::string& path, const VolumeLimits& limits) {
   }
 
   const StoredType type = parseVtkType(path, attribute(array, "type"));
-  Volume volume = namedVolume(path);
-  volume.dims = dims;
-  volume.type = sampleTypeOf(type);
-  volume.spacing = parseSpacing(path, "Spacing", attribute(image, "Spacing", "1 1 1"));
-  const std::size_t expected = payloadBytes(dims, type);
+  planVolume(path, dims, keptSampleType(type), options.limits, options.region);
+  const glm::dvec3 spacing = parseSpacing(path, "Spacing", attribute(image, "Spacing", "1 1 1"));
+  const std::uint64_t expected = payloadBytes(dims, type);
   const std::string layout = " (" + describeLayout(dims, type) + ")";
+  auto start = [&] { return startVolume(path, dims, type, spacing, options); };
 
   const std::string format = attribute(array, "format", "ascii");
   const char* text = array->GetText();
   if (format == "ascii") {
-    volume.samples = parseTextSamples(path, text ? text : "", volume.voxelCount(), type);
+    Volume volume = start();
+    SampleSink sink(path, volume, subsetOf(volume), type, encoding.bigEndian);
+    parseTextSamples(path, text ? text : "", type, sink);
     return volume;
   }
   std::vector<std::uint8_t> decoded;  // base64 forms, decoded
-  std::span<const std::uint8_t> block;
+  std::optional<BlockSource> block;
   if (format == "binary") {
     decoded = decodeBase64(path, text ? text : "");
-    block = decoded;
+    block.emplace(decoded);
   } else if (format == "appended") {
-    if (split.appended.data() == nullptr) {
+    if (!part.appendedOffset) {
       throwInputError(path, "DataArray is appended but the file has no <AppendedData>");
     }
+    const std::uint64_t appendedSize = fileSize - *part.appendedOffset;
     const std::int64_t offset = parseInteger(path, "DataArray offset", attribute(array, "offset"));
-    if (offset < 0 || std::uint64_t(offset) > split.appended.size()) {
+    if (offset < 0 || std::uint64_t(offset) > appendedSize) {
       throwInputError(
           path, "DataArray offset " + std::to_string(offset) + " lies outside the appended data");
     }
-    const std::string_view data = split.appended.substr(std::size_t(offset));
+    const std::uint64_t dataOffset = *part.appendedOffset + std::uint64_t(offset);
     const XMLElement* appendedData = root->FirstChildElement("AppendedData");
     const std::string appendedEncoding =
         appendedData ? attribute(appendedData, "encoding", "raw") : "raw";
     if (appendedEncoding == "base64") {
-      decoded = decodeBase64(path, data.substr(0, data.find('<')));
-      block = decoded;
+      // Text up to the closing tag: read, bounded like the XML, and decoded whole.
+      const std::uint64_t size = fileSize - dataOffset;
+      if (size > maxXmlBytes) {
+        throwInputError(path, "appended base64 data of " + std::to_string(size) +
+                                  " bytes is more than this format may need within the memory "
+                                  "limit");
+      }
+      std::string data(std::size_t(size), '\0');
+      file.readAt(dataOffset, std::span(reinterpret_cast<std::uint8_t*>(data.data()), data.size()));
+      decoded = decodeBase64(path, std::string_view(data).substr(0, data.find('<')));
+      block.emplace(decoded);
     } else if (appendedEncoding == "raw") {
-      block = {reinterpret_cast<const std::uint8_t*>(data.data()), data.size()};
+      block.emplace(file, dataOffset, fileSize - dataOffset);
     } else {
       throwInputError(path, "AppendedData encoding " + quote(appendedEncoding) + " is unknown");
     }
@@ -288,8 +441,9 @@ Volume readVti(const std::string& path, const VolumeLimits& limits) {
     throwInputError(path,
                     "DataArray format " + quote(format) + " is unknown (ascii, binary, appended)");
   }
-  const auto bytes = BlockReader(path, block, encoding).read(expected, layout);
-  volume.samples = decodeSamples(path, bytes, type, encoding.bigEndian);
+  Volume volume = start();
+  SampleSink sink(path, volume, subsetOf(volume), type, encoding.bigEndian);
+  BlockReader(path, *block, encoding, options).read(expected, layout, sink);
   return volume;
 }
 

@@ -134,7 +134,7 @@ LegacyHeader parseHeader(const std::string& path, std::string_view text) {
 
 }  // namespace
 
-Volume readLegacyVtk(const std::string& path, const VolumeLimits& limits) {
+Volume readLegacyVtk(const std::string& path, const LoadOptions& options) {
   const std::uint64_t fileSize = regularFileSize(path);
   std::string start(std::size_t(std::min<std::uint64_t>(fileSize, kMaxHeaderBytes)), '\0');
   {
@@ -144,35 +144,35 @@ Volume readLegacyVtk(const std::string& path, const VolumeLimits& limits) {
   const LegacyHeader header = parseHeader(path, start);
   if (!header.dims) throwInputError(path, "header lacks DIMENSIONS");
   const glm::ivec3 dims = *header.dims;
-  checkVolumeSize(path, dims, limits);
   const StoredType type = *header.type;
+  planVolume(path, dims, keptSampleType(type), options.limits, options.region);
 
-  Volume volume = namedVolume(path);
-  volume.dims = dims;
-  volume.spacing = header.spacing;
-  volume.type = sampleTypeOf(type);
-  if (*header.pointCount < 0 || std::uint64_t(*header.pointCount) != volume.voxelCount()) {
+  const std::uint64_t points = payloadBytes(dims, StoredType::UInt8);
+  if (*header.pointCount < 0 || std::uint64_t(*header.pointCount) != points) {
     throwInputError(path, "POINT_DATA " + std::to_string(*header.pointCount) + " differs from " +
-                              std::to_string(volume.voxelCount()) + " points of DIMENSIONS");
+                              std::to_string(points) + " points of DIMENSIONS");
   }
   const std::uint64_t available = fileSize - header.dataOffset;
   if (header.binary) {
-    const std::size_t expected = payloadBytes(dims, type);
+    const std::uint64_t expected = payloadBytes(dims, type);
     if (available < expected) {
       throwInputError(path, "payload holds " + std::to_string(available) + " bytes, " +
                                 std::to_string(expected) + " expected (" +
                                 describeLayout(dims, type) + ")");
     }
-    volume.samples = decodeSamples(path, readFileBytes(path, header.dataOffset, expected), type,
-                                   /*bigEndian=*/true);
-  } else {
-    // Up to 64 characters per sample is generous for any printed number; later sections are
-    // not needed.
-    const std::uint64_t wanted = std::uint64_t(volume.voxelCount()) * 64 + 4096;
-    const auto bytes = readFileBytes(path, header.dataOffset, std::min(available, wanted));
-    const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    volume.samples = parseTextSamples(path, text, volume.voxelCount(), type);
+    Volume volume = startVolume(path, dims, type, header.spacing, options);
+    SampleSink sink(path, volume, subsetOf(volume), type, /*bigEndian=*/true);
+    readUncompressed(FileReader(path), header.dataOffset, sink, options);
+    return volume;
   }
+  // Up to 64 characters per sample is generous for any printed number; later sections are
+  // not needed.
+  const std::uint64_t wanted = points * 64 + 4096;
+  Volume volume = startVolume(path, dims, type, header.spacing, options);
+  SampleSink sink(path, volume, subsetOf(volume), type, /*bigEndian=*/true);
+  const auto bytes = readFileBytes(path, header.dataOffset, std::min(available, wanted));
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  parseTextSamples(path, text, type, sink);
   return volume;
 }
 

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "io/volume_loader.h"
+#include "io_test_files.h"
 
 namespace vsil {
 namespace {
@@ -21,11 +22,11 @@ TEST(Generators, EveryNameMakesAnNCubeOfFloatsInUnitRange) {
   for (const auto& name : generatorNames()) {
     const Volume volume = generateVolume(name + ":33");
     EXPECT_EQ(volume.dims, glm::ivec3(33)) << name;
-    EXPECT_EQ(volume.type, SampleType::Float32) << name;
+    EXPECT_EQ(volume.type(), SampleType::Float32) << name;
     EXPECT_EQ(volume.spacing, glm::dvec3(1.0)) << name;
     EXPECT_EQ(volume.name, name);
     EXPECT_EQ(volume.source, "gen:" + name + ":33");
-    ASSERT_EQ(volume.samples.size(), 33u * 33u * 33u) << name;
+    ASSERT_EQ(volume.sampleCount(), 33u * 33u * 33u) << name;
     const auto range = valueRange(volume);
     EXPECT_GE(range.min, 0.0f) << name;
     EXPECT_LE(range.max, 1.0f) << name;
@@ -103,7 +104,7 @@ TEST(Generators, AreDeterministic) {
   for (const auto& name : generatorNames()) {
     const Volume a = generateVolume(name + ":24");
     const Volume b = generateVolume(name + ":24");
-    EXPECT_TRUE(a.samples == b.samples) << name;
+    EXPECT_TRUE(test::floatsOf(a) == test::floatsOf(b)) << name;
   }
 }
 

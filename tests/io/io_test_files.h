@@ -47,6 +47,9 @@ inline Bytes encodeSamples(const std::vector<float>& values, SampleType type, bo
       case SampleType::UInt8:
         out.push_back(std::uint8_t(v));
         break;
+      case SampleType::Int8:
+        out.push_back(std::uint8_t(std::int8_t(v)));
+        break;
       case SampleType::UInt16:
         appendWord(out, std::uint16_t(v), 2, bigEndian);
         break;
@@ -62,6 +65,13 @@ inline Bytes encodeSamples(const std::vector<float>& values, SampleType type, bo
     }
   }
   return out;
+}
+
+// A volume's samples as floats (Volume::value), to compare with the values a test wrote.
+inline std::vector<float> floatsOf(const Volume& volume) {
+  std::vector<float> values(volume.sampleCount());
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = volume.value(i);
+  return values;
 }
 
 // Deflate with a zlib (windowBits 15) or gzip (15 + 16) wrapper.
@@ -100,6 +110,7 @@ inline std::vector<float> testValues(glm::ivec3 dims, SampleType type) {
   std::vector<float> values(std::size_t(dims.x) * dims.y * dims.z);
   for (std::size_t i = 0; i < values.size(); ++i) {
     values[i] = float((i * 37) % 251);
+    if (type == SampleType::Int8) values[i] = float(int(values[i]) - 125);
     if (type == SampleType::UInt16) values[i] *= 251.0f;
     if (type == SampleType::Int16) values[i] = values[i] * 100.0f - 12000.0f;
     if (type == SampleType::Float32) values[i] = values[i] * 0.37f - 20.5f;

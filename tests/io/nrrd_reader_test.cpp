@@ -54,12 +54,14 @@ TEST_P(NrrdRoundTrip, ReadsBackTheWrittenSamples) {
   EXPECT_EQ(volume.name, "volume");
   EXPECT_EQ(volume.dims, kDims);
   EXPECT_EQ(volume.spacing, glm::dvec3(0.5, 1, 2.25));
-  EXPECT_EQ(volume.type, c.type);
-  EXPECT_EQ(volume.samples, values);  // exact: every test value is representable in its type
+  EXPECT_EQ(volume.type(), c.type);
+  EXPECT_EQ(test::floatsOf(volume),
+            values);  // exact: every test value is representable in its type
 }
 
 std::vector<NrrdCase> allCases() {
   const std::pair<SampleType, const char*> types[] = {{SampleType::UInt8, "uint8"},
+                                                      {SampleType::Int8, "int8"},
                                                       {SampleType::UInt16, "uint16"},
                                                       {SampleType::Int16, "int16"},
                                                       {SampleType::Float32, "float"}};
@@ -98,25 +100,30 @@ TEST(NrrdReader, AcceptsTypeAliases) {
     const Volume v =
         loadAttached(std::string("type: ") + alias + "\nendian: little\nencoding: raw\n",
                      test::encodeSamples(values, type, false));
-    EXPECT_EQ(v.type, type) << alias;
-    EXPECT_EQ(v.samples, values) << alias;
+    EXPECT_EQ(v.type(), type) << alias;
+    EXPECT_EQ(test::floatsOf(v), values) << alias;
   }
 }
 
-TEST(NrrdReader, Int8LoadsAsInt16AndDoubleAsFloat32) {
+// int8 is kept as int8 (it loaded as int16 before samples kept their file's type); float64 is
+// kept as float32, the values that float32 rounds counted.
+TEST(NrrdReader, Int8StaysInt8AndDoubleLoadsAsFloat32) {
   const Volume int8 = loadAttached("type: signed char\nencoding: raw\n", {0x00, 0x7f, 0x80, 0xff});
-  EXPECT_EQ(int8.type, SampleType::Int16);
-  EXPECT_EQ(int8.samples, (std::vector<float>{0, 127, -128, -1}));
+  EXPECT_EQ(int8.type(), SampleType::Int8);
+  EXPECT_EQ(int8.fileType, "");
+  EXPECT_EQ(test::floatsOf(int8), (std::vector<float>{0, 127, -128, -1}));
 
   Bytes doubles;
-  for (double d : {0.5, -2.0, 1e10, 3.25}) {
+  for (double d : {0.5, -2.0, 1e10, 0.1}) {
     std::uint64_t bits;
     std::memcpy(&bits, &d, 8);
     test::appendWord(doubles, bits, 8, false);
   }
   const Volume f64 = loadAttached("type: double\nendian: little\nencoding: raw\n", doubles);
-  EXPECT_EQ(f64.type, SampleType::Float32);
-  EXPECT_EQ(f64.samples, (std::vector<float>{0.5f, -2.0f, 1e10f, 3.25f}));
+  EXPECT_EQ(f64.type(), SampleType::Float32);
+  EXPECT_EQ(test::floatsOf(f64), (std::vector<float>{0.5f, -2.0f, 1e10f, 0.1f}));
+  EXPECT_EQ(f64.fileType, "float64");
+  EXPECT_EQ(f64.inexactSamples, 1u);  // 0.1; the others are exact in float32
 }
 
 TEST(NrrdReader, SpacingIsTheLengthOfEachSpaceDirection) {
@@ -131,13 +138,13 @@ TEST(NrrdReader, SpacingIsTheLengthOfEachSpaceDirection) {
 TEST(NrrdReader, AsciiEncodingAndByteSkip) {
   const Volume text = loadAttached("type: short\nencoding: ascii\n",
                                    test::Bytes{'1', ' ', '-', '2', '\n', '3', ' ', '4'});
-  EXPECT_EQ(text.samples, (std::vector<float>{1, -2, 3, 4}));
+  EXPECT_EQ(test::floatsOf(text), (std::vector<float>{1, -2, 3, 4}));
   const Volume skipped =
       loadAttached("type: uint8\nencoding: raw\nbyte skip: 3\n", {9, 9, 9, 1, 2, 3, 4});
-  EXPECT_EQ(skipped.samples, (std::vector<float>{1, 2, 3, 4}));
+  EXPECT_EQ(test::floatsOf(skipped), (std::vector<float>{1, 2, 3, 4}));
   const Volume fromEnd =
       loadAttached("type: uint8\nencoding: raw\nbyte skip: -1\n", {9, 9, 1, 2, 3, 4});
-  EXPECT_EQ(fromEnd.samples, (std::vector<float>{1, 2, 3, 4}));
+  EXPECT_EQ(test::floatsOf(fromEnd), (std::vector<float>{1, 2, 3, 4}));
 }
 
 TEST(NrrdReader, CrLfHeadersAndKeyValuePairs) {
@@ -145,7 +152,7 @@ TEST(NrrdReader, CrLfHeadersAndKeyValuePairs) {
   test::writeFile(path, std::string("NRRD0004\r\ntype: uint8\r\nmodality:=CT\r\ndimension: 3\r\n"
                                     "sizes: 2 1 1\r\nencoding: raw\r\n\r\n") +
                             "\x05\x06");
-  EXPECT_EQ(loadVolume(path.string()).samples, (std::vector<float>{5, 6}));
+  EXPECT_EQ(test::floatsOf(loadVolume(path.string())), (std::vector<float>{5, 6}));
 }
 
 }  // namespace

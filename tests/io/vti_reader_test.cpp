@@ -27,6 +27,8 @@ const char* vtkTypeName(SampleType type) {
   switch (type) {
     case SampleType::UInt8:
       return "UInt8";
+    case SampleType::Int8:
+      return "Int8";
     case SampleType::UInt16:
       return "UInt16";
     case SampleType::Int16:
@@ -123,22 +125,21 @@ TEST_P(VtiRoundTrip, ReadsBackTheWrittenSamples) {
   EXPECT_EQ(volume.name, "image");
   EXPECT_EQ(volume.dims, kDims);
   EXPECT_EQ(volume.spacing, glm::dvec3(0.5, 1, 2.25));
-  EXPECT_EQ(volume.type, c.type);
+  EXPECT_EQ(volume.type(), c.type);
   if (c.format == Format::Ascii && c.type == SampleType::Float32) {
     // std::to_string prints 6 decimals (error <= 5e-7) and parsing rounds to the nearest float
     // (half an ulp, <= 4e-6 below 128): 1e-4 covers both with room.
     for (std::size_t i = 0; i < values.size(); ++i) {
-      EXPECT_NEAR(volume.samples[i], values[i], 1e-4) << "sample " << i;
+      EXPECT_NEAR(volume.value(i), values[i], 1e-4) << "sample " << i;
     }
   } else {
-    EXPECT_EQ(volume.samples, values);
+    EXPECT_EQ(test::floatsOf(volume), values);
   }
 }
 
 std::vector<VtiCase> allCases() {
   std::vector<VtiCase> cases;
-  for (SampleType type :
-       {SampleType::UInt8, SampleType::UInt16, SampleType::Int16, SampleType::Float32}) {
+  for (SampleType type : kSampleTypes) {
     cases.push_back({type, Format::Ascii, false, false, false});
     for (Format format : {Format::Inline, Format::AppendedRaw, Format::AppendedBase64}) {
       for (bool compressed : {false, true}) {

@@ -17,13 +17,13 @@ Volume rampVolume(const char* name, glm::ivec3 dims, double ramp, InsideDistance
   volume.name = name;
   volume.source = std::string("test:") + name;
   volume.dims = dims;
-  volume.type = SampleType::Float32;
-  volume.samples.resize(volume.voxelCount());
+  volume.allocate(SampleType::Float32);
+  const std::span<float> samples = volume.samples<float>();
   for (int z = 0; z < dims.z; ++z) {
     for (int y = 0; y < dims.y; ++y) {
       for (int x = 0; x < dims.x; ++x) {
         const double d = insideDistance(glm::dvec3(x, y, z));
-        volume.samples[volume.index(x, y, z)] = float(std::clamp(0.5 + d / ramp, 0.0, 1.0));
+        samples[volume.index(x, y, z)] = float(std::clamp(0.5 + d / ramp, 0.0, 1.0));
       }
     }
   }

@@ -27,11 +27,10 @@ Volume randomVolume(glm::ivec3 dims, unsigned seed) {
   Volume volume;
   volume.name = "random";
   volume.dims = dims;
-  volume.type = SampleType::Float32;
+  volume.allocate(SampleType::Float32);
   std::mt19937 random(seed);
   std::uniform_real_distribution<float> value(0.0f, 5.0f), chance(0.0f, 1.0f);
-  volume.samples.resize(volume.voxelCount());
-  for (float& v : volume.samples) v = chance(random) < 0.005f ? value(random) : -1.0f;
+  for (float& v : volume.samples<float>()) v = chance(random) < 0.005f ? value(random) : -1.0f;
   return volume;
 }
 
@@ -40,9 +39,8 @@ Volume spikesVolume(glm::ivec3 dims, const std::vector<glm::ivec3>& spikes) {
   Volume volume;
   volume.name = "spikes";
   volume.dims = dims;
-  volume.type = SampleType::Float32;
-  volume.samples.assign(volume.voxelCount(), 0.0f);
-  for (const auto& s : spikes) volume.samples[volume.index(s.x, s.y, s.z)] = 1.0f;
+  volume.allocate(SampleType::Float32);
+  for (const auto& s : spikes) volume.samples<float>()[volume.index(s.x, s.y, s.z)] = 1.0f;
   return volume;
 }
 

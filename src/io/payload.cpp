@@ -1,0 +1,51 @@
+// What every reader does the same way: start the volume it keeps, read uncompressed payloads.
+#include <algorithm>
+#include <filesystem>
+#include <vector>
+
+#include "io/file_access.h"
+#include "io/readers.h"
+
+namespace vsil::io {
+
+Volume startVolume(const std::string& path, glm::ivec3 fileDims, StoredType type,
+                   glm::dvec3 spacing, const LoadOptions& options) {
+  const SampleType kept = keptSampleType(type);
+  const VolumeSubset subset = planVolume(path, fileDims, kept, options.limits, options.region);
+  Volume volume;
+  volume.name = std::filesystem::path(path).stem().string();
+  volume.source = path;
+  volume.dims = subset.dims();
+  volume.spacing = spacing * double(subset.stride);
+  if (type != storedTypeOf(kept)) volume.fileType = storedTypeName(type);
+  if (!subset.whole()) volume.subset = subset;
+  volume.allocate(kept);
+  return volume;
+}
+
+VolumeSubset subsetOf(const Volume& volume) {
+  if (volume.subset) return *volume.subset;
+  VolumeSubset whole;
+  whole.fileDims = whole.hi = volume.dims;
+  return whole;
+}
+
+void readUncompressed(const FileReader& file, std::uint64_t offset, SampleSink& sink,
+                      const LoadOptions& options) {
+  // A few MiB per read: large enough for the disk, small beside any volume worth reporting.
+  constexpr std::uint64_t kPieceBytes = std::uint64_t(4) << 20;
+  const std::size_t size = sink.sampleSize();
+  std::vector<std::uint8_t> buffer;
+  const std::uint64_t total = sink.neededBytes();
+  std::uint64_t done = 0;
+  sink.forEachRun(kPieceBytes, [&](std::uint64_t first, std::uint64_t count) {
+    buffer.resize(std::size_t(count * size));
+    file.readAt(offset + first * size, buffer);
+    sink.put(first, buffer);
+    done += count * size;
+    if (options.progress) options.progress(done, total);
+  });
+  sink.finish();
+}
+
+}  // namespace vsil::io

@@ -1,0 +1,236 @@
+#include "io/sample_sink.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "core/error.h"
+
+namespace vsil::io {
+namespace {
+
+template <typename Unsigned>
+Unsigned byteSwapped(Unsigned value) {
+  Unsigned swapped = 0;
+  for (std::size_t i = 0; i < sizeof(Unsigned); ++i) {
+    swapped = Unsigned((swapped << 8) | ((value >> (8 * i)) & 0xff));
+  }
+  return swapped;
+}
+
+// The file's sample at `p` as its own C++ type.
+template <typename FileC>
+FileC load(const std::uint8_t* p, bool swap) {
+  using Bits = std::conditional_t<
+      sizeof(FileC) == 1, std::uint8_t,
+      std::conditional_t<sizeof(FileC) == 2, std::uint16_t,
+                         std::conditional_t<sizeof(FileC) == 4, std::uint32_t, std::uint64_t>>>;
+  Bits bits;
+  std::memcpy(&bits, p, sizeof bits);
+  if (swap) bits = byteSwapped(bits);
+  return std::bit_cast<FileC>(bits);
+}
+
+[[noreturn]] void badSample(const std::string& where, std::uint64_t index,
+                            const std::string& what) {
+  throwInputError(where, "sample " + std::to_string(index) + " " + what);
+}
+
+void checkFinite(const std::string& where, std::uint64_t index, double value) {
+  if (std::isnan(value)) badSample(where, index, "is NaN");
+  if (std::isinf(value)) badSample(where, index, "is infinite");
+}
+
+}  // namespace
+
+SampleSink::SampleSink(const std::string& where, Volume& volume, const VolumeSubset& subset,
+                       StoredType fileType, bool bigEndian)
+    : where_(where),
+      volume_(volume),
+      subset_(subset),
+      fileType_(fileType),
+      swap_(bigEndian != (std::endian::native == std::endian::big)),
+      size_(storedSize(fileType)),
+      fileSamples_(std::uint64_t(subset.fileDims.x) * std::uint64_t(subset.fileDims.y) *
+                   std::uint64_t(subset.fileDims.z)),
+      whole_(subset.whole()) {
+  if (volume.type() != keptSampleType(fileType) || volume.dims != subset.dims() ||
+      volume.sampleCount() != volume.voxelCount()) {
+    throw std::logic_error("SampleSink: the volume is not allocated for the subset");
+  }
+  if (size_ == 1) swap_ = false;
+}
+
+std::uint64_t SampleSink::neededBytes() const {
+  const glm::ivec3 kept = subset_.dims();
+  const std::uint64_t rowSamples = std::uint64_t(subset_.hi.x - 1 - subset_.lo.x) /
+                                       std::uint64_t(subset_.stride) * subset_.stride +
+                                   1;
+  return std::uint64_t(kept.y) * std::uint64_t(kept.z) * rowSamples * size_;
+}
+
+bool SampleSink::rowKept(std::uint64_t row) const {
+  const auto fy = std::uint64_t(subset_.fileDims.y);
+  return subset_.keeps(1, int(row % fy)) && subset_.keeps(2, int(row / fy));
+}
+
+template <typename Out>
+void SampleSink::decode(Out* out, const std::uint8_t* in, std::size_t inStep, std::size_t count,
+                        std::uint64_t firstSample) {
+  if constexpr (std::is_same_v<Out, float>) {
+    if (fileType_ == StoredType::Float64) {
+      std::uint64_t inexact = 0;
+      for (std::size_t i = 0; i < count; ++i, in += inStep) {
+        const double value = load<double>(in, swap_);
+        checkFinite(where_, firstSample + i * subset_.stride, value);
+        if (std::abs(value) > double(std::numeric_limits<float>::max())) {
+          badSample(where_, firstSample + i * subset_.stride,
+                    "(" + std::to_string(value) + ") is beyond the float32 range");
+        }
+        out[i] = float(value);
+        inexact += double(out[i]) != value;
+      }
+      if (inexact) inexact_ += inexact;
+      return;
+    }
+  }
+  if (!swap_ && inStep == sizeof(Out)) {
+    std::memcpy(out, in, count * sizeof(Out));
+  } else {
+    for (std::size_t i = 0; i < count; ++i, in += inStep) out[i] = load<Out>(in, swap_);
+  }
+  if constexpr (std::is_same_v<Out, float>) {
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!std::isfinite(out[i])) checkFinite(where_, firstSample + i * subset_.stride, out[i]);
+    }
+  }
+}
+
+void SampleSink::decodeRun(std::size_t keptIndex, const std::uint8_t* in, std::size_t inStep,
+                           std::size_t count, std::uint64_t firstSample) {
+  volume_.visit(
+      [&](auto samples) { decode(samples.data() + keptIndex, in, inStep, count, firstSample); });
+}
+
+void SampleSink::put(std::uint64_t firstSample, std::span<const std::uint8_t> bytes) {
+  std::uint64_t count = bytes.size() / size_;
+  if (firstSample > fileSamples_ || count > fileSamples_ - firstSample) {
+    throw std::logic_error("SampleSink::put: samples beyond the file's");
+  }
+  const std::uint8_t* in = bytes.data();
+  if (whole_) {
+    decodeRun(std::size_t(firstSample), in, size_, std::size_t(count), firstSample);
+    return;
+  }
+  const auto fx = std::uint64_t(subset_.fileDims.x);
+  const std::uint64_t stride = std::uint64_t(subset_.stride);
+  const auto lo = std::uint64_t(subset_.lo.x), hi = std::uint64_t(subset_.hi.x);
+  std::uint64_t sample = firstSample;
+  while (count > 0) {
+    const std::uint64_t x = sample % fx, row = sample / fx;
+    const std::uint64_t segment = std::min(count, fx - x);
+    if (rowKept(row)) {
+      std::uint64_t first = std::max(x, lo);
+      if (const std::uint64_t offset = (first - lo) % stride) first += stride - offset;
+      const std::uint64_t last = std::min(x + segment, hi);  // exclusive
+      if (first < last) {
+        const std::uint64_t fy = std::uint64_t(subset_.fileDims.y);
+        const std::size_t kept =
+            volume_.index(int((first - lo) / stride), subset_.keptIndex(1, int(row % fy)),
+                          subset_.keptIndex(2, int(row / fy)));
+        decodeRun(kept, in + (first - x) * size_, std::size_t(stride * size_),
+                  std::size_t((last - first + stride - 1) / stride), sample + (first - x));
+      }
+    }
+    sample += segment;
+    in += segment * size_;
+    count -= segment;
+  }
+}
+
+void SampleSink::Appender::append(std::span<const std::uint8_t> bytes) {
+  const std::size_t size = sink_.size_;
+  if (!partial_.empty()) {
+    const std::size_t take = std::min(size - partial_.size(), bytes.size());
+    partial_.insert(partial_.end(), bytes.begin(), bytes.begin() + std::ptrdiff_t(take));
+    bytes = bytes.subspan(take);
+    if (partial_.size() < size) return;
+    sink_.put(next_++, partial_);
+    partial_.clear();
+  }
+  const std::size_t whole = bytes.size() / size * size;
+  if (whole) {
+    sink_.put(next_, bytes.first(whole));
+    next_ += whole / size;
+  }
+  partial_.assign(bytes.begin() + std::ptrdiff_t(whole), bytes.end());
+}
+
+void SampleSink::putValue(std::uint64_t index, double value) {
+  std::size_t kept = 0;
+  if (whole_) {
+    kept = std::size_t(index);
+  } else {
+    const auto fx = std::uint64_t(subset_.fileDims.x), fy = std::uint64_t(subset_.fileDims.y);
+    const int x = int(index % fx), y = int(index / fx % fy), z = int(index / fx / fy);
+    if (!subset_.keeps(0, x) || !subset_.keeps(1, y) || !subset_.keeps(2, z)) return;
+    kept = volume_.index(subset_.keptIndex(0, x), subset_.keptIndex(1, y), subset_.keptIndex(2, z));
+  }
+  volume_.visit([&](auto samples) {
+    using Out = typename decltype(samples)::value_type;
+    samples[kept] = Out(value);
+    if constexpr (std::is_same_v<Out, float>) {
+      if (fileType_ == StoredType::Float64 && double(samples[kept]) != value) ++inexact_;
+    }
+  });
+}
+
+void SampleSink::forEachRun(
+    std::uint64_t maxBytes,
+    const std::function<void(std::uint64_t firstSample, std::uint64_t count)>& f) const {
+  const std::uint64_t maxSamples = std::max<std::uint64_t>(1, maxBytes / size_);
+  const glm::u64vec3 fileDims(subset_.fileDims);
+  const auto stride = std::uint64_t(subset_.stride);
+  // Each kept row from its first to its last kept sample.
+  const std::uint64_t rowSamples =
+      (std::uint64_t(subset_.hi.x - 1 - subset_.lo.x) / stride) * stride + 1;
+  std::uint64_t runStart = 0, runCount = 0;
+  auto emit = [&] {
+    for (std::uint64_t done = 0; done < runCount;) {
+      const std::uint64_t count = std::min(maxSamples, runCount - done);
+      f(runStart + done, count);
+      done += count;
+    }
+    runCount = 0;
+  };
+  for (int z = subset_.lo.z; z < subset_.hi.z; z += subset_.stride) {
+    for (int y = subset_.lo.y; y < subset_.hi.y; y += subset_.stride) {
+      const std::uint64_t start =
+          (std::uint64_t(z) * fileDims.y + std::uint64_t(y)) * fileDims.x + subset_.lo.x;
+      if (runCount && runStart + runCount == start && runCount + rowSamples <= maxSamples) {
+        runCount += rowSamples;
+      } else {
+        emit();
+        runStart = start;
+        runCount = rowSamples;
+      }
+    }
+  }
+  emit();
+}
+
+void SampleSink::finishAppending() {
+  if (appender_.nextSample() != fileSamples_ || appender_.withinSample()) {
+    throw std::logic_error("SampleSink: " + std::to_string(appender_.nextSample()) + " of " +
+                           std::to_string(fileSamples_) + " samples appended");
+  }
+  finish();
+}
+
+void SampleSink::finish() {
+  volume_.inexactSamples = inexact_;
+}
+
+}  // namespace vsil::io
