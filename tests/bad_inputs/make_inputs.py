@@ -21,6 +21,11 @@ write('wrong_magic.nrrd', (nrrd % ('uint8', '2 2 2', '', 'raw')).replace('NRRD00
 # 1 MiB of zeros in ~1 KiB of gzip, for a 64-byte volume: must stop after 65 bytes of output.
 write('gzip_bomb.nrrd', (nrrd % ('uint8', '4 4 4', '', 'gzip')).encode() + gzip.compress(bytes(1 << 20), 9, mtime=0))
 write('empty.nrrd', b'')
+# A header claiming 1024³ uint16 samples with 16 bytes of payload, and one whose data file does
+# not exist: the texture and memory checks answer first (they run before any payload is opened
+# or read); with a small enough --crop they pass and the payload's own error follows.
+write('claims_1024_cube.nrrd', (nrrd % ('uint16', '1024 1024 1024', 'endian: little\n', 'raw')).encode() + bytes(16))
+write('missing_data.nhdr', (nrrd % ('uint16', '1024 1024 1024', 'endian: little\n', 'raw')).replace('encoding: raw\n', 'encoding: raw\ndata file: no_such_data.raw\n'))
 write('unknown_format.xyz', b'some bytes\n')
 
 vti_head = ('<VTKFile type="ImageData" byte_order="LittleEndian" header_type="UInt32"%s>\n'

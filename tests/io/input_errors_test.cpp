@@ -245,6 +245,53 @@ TEST(InputErrors, ZlibBlockBombInVti) {
                    {"zlib block 0 inflates to more than the 8 bytes expected"});
 }
 
+// The zlib blocks of a VTI are inflated on every core at once; whatever the threads meet, the
+// error is the one reading block by block meets first: the lowest broken block's.
+TEST(InputErrors, ParallelZlibBlocksReportTheFirstBrokenBlock) {
+  // 32 blocks of 64 bytes (uint8 samples, 8x16x16).
+  const std::size_t blockSize = 64, blocks = 32;
+  std::vector<Bytes> packed;
+  for (std::size_t b = 0; b < blocks; ++b)
+    packed.push_back(test::deflateBytes(Bytes(blockSize, std::uint8_t(b)), false));
+  auto file = [&](const std::vector<Bytes>& data, std::size_t claimedLastBlock) {
+    Bytes block;
+    for (std::uint64_t word : {std::uint64_t(blocks), std::uint64_t(blockSize), std::uint64_t(0)}) {
+      test::appendWord(block, word, 4, false);
+    }
+    for (std::size_t b = 0; b < blocks; ++b) {
+      test::appendWord(block, b + 1 == blocks ? claimedLastBlock : data[b].size(), 4, false);
+    }
+    for (const Bytes& d : data) block.insert(block.end(), d.begin(), d.end());
+    return scratchFile("blocks.vti",
+                       "<VTKFile type=\"ImageData\" header_type=\"UInt32\" "
+                       "compressor=\"vtkZLibDataCompressor\"><ImageData WholeExtent=\"0 7 0 15 0 "
+                       "15\"><Piece><PointData><DataArray type=\"UInt8\" format=\"appended\" "
+                       "offset=\"0\"/></PointData></Piece></ImageData><AppendedData "
+                       "encoding=\"raw\">_" +
+                           test::asText(block));
+  };
+  std::vector<Bytes> data = packed;
+  const std::string good = file(data, data.back().size());
+  const Volume volume = loadVolume(good);
+  for (std::size_t b = 0; b < blocks; ++b) ASSERT_EQ(volume.value(b * blockSize + 5), float(b));
+  // Corrupt blocks 29, 17 and 6 (in that order: the lowest is not the first one written).
+  for (std::size_t b : {29u, 17u, 6u}) {
+    data[b][data[b].size() / 2] ^= 0xff;
+    data[b][2] ^= 0x55;
+  }
+  for (int run = 0; run < 5; ++run) {
+    const std::string path = file(data, data.back().size());
+    expectInputError([&] { loadVolume(path); }, path + ": zlib block 6 ", {});
+  }
+  // A last block claiming more bytes than the file holds: reported after the blocks before it.
+  const std::string truncated = file(packed, packed.back().size() + 1000);
+  expectInputError([&] { loadVolume(truncated); }, truncated + ": zlib block 31 is truncated", {});
+  data = packed;
+  data[3][2] ^= 0x55;
+  const std::string both = file(data, data.back().size() + 1000);
+  expectInputError([&] { loadVolume(both); }, both + ": zlib block 3 ", {});
+}
+
 TEST(InputErrors, BrokenVtiFiles) {
   const std::string head =
       "<VTKFile type=\"ImageData\" header_type=\"UInt32\">"

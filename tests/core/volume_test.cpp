@@ -1,0 +1,206 @@
+// Volume keeps its samples in their own type: the accessors every consumer uses (visit,
+// samples<T>, value, at, valueRange) agree with what was written, per type; the checks that
+// run before a reader allocates (planVolume, resolveRegion) and the render's memory model.
+#include "core/volume.h"
+
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
+namespace vsil {
+namespace {
+
+// Fills a 5x4x3 volume of `type` with value(i) = a type-specific pattern, through the typed
+// view, and returns the volume.
+template <typename C>
+Volume patterned(glm::ivec3 dims, C (*pattern)(std::size_t)) {
+  Volume volume;
+  volume.dims = dims;
+  volume.allocate(sampleTypeFor<C>());
+  const std::span<C> samples = volume.samples<C>();
+  for (std::size_t i = 0; i < samples.size(); ++i) samples[i] = pattern(i);
+  return volume;
+}
+
+template <typename C>
+void expectAccessorsAgree(C (*pattern)(std::size_t), SampleType type, std::size_t bytes) {
+  SCOPED_TRACE(sampleTypeName(type));
+  const glm::ivec3 dims(5, 4, 3);
+  const Volume volume = patterned<C>(dims, pattern);
+  EXPECT_EQ(volume.type(), type);
+  EXPECT_EQ(sampleTypeSize(type), bytes);
+  EXPECT_EQ(volume.sampleCount(), 60u);
+  EXPECT_EQ(volume.sampleBytes(), 60u * bytes);
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  for (int z = 0; z < dims.z; ++z) {
+    for (int y = 0; y < dims.y; ++y) {
+      for (int x = 0; x < dims.x; ++x) {
+        const std::size_t i = volume.index(x, y, z);
+        EXPECT_EQ(i, std::size_t(x + 5 * (y + 4 * z)));
+        const float expected = float(pattern(i));
+        EXPECT_EQ(volume.at(x, y, z), expected) << x << "," << y << "," << z;
+        EXPECT_EQ(volume.value(i), expected);
+        lo = std::min(lo, expected);
+        hi = std::max(hi, expected);
+      }
+    }
+  }
+  const ValueRange range = valueRange(volume);
+  EXPECT_EQ(range.min, lo);
+  EXPECT_EQ(range.max, hi);
+  // visit hands out the samples in their own type, the same memory as samples<C>().
+  const bool sameSpan = volume.visit([&](auto samples) {
+    if constexpr (std::is_same_v<typename decltype(samples)::value_type, C>) {
+      return samples.data() == volume.samples<C>().data() && samples.size() == 60;
+    }
+    return false;
+  });
+  EXPECT_TRUE(sameSpan);
+}
+
+TEST(Volume, AccessorsAgreeForEveryType) {
+  expectAccessorsAgree<std::uint8_t>([](std::size_t i) { return std::uint8_t(255 - i * 4); },
+                                     SampleType::UInt8, 1);
+  expectAccessorsAgree<std::int8_t>([](std::size_t i) { return std::int8_t(int(i) * 4 - 128); },
+                                    SampleType::Int8, 1);
+  expectAccessorsAgree<std::uint16_t>([](std::size_t i) { return std::uint16_t(65535 - i * 1000); },
+                                      SampleType::UInt16, 2);
+  expectAccessorsAgree<std::int16_t>(
+      [](std::size_t i) { return std::int16_t(int(i) * 1000 - 32768); }, SampleType::Int16, 2);
+  expectAccessorsAgree<float>([](std::size_t i) { return float(i) * -0.37f + 1e6f; },
+                              SampleType::Float32, 4);
+}
+
+TEST(Volume, TypedViewOfAnotherTypeIsALogicError) {
+  Volume volume;
+  volume.dims = {2, 2, 2};
+  volume.allocate(SampleType::UInt16);
+  EXPECT_THROW(volume.samples<float>(), std::logic_error);
+  EXPECT_THROW(volume.samples<std::int16_t>(), std::logic_error);
+  EXPECT_NO_THROW(volume.samples<std::uint16_t>());
+}
+
+TEST(Volume, AllocateZeroesAndReplacesTheType) {
+  Volume volume;
+  volume.dims = {3, 1, 1};
+  volume.allocate(SampleType::Float32);
+  volume.samples<float>()[1] = 5.0f;
+  volume.allocate(SampleType::Int8);
+  EXPECT_EQ(volume.type(), SampleType::Int8);
+  EXPECT_EQ(volume.sampleBytes(), 3u);
+  for (int x = 0; x < 3; ++x) EXPECT_EQ(volume.at(x, 0, 0), 0.0f);
+}
+
+TEST(Volume, TypeNamesAndSizes) {
+  const char* names[] = {"uint8", "int8", "uint16", "int16", "float32"};
+  int i = 0;
+  for (SampleType type : kSampleTypes) {
+    EXPECT_STREQ(sampleTypeName(type), names[i++]);
+    EXPECT_EQ(isIntegerType(type), type != SampleType::Float32);
+  }
+}
+
+ReadRegion cropOf(std::optional<int> x0, std::optional<int> x1, std::optional<int> y0,
+                  std::optional<int> y1, std::optional<int> z0, std::optional<int> z1,
+                  int stride = 1) {
+  ReadRegion region;
+  region.crop = std::array<ReadRegion::Range, 3>{{{x0, x1}, {y0, y1}, {z0, z1}}};
+  region.cropText = "test";
+  region.stride = stride;
+  return region;
+}
+
+TEST(VolumeRegion, HalfOpenRangesWithOpenEndsAndStride) {
+  // x 2..9 every 3rd: 2, 5, 8 -> 3; y from 1 to the edge (7) every 3rd: 1, 4 -> 2; z all 5: 0, 3
+  const ReadRegion region = cropOf(2, 10, 1, std::nullopt, std::nullopt, std::nullopt, 3);
+  const VolumeSubset subset = resolveRegion("f", {12, 7, 5}, region);
+  EXPECT_EQ(subset.lo, glm::ivec3(2, 1, 0));
+  EXPECT_EQ(subset.hi, glm::ivec3(10, 7, 5));
+  EXPECT_EQ(subset.dims(), glm::ivec3(3, 2, 2));
+  EXPECT_FALSE(subset.whole());
+  EXPECT_TRUE(subset.keeps(0, 8));
+  EXPECT_FALSE(subset.keeps(0, 9));
+  EXPECT_FALSE(subset.keeps(0, 11));
+  EXPECT_EQ(subset.keptIndex(0, 8), 2);
+  EXPECT_EQ(subset.cropText(), "2:10,1:7,0:5");
+  EXPECT_TRUE(resolveRegion("f", {4, 4, 4}, ReadRegion{}).whole());
+}
+
+TEST(VolumeRegion, RangesBeyondTheVolumeNameFlagAndFile) {
+  const std::string message = [] {
+    try {
+      resolveRegion("data.raw", {10, 10, 1}, cropOf(0, 11, {}, {}, {}, {}));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  }();
+  EXPECT_EQ(message,
+            "data.raw: --crop 'test' ends at x = 11, beyond the volume's 10 samples along x");
+  EXPECT_THROW(resolveRegion("f", {10, 10, 1}, cropOf({}, {}, {}, {}, 1, {})), InputError);
+}
+
+TEST(PlanVolume, ChecksTheKeptVolumeAgainstTheLimits) {
+  VolumeLimits limits;
+  limits.maxBytes = std::size_t(1) << 20;
+  // 128³ uint8 = 2 MiB: over 1 MiB whole, 256 KiB with stride 2.
+  EXPECT_THROW(planVolume("f", glm::ivec3(128), SampleType::UInt8, limits), InputError);
+  ReadRegion stride2;
+  stride2.stride = 2;
+  EXPECT_EQ(planVolume("f", glm::ivec3(128), SampleType::UInt8, limits, stride2).dims(),
+            glm::ivec3(64));
+  // The same as float32 (4 bytes) still fits; as the task counts it (a render), it does not.
+  EXPECT_NO_THROW(planVolume("f", glm::ivec3(64), SampleType::Float32, limits));
+  limits.taskBytes = [](glm::ivec3 dims, SampleType type) {
+    return limits::renderVolumeBytes(dims, sampleTypeSize(type));
+  };
+  EXPECT_THROW(planVolume("f", glm::ivec3(64), SampleType::Float32, limits), InputError);
+  // Per axis: a file larger than the texture limit is fine when what is kept fits.
+  limits = {};
+  EXPECT_THROW(planVolume("f", {4096, 8, 8}, SampleType::UInt8, limits), InputError);
+  EXPECT_EQ(
+      planVolume("f", {4096, 8, 8}, SampleType::UInt8, limits, cropOf(1000, 3000, {}, {}, {}, {}))
+          .dims(),
+      glm::ivec3(2000, 8, 8));
+  EXPECT_THROW(
+      planVolume("f", {4096, 8, 8}, SampleType::UInt8, limits, cropOf(0, 4096, {}, {}, {}, {})),
+      InputError);
+}
+
+TEST(PlanVolume, MemoryMessageNamesSizeLimitAndOptions) {
+  VolumeLimits limits;
+  limits.maxBytes = std::size_t(100) << 20;
+  limits.task = "rendering";
+  limits.taskDetail = " at --size 64x64";
+  limits.taskBytes = [](glm::ivec3, SampleType) { return std::uint64_t(150) << 20; };
+  try {
+    planVolume("big.nrrd", {512, 512, 300}, SampleType::UInt16, limits);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "big.nrrd: rendering 512x512x300 uint16 samples at --size 64x64 needs 150 MiB, over "
+              "the --max-memory limit of 100 MiB; read less with --crop X0:X1,Y0:Y1,Z0:Z1 or "
+              "--stride N, or raise --max-memory");
+  }
+}
+
+TEST(Limits, RenderVolumeBytesCountSamplesTextureMaximaAndSlabs) {
+  const glm::ivec3 dims(512, 512, 512);
+  const std::uint64_t voxels = 512ull * 512 * 512;
+  const std::uint64_t maxima = 4 * (64ull * 512 * 512 + 64ull * 64 * 512 + 64ull * 64 * 64);
+  const std::uint64_t slabs = 2 * limits::kUploadSlabBytes;  // 512² floats = 1 MiB < 8 MiB
+  // 8-bit: 1 byte + R16F; wider types: their bytes + R32F (the check precedes the values).
+  EXPECT_EQ(limits::renderVolumeBytes(dims, 1), voxels * 3 + maxima + slabs);
+  EXPECT_EQ(limits::renderVolumeBytes(dims, 2), voxels * 6 + maxima + slabs);
+  EXPECT_EQ(limits::renderVolumeBytes(dims, 4), voxels * 8 + maxima + slabs);
+  // About 3.6 bytes per voxel for 8-bit data, against 8 when every volume was floats.
+  EXPECT_LT(double(limits::renderVolumeBytes(dims, 1)) / double(voxels), 3.7);
+}
+
+}  // namespace
+}  // namespace vsil

@@ -1,0 +1,117 @@
+// The volume texture holds every sample exactly, whatever the volume's sample type: R16F where
+// all samples are integers of magnitude <= 2048, else R32F; uploaded slab by slab of z (the
+// slab borders must not show). convertTexels converts any box on its own (a brick).
+#include "slicing/volume_texture.h"
+
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/packing.hpp>
+
+#include "gl_harness.h"
+
+namespace vsil {
+namespace {
+
+template <typename C, typename Pattern>
+Volume volumeOf(glm::ivec3 dims, Pattern pattern) {
+  Volume volume;
+  volume.dims = dims;
+  volume.allocate(sampleTypeFor<C>());
+  std::span<C> samples = volume.samples<C>();
+  for (std::size_t i = 0; i < samples.size(); ++i) samples[i] = C(pattern(i));
+  return volume;
+}
+
+// Every type, within and beyond R16F's exact integers.
+std::vector<std::pair<Volume, GLenum>> volumes() {
+  const glm::ivec3 dims(7, 5, 9);
+  std::vector<std::pair<Volume, GLenum>> v;
+  v.emplace_back(volumeOf<std::uint8_t>(dims, [](std::size_t i) { return (i * 37) % 256; }),
+                 GL_R16F);
+  v.emplace_back(volumeOf<std::int8_t>(dims, [](std::size_t i) { return int(i % 256) - 128; }),
+                 GL_R16F);
+  v.emplace_back(volumeOf<std::uint16_t>(dims, [](std::size_t i) { return (i * 13) % 2049; }),
+                 GL_R16F);
+  v.emplace_back(volumeOf<std::uint16_t>(dims, [](std::size_t i) { return 2000 + i; }), GL_R32F);
+  v.emplace_back(volumeOf<std::int16_t>(dims, [](std::size_t i) { return -2048 + int(i) * 13; }),
+                 GL_R16F);
+  v.emplace_back(volumeOf<std::int16_t>(dims, [](std::size_t i) { return -2049 + int(i); }),
+                 GL_R32F);
+  v.emplace_back(volumeOf<float>(dims, [](std::size_t i) { return float(i % 40) - 20.0f; }),
+                 GL_R16F);
+  v.emplace_back(volumeOf<float>(dims, [](std::size_t i) { return float(i) * 0.25f; }), GL_R32F);
+  return v;
+}
+
+TEST(TextureFormat, IsR16FOnlyWhereEverySampleIsASmallInteger) {
+  for (const auto& [volume, format] : volumes()) {
+    EXPECT_EQ(textureFormatFor(volume), format) << sampleTypeName(volume.type());
+  }
+}
+
+TEST(ConvertTexels, ABoxGivesItsSamplesAsHalfOrFloatTexels) {
+  for (const auto& [volume, format] : volumes()) {
+    SCOPED_TRACE(sampleTypeName(volume.type()));
+    const glm::ivec3 origin(1, 2, 3), size(5, 3, 4);
+    std::vector<std::byte> texels(std::size_t(size.x * size.y * size.z) * texelSize(format));
+    convertTexels(volume, origin, size, format, texels);
+    std::size_t i = 0;
+    for (int z = origin.z; z < origin.z + size.z; ++z) {
+      for (int y = origin.y; y < origin.y + size.y; ++y) {
+        for (int x = origin.x; x < origin.x + size.x; ++x, ++i) {
+          const float expected = volume.at(x, y, z);
+          float texel;
+          if (format == GL_R16F) {
+            std::uint16_t half;
+            std::memcpy(&half, &texels[i * 2], 2);
+            texel = glm::unpackHalf1x16(half);
+          } else {
+            std::memcpy(&texel, &texels[i * 4], 4);
+          }
+          ASSERT_EQ(texel, expected) << x << "," << y << "," << z;
+        }
+      }
+    }
+  }
+}
+
+class VolumeTextureUpload : public test::GlTest {};
+
+// llvmpipe's largest 3D texture (limits::kMaxTextureBytes): 720³ floats fit, 800³ do not (as
+// half floats they do), so such a volume is refused with an InputError, not GL_OUT_OF_MEMORY.
+TEST_F(VolumeTextureUpload, TextureFitsAsTheProxyTextureSays) {
+  EXPECT_TRUE(textureFits(glm::ivec3(720), GL_R32F));
+  EXPECT_FALSE(textureFits(glm::ivec3(800), GL_R32F));
+  EXPECT_TRUE(textureFits(glm::ivec3(800), GL_R16F));
+  EXPECT_FALSE(textureFits(glm::ivec3(1024), GL_R16F));
+  // Nothing beyond limits::kMaxTextureBytes at all.
+  const int slices = int(limits::kMaxTextureBytes / (2048ull * 2048 * 2)) + 1;
+  EXPECT_FALSE(textureFits({2048, 2048, slices}, GL_R16F));
+}
+
+TEST_F(VolumeTextureUpload, HoldsEverySampleExactlyAcrossSlabBorders) {
+  for (auto& [volume, format] : volumes()) {
+    // Slabs of one and of two slices (9 slices: the last slab is partial), and one slab.
+    for (std::size_t slabBytes :
+         {std::size_t(1), std::size_t(7 * 5 * 2 * 4), std::size_t(1) << 20}) {
+      SCOPED_TRACE(std::string(sampleTypeName(volume.type())) + " slab bytes " +
+                   std::to_string(slabBytes));
+      const VolumeTexture texture(volume, slabBytes);
+      EXPECT_EQ(texture.internalFormat(), format);
+      std::vector<float> read(volume.voxelCount(), -99.0f);
+      glBindTexture(GL_TEXTURE_3D, texture.id());
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, read.data());
+      glBindTexture(GL_TEXTURE_3D, 0);
+      for (std::size_t i = 0; i < read.size(); ++i) {
+        ASSERT_EQ(read[i], volume.value(i)) << "sample " << i;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vsil
