@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <thread>
 #include <vector>
 
@@ -153,11 +154,24 @@ VolumeTexture::VolumeTexture(const Volume& volume, std::size_t slabBytes)
     const int slabCount = (dims_.z + depth - 1) / depth;
     convert(0);
     for (int slab = 0; slab < slabCount; ++slab) {
-      std::jthread next;
-      if (slab + 1 < slabCount) next = std::jthread(convert, slab + 1);
-      const int z = slab * depth;
-      VSIL_GL(glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, dims_.x, dims_.y,
-                              std::min(depth, dims_.z - z), GL_RED, type, slabs[slab % 2].data()));
+      std::exception_ptr failed;  // from the worker (out of memory), rethrown here
+      {
+        std::jthread next;
+        if (slab + 1 < slabCount) {
+          next = std::jthread([&, slab] {
+            try {
+              convert(slab + 1);
+            } catch (...) {
+              failed = std::current_exception();
+            }
+          });
+        }
+        const int z = slab * depth;
+        VSIL_GL(glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, dims_.x, dims_.y,
+                                std::min(depth, dims_.z - z), GL_RED, type,
+                                slabs[slab % 2].data()));
+      }
+      if (failed) std::rethrow_exception(failed);
     }
   }
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);

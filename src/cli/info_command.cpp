@@ -163,6 +163,7 @@ void runInfo(const InfoOptions& options) {
   load.progress = progress.callback();
   if (validateOnly()) return;
   const Volume volume = loadVolume(options.volume, load);
+  progress.finish();  // before stdout, which a terminal shows on the same lines
   const Summary summary = summarize(volume);
   // Printed only once everything succeeded: an error leaves stdout empty.
   std::cout << (options.json ? toJson(volume, summary).dump(2) + "\n" : toText(volume, summary));
