@@ -5,6 +5,7 @@
 #include <fstream>
 #include <thread>
 
+#include "core/version.h"
 #include "slicing/gl_context.h"
 
 #ifndef VSIL_VERSION
@@ -52,7 +53,7 @@ MachineInfo collectMachineInfo() {
   }
   const char* threads = std::getenv("LP_NUM_THREADS");
   machine.lpNumThreads = threads && *threads ? threads : "default";
-  machine.vsilVersion = VSIL_VERSION;
+  machine.vsilVersion = kVsilVersion;
   machine.buildType = VSIL_BUILD_TYPE;
   machine.dateUtc = utcNow();
   return machine;

@@ -12,9 +12,11 @@
 #include "cli/cli_volume_options.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
+#include "core/depth_image.h"
 #include "core/error.h"
 #include "core/image_file.h"
 #include "core/limits.h"
+#include "core/version.h"
 #include "io/volume_loader.h"
 #include "postfx/compose.h"
 #include "slicing/gl_context.h"
@@ -59,17 +61,11 @@ cv::Mat1b stateImage(const FrameBuffers& frame) {
   return image;
 }
 
-// 16-bit: silhouette pixels hold 1 + round(d·65534), every other pixel 0.
+// The depth image (core/depth_image.h) holds the depth of the line (Silhouette) pixels only.
 cv::Mat1w depthImage(const FrameBuffers& frame) {
-  cv::Mat1w image(frame.state.size(), 0);
-  for (int y = 0; y < image.rows; ++y) {
-    for (int x = 0; x < image.cols; ++x) {
-      if (PixelState(frame.state(y, x)) != PixelState::Silhouette) continue;
-      const double d = std::clamp(double(frame.depth(y, x)), 0.0, 1.0);
-      image(y, x) = std::uint16_t(1 + std::lround(d * 65534.0));
-    }
-  }
-  return image;
+  cv::Mat1f lineDepth(frame.depth.size(), std::numeric_limits<float>::quiet_NaN());
+  frame.depth.copyTo(lineDepth, frame.state == std::uint8_t(PixelState::Silhouette));
+  return encodeDepthImage(lineDepth);
 }
 
 // The flags checked together, before any file is read: what render() would refuse, the image's
@@ -162,7 +158,7 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions,
 
   if (!options.metaOut.empty()) {
     nlohmann::json meta;
-    meta["vsil_version"] = "0.1.0";
+    meta["vsil_version"] = kVsilVersion;
     meta["gl_renderer"] = context.renderer();
     meta["parameters"] = {{"input", options.input},
                           {"technique", settings.technique},
