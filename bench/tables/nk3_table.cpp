@@ -474,7 +474,7 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
     for (int window : sizes) {
       RenderSettings settings;
       settings.size = {window, window};
-      settings.iso = d->iso;
+      settings.options["iso"] = double(d->iso);
       settings.camera.elevationDeg = kElevationDeg;
       settings.samplesPerVoxel = 1.0;
       std::vector<CaseResult> results =

@@ -64,4 +64,9 @@ void checkVolumeSize(const std::string& where, glm::ivec3 dims, const VolumeLimi
   }
 }
 
+float defaultIso(const Volume& volume) {
+  const ValueRange range = valueRange(volume);
+  return float(0.5 * (double(range.min) + double(range.max)));
+}
+
 }  // namespace vsil

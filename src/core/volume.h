@@ -43,6 +43,9 @@ struct ValueRange {
 };
 ValueRange valueRange(const Volume& volume);
 
+// The iso value a technique uses when none is given: the middle of the value range.
+float defaultIso(const Volume& volume);
+
 // Limits checked before anything is allocated. maxBytes bounds the in-memory volume
 // (4 bytes per sample; default: half the physical memory, core/limits.h); maxDimension bounds
 // each axis (the GL 3D texture limit, 2048).

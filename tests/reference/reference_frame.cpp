@@ -1,0 +1,34 @@
+#include "reference_frame.h"
+
+#include <limits>
+
+#include "slicing/technique_table.h"
+
+namespace vsil::reference {
+
+ReferenceSetup setUpReference(const Volume& volume, const RenderSettings& settings) {
+  ReferenceSetup setup;
+  setup.view = makeView(settings.camera, volume.dims, volume.spacing, settings.size);
+  setup.plan = planSlices(setup.view, volume.dims, volume.spacing, settings.samplesPerVoxel);
+  setup.options = OptionReader(findTechnique(settings.technique).options, settings.options,
+                               {defaultIso(volume)});
+  return setup;
+}
+
+ReferenceFrame emptyReferenceFrame(const ReferenceSetup& setup, glm::ivec2 size, bool color) {
+  constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
+  ReferenceFrame result;
+  result.view = setup.view;
+  result.sliceCount = int(setup.plan.slices.size());
+  result.ambiguous = cv::Mat1b(size.y, size.x, std::uint8_t(0));
+  result.frame.depth = cv::Mat1f(size.y, size.x, kNan);
+  if (color) {
+    result.frame.color = cv::Mat4f(size.y, size.x, cv::Vec4f(0, 0, 0, 0));
+  } else {
+    result.frame.state = cv::Mat1b(size.y, size.x, std::uint8_t(PixelState::Empty));
+    result.frame.shade = cv::Mat1f(size.y, size.x, kNan);
+  }
+  return result;
+}
+
+}  // namespace vsil::reference
