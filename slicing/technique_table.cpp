@@ -43,7 +43,7 @@ OptionSpec isoOption() {
   spec.kind = OptionKind::Number;
   spec.help = "iso value in the data's own units";
   spec.derived = OptionSpec::Derived::VolumeIso;
-  spec.defaultNote = "the volume's default iso (vsil info)";
+  spec.defaultNote = "from the volume (vsil info)";
   return spec;
 }
 

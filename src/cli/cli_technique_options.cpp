@@ -17,6 +17,19 @@ std::string helpText(const OptionSpec& spec, const std::vector<std::string>& use
   return "[" + owners + "] " + spec.help + (details.empty() ? "" : " (" + details + ")");
 }
 
+const char* typeName(OptionKind kind) {
+  switch (kind) {
+    case OptionKind::Number:
+      return "NUMBER";
+    case OptionKind::Integer:
+      return "INTEGER";
+    case OptionKind::Choice:
+      return "NAME";
+    default:
+      return "TEXT";
+  }
+}
+
 }  // namespace
 
 void addTechniqueOptions(CLI::App& command, std::string& technique, OptionValues& values) {
@@ -69,6 +82,7 @@ void addTechniqueOptions(CLI::App& command, std::string& technique, OptionValues
         break;
     }
     option->group(group);
+    if (spec->kind != OptionKind::Switch) option->type_name(typeName(spec->kind));
   }
 }
 

@@ -71,6 +71,7 @@ nlohmann::ordered_json toJson(const Volume& volume, const Summary& s) {
       {"max", s.range.max},
       {"mean", s.mean},
       {"stddev", s.stddev},
+      {"default_iso", defaultIso(volume)},
       {"percentiles", percentiles},
       {"histogram", {{"min", s.range.min}, {"max", s.range.max}, {"counts", s.histogram}}},
   };
@@ -87,6 +88,7 @@ std::string toText(const Volume& volume, const Summary& s) {
       << "\n"
       << "range     " << s.range.min << " .. " << s.range.max << "\n"
       << "mean      " << s.mean << "  (stddev " << s.stddev << ")\n"
+      << "iso       " << defaultIso(volume) << "  (the default of --iso)\n"
       << "percentiles";
   for (std::size_t i = 0; i < std::size(kPercentiles); ++i) {
     out << "  p" << kPercentiles[i] << " " << s.percentiles[i];
