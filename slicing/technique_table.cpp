@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "slicing/techniques/firsthit/firsthit_technique.h"
 #include "slicing/techniques/rightangle/rightangle_technique.h"
 #include "slicing/techniques/silhouette/silhouette_technique.h"
 
@@ -12,6 +13,7 @@ const std::vector<TechniqueInfo>& techniqueTable() {
   static const std::vector<TechniqueInfo> table{
       silhouetteTechniqueInfo(),
       rightAngleTechniqueInfo(),
+      firstHitTechniqueInfo(),
   };
   return table;
 }

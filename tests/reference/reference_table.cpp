@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "firsthit_reference.h"
 #include "rightangle_reference.h"
 #include "silhouette_reference.h"
 
@@ -11,6 +12,7 @@ const std::vector<ReferenceTechnique>& referenceTable() {
   static const std::vector<ReferenceTechnique> table{
       {"silhouette", renderSilhouette},
       {"rightangle", renderRightAngle},
+      {"firsthit", renderFirstHit},
   };
   return table;
 }

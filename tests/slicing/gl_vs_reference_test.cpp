@@ -135,6 +135,15 @@ TEST_P(GlMatchesReference, PixelByPixel) {
           }
         }
       }
+      if (technique.outputs.depth && !technique.outputs.state) {
+        const float a = gl.frame.depth(y, x), b = cpu.frame.depth(y, x);
+        const bool bothNone = std::isnan(a) && std::isnan(b);
+        const double error = bothNone ? 0.0 : std::abs(double(a) - double(b));
+        same = same && (bothNone || error < 1e-5);
+        if (!bothNone && !std::isnan(error) && !cpu.ambiguous(y, x)) {
+          maxDepthError = std::max(maxDepthError, error);
+        }
+      }
       if (technique.outputs.color) {
         double error = 0;
         for (int k = 0; k < 4; ++k) {
