@@ -23,6 +23,41 @@ void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
   drawSlicePolygon(frame, slice);
 }
 
+void FirstHitRecorder::beginFrame(const FrameContext& frame) {
+  const glm::ivec2 size = frame.view->viewport;
+  if (!targets_ || targets_->record.size() != size) {
+    targets_.reset();
+    gl::RenderTarget record(size, GL_RGBA32F, /*withDepthStencil=*/true);
+    const GLuint depth = record.depthStencil();
+    targets_.emplace(Targets{std::move(record), gl::EmptyFramebuffer(size, depth)});
+  }
+  slicePass_ = &frame.programs->get(
+      gl::slicePassProgram(hitRecordSources(), "shaders/first_hit.frag"));
+  slicePass_->use();
+  slicePass_->set("isoValue", float(frame.options->number("iso")));
+  gl::Capability noScissor(GL_SCISSOR_TEST, false);
+  const GLfloat zero[4] = {0, 0, 0, 0};
+  targets_->record.bindForDrawing();
+  VSIL_GL(glClearBufferfv(GL_COLOR, 0, zero));
+  frame.emptySpace->writeEntryDepth(glm::mat4(frame.view->clipFromVoxel()));
+}
+
+void FirstHitRecorder::drawSlice(const FrameContext& frame, const SliceContext& slice) {
+  if (slice.vertexCount == 0) return;
+  targets_->record.bindForDrawing();
+  {
+    // GREATER, no depth writes: skips empty space in front (empty_space.h) and dead pixels,
+    // early. The blending keeps each pixel's first hit (first_hit.frag).
+    gl::DepthTest skipEmptyAndDead(GL_GREATER, /*write=*/false);
+    gl::Blending keepFirstHit(GL_FUNC_ADD, GL_ONE_MINUS_DST_ALPHA, GL_DST_ALPHA);
+    slicePass_->use();
+    drawSlicePolygon(frame, slice);
+  }
+  if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
+    markDeadPixels(frame, slice, targets_->depthOnly, targets_->record, /*neighboursFinal=*/false);
+  }
+}
+
 gl::Program& finishProgram(const FrameContext& frame, const std::vector<std::string>& shared) {
   std::vector<std::string> sources = hitRecordSources();
   sources.insert(sources.end(), shared.begin(), shared.end());

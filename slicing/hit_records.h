@@ -3,6 +3,7 @@
 // firsthit): a per-pixel record (shaders/hit_records.glsl: state, depth, first-hit eye
 // distance, a value of the technique's own), pixels marked dead once no later slice can change
 // them, and a finishing pass that shades the first hit once per pixel and settles the state.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,28 @@ constexpr int kMarkDeadInterval = 8;
 void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
                     const gl::EmptyFramebuffer& depthOnly, const gl::RenderTarget& record,
                     bool neighboursFinal);
+
+// Records each pixel's first iso-surface hit (shaders/first_hit.frag), for the techniques that
+// need no more of a ray (rightangle, firsthit): one pass per slice keeps the first hit by
+// blending, skips empty space in front and, every kMarkDeadInterval slices, pixels that have
+// their hit.
+class FirstHitRecorder {
+ public:
+  // Targets for the frame's size, the slice pass's program and iso value, the record cleared
+  // and the depth where rays enter occupied bricks written.
+  void beginFrame(const FrameContext& frame);
+  void drawSlice(const FrameContext& frame, const SliceContext& slice);
+  // RGBA32F (STATE_FILLED, depth, first-hit eye distance, 1) at hits, 0 elsewhere.
+  const gl::RenderTarget& record() const { return targets_->record; }
+
+ private:
+  struct Targets {
+    gl::RenderTarget record;
+    gl::EmptyFramebuffer depthOnly;  // record's depth buffer alone, for marking dead pixels
+  };
+  std::optional<Targets> targets_;
+  gl::Program* slicePass_ = nullptr;
+};
 
 // The last pass of a frame (shaders/finish_hits.frag): shades the first hit recorded in
 // `record` and writes (state, depth, shade, 0) into `output`. `shared` holds the technique's

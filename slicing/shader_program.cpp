@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <regex>
+#include <stdexcept>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -11,26 +12,21 @@ namespace vsil::gl {
 
 namespace {
 
-const char* stageDefine(GLenum stage) {
-  switch (stage) {
-    case GL_VERTEX_SHADER:
-      return "VSIL_VERTEX_SHADER";
-    case GL_FRAGMENT_SHADER:
-      return "VSIL_FRAGMENT_SHADER";
-    default:
-      return "VSIL_COMPUTE_SHADER";
-  }
-}
+// Each stage's name in messages and the define its sources see.
+struct Stage {
+  GLenum stage;
+  const char* name;
+  const char* define;
+};
+constexpr Stage kStages[] = {{GL_VERTEX_SHADER, "vertex", "VSIL_VERTEX_SHADER"},
+                             {GL_FRAGMENT_SHADER, "fragment", "VSIL_FRAGMENT_SHADER"},
+                             {GL_COMPUTE_SHADER, "compute", "VSIL_COMPUTE_SHADER"}};
 
-const char* stageName(GLenum stage) {
-  switch (stage) {
-    case GL_VERTEX_SHADER:
-      return "vertex";
-    case GL_FRAGMENT_SHADER:
-      return "fragment";
-    default:
-      return "compute";
+const Stage& stageOf(GLenum stage) {
+  for (const Stage& s : kStages) {
+    if (s.stage == stage) return s;
   }
+  throw std::logic_error("unknown shader stage");
 }
 
 std::string sourceText(const ShaderSource& source) {
@@ -58,7 +54,7 @@ std::string namedLog(const std::string& log, const std::vector<ShaderSource>& so
 
 GLuint compileStage(GLenum stage, const std::vector<ShaderSource>& sources,
                     const std::vector<std::string>& defines, const std::string& programLabel) {
-  std::string text = "#version 450 core\n#define " + std::string(stageDefine(stage)) + " 1\n";
+  std::string text = "#version 450 core\n#define " + std::string(stageOf(stage).define) + " 1\n";
   text += glslUnitDefines();
   for (const auto& define : defines) text += "#define " + define + "\n";
   for (std::size_t k = 0; k < sources.size(); ++k) {
@@ -76,7 +72,7 @@ GLuint compileStage(GLenum stage, const std::vector<ShaderSource>& sources,
     std::vector<char> log(std::size_t(std::max(length, 1)));
     glGetShaderInfoLog(shader, length, nullptr, log.data());
     glDeleteShader(shader);
-    throw GlError("compiling the " + std::string(stageName(stage)) + " stage of " + programLabel +
+    throw GlError("compiling the " + std::string(stageOf(stage).name) + " stage of " + programLabel +
                   ": " + namedLog(log.data(), sources));
   }
   return shader;

@@ -40,10 +40,8 @@ const TechniqueInfo& findTechnique(const std::string& name) {
 }
 
 OptionSpec isoOption() {
-  OptionSpec spec;
-  spec.name = "iso";
-  spec.kind = OptionKind::Number;
-  spec.help = "iso value in the data's own units";
+  OptionSpec spec = OptionSpec::number("iso", 0, "iso value in the data's own units");
+  spec.defaultValue.reset();
   spec.derived = OptionSpec::Derived::VolumeIso;
   spec.defaultNote = "from the volume (vsil info)";
   return spec;

@@ -17,17 +17,10 @@ std::string helpText(const OptionSpec& spec, const std::vector<std::string>& use
   return "[" + owners + "] " + spec.help + (details.empty() ? "" : " (" + details + ")");
 }
 
+// The value's name in the help, in OptionKind's order (a Switch takes none).
 const char* typeName(OptionKind kind) {
-  switch (kind) {
-    case OptionKind::Number:
-      return "NUMBER";
-    case OptionKind::Integer:
-      return "INTEGER";
-    case OptionKind::Choice:
-      return "NAME";
-    default:
-      return "TEXT";
-  }
+  static const char* const names[] = {"NUMBER", "INTEGER", "NAME", "TEXT", "", "TEXT"};
+  return names[int(kind)];
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -26,22 +27,11 @@ std::string joined(const std::vector<std::string>& items, const std::string& sep
   return text;
 }
 
+// What a value of each kind is, in OptionKind's order, for messages.
 const char* kindName(OptionKind kind) {
-  switch (kind) {
-    case OptionKind::Number:
-      return "a number";
-    case OptionKind::Integer:
-      return "a whole number";
-    case OptionKind::Choice:
-      return "a name";
-    case OptionKind::Text:
-      return "text";
-    case OptionKind::Switch:
-      return "on or off";
-    case OptionKind::List:
-      return "a list of texts";
-  }
-  return "a value";
+  static const char* const names[] = {"a number", "a whole number",  "a name",
+                                      "text",     "on or off",       "a list of texts"};
+  return names[int(kind)];
 }
 
 bool holdsKind(const OptionValue& value, OptionKind kind) {
@@ -80,6 +70,69 @@ std::string valueText(const OptionValue& value) {
 }
 
 }  // namespace
+
+OptionSpec OptionSpec::number(std::string name, double defaultValue, std::string help) {
+  OptionSpec spec;
+  spec.name = std::move(name);
+  spec.kind = OptionKind::Number;
+  spec.defaultValue = defaultValue;
+  spec.help = std::move(help);
+  return spec;
+}
+
+OptionSpec OptionSpec::integer(std::string name, int defaultValue, std::string help) {
+  OptionSpec spec = number(std::move(name), defaultValue, std::move(help));
+  spec.kind = OptionKind::Integer;
+  return spec;
+}
+
+OptionSpec OptionSpec::choice(std::string name, std::string defaultValue,
+                              std::vector<std::string> choices, std::string help) {
+  OptionSpec spec;
+  spec.name = std::move(name);
+  spec.kind = OptionKind::Choice;
+  spec.defaultValue = std::move(defaultValue);
+  spec.choices = std::move(choices);
+  spec.help = std::move(help);
+  return spec;
+}
+
+OptionSpec OptionSpec::text(std::string name, std::string help) {
+  OptionSpec spec;
+  spec.name = std::move(name);
+  spec.kind = OptionKind::Text;
+  spec.help = std::move(help);
+  return spec;
+}
+
+OptionSpec OptionSpec::list(std::string name, std::string help) {
+  OptionSpec spec = text(std::move(name), std::move(help));
+  spec.kind = OptionKind::List;
+  return spec;
+}
+
+OptionSpec OptionSpec::flag(std::string name, std::string help) {
+  OptionSpec spec = text(std::move(name), std::move(help));
+  spec.kind = OptionKind::Switch;
+  spec.defaultValue = false;
+  return spec;
+}
+
+OptionSpec& OptionSpec::above(double bound) {
+  min = bound;
+  minExclusive = true;
+  return *this;
+}
+OptionSpec& OptionSpec::atLeast(double bound) {
+  min = bound;
+  minExclusive = false;
+  return *this;
+}
+OptionSpec& OptionSpec::atMost(double bound) {
+  max = bound;
+  maxExclusive = false;
+  return *this;
+}
 
 std::string OptionSpec::key() const {
   std::string k = name;

@@ -43,6 +43,19 @@ struct OptionSpec {
   bool maxExclusive = false;
   std::vector<std::string> choices;
 
+  // Declaring an option in one expression:
+  //   OptionSpec::number("ra-exponent", 8.0, "exponent k of the line test").above(0)
+  static OptionSpec number(std::string name, double defaultValue, std::string help);
+  static OptionSpec integer(std::string name, int defaultValue, std::string help);
+  static OptionSpec choice(std::string name, std::string defaultValue,
+                           std::vector<std::string> choices, std::string help);
+  static OptionSpec text(std::string name, std::string help);  // default: empty
+  static OptionSpec list(std::string name, std::string help);  // default: none given
+  static OptionSpec flag(std::string name, std::string help);  // default: off
+  OptionSpec& above(double bound);    // > bound
+  OptionSpec& atLeast(double bound);  // >= bound
+  OptionSpec& atMost(double bound);   // <= bound
+
   // "ra-exponent" → "ra_exponent": the metadata key and the Python keyword.
   std::string key() const;
   std::string flag() const { return "--" + name; }

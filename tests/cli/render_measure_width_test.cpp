@@ -17,10 +17,7 @@ namespace vsil {
 namespace {
 
 TEST(RenderThenMeasureWidth, SphereAtWidthNineMeasuresNine) {
-  // Inputs in a folder of their own: runVsil() does not touch it.
-  const auto dir = test::scratchDir().parent_path() / "render-measure-width";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const auto dir = test::scratchDir();
   const auto out = (dir / "out.png").string(), depth = (dir / "depth.png").string(),
              state = (dir / "state.png").string(), json = (dir / "report.json").string();
   const auto render = test::runVsil(
@@ -70,9 +67,7 @@ TEST(RenderThenMeasureWidth, SphereAtWidthNineMeasuresNine) {
 // the Engine rendered with a depth law, its depth image into measure-width. Every depth bin
 // that holds samples must lie where silhouettes lie, and its median width on the law.
 TEST(RenderThenMeasureWidth, DepthLawStudyOnTheEngine) {
-  const auto dir = test::scratchDir().parent_path() / "render-measure-width-law";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const auto dir = test::scratchDir();
   const auto out = (dir / "engine.png").string(), depth = (dir / "depth.png").string(),
              json = (dir / "report.json").string(), plot = (dir / "plot.png").string();
   const double nearWidth = 8, farWidth = 2;

@@ -11,28 +11,13 @@ namespace vsil {
 namespace {
 
 std::vector<OptionSpec> specs() {
-  OptionSpec exponent;
-  exponent.name = "ra-exponent";
-  exponent.defaultValue = 8.0;
-  exponent.min = 0;
-  exponent.minExclusive = true;
-  OptionSpec weight;
-  weight.name = "depth-weight";
-  weight.defaultValue = 0.15;
-  weight.min = 0;
-  weight.max = 1;
-  OptionSpec mode;
-  mode.name = "pipeline";
-  mode.kind = OptionKind::Choice;
-  mode.choices = {"fast", "paper"};
-  mode.defaultValue = std::string("fast");
   OptionSpec iso;
   iso.name = "iso";
   iso.derived = OptionSpec::Derived::VolumeIso;
-  OptionSpec lights;
-  lights.name = "light";
-  lights.kind = OptionKind::List;
-  return {exponent, weight, mode, iso, lights};
+  return {OptionSpec::number("ra-exponent", 8.0, "").above(0),
+          OptionSpec::number("depth-weight", 0.15, "").atLeast(0).atMost(1),
+          OptionSpec::choice("pipeline", "fast", {"fast", "paper"}, ""), iso,
+          OptionSpec::list("light", "")};
 }
 
 std::string errorOf(const std::function<void()>& f) {

@@ -1,6 +1,9 @@
 #include "reference_frame.h"
 
+#include <cmath>
 #include <limits>
+
+#include "slice_sampler.h"
 
 #include "slicing/technique_table.h"
 
@@ -29,6 +32,30 @@ ReferenceFrame emptyReferenceFrame(const ReferenceSetup& setup, glm::ivec2 size,
     result.frame.shade = cv::Mat1f(size.y, size.x, kNan);
   }
   return result;
+}
+
+FirstHitFinder::FirstHitFinder(const Volume& volume, const ReferenceSetup& setup)
+    : setup_(setup) {
+  for (const Slice& slice : setup.plan.slices) {
+    coords_.push_back(sliceTexCoords(setup.view, volume.dims, slice.eyeDistance));
+  }
+}
+
+FirstHit FirstHitFinder::at(const SliceSampler& sampler, int x, int y, float iso,
+                            float isoEpsilon) const {
+  FirstHit hit;
+  for (std::size_t k = 0; k < setup_.plan.slices.size(); ++k) {
+    const Slice& slice = setup_.plan.slices[k];
+    if (slice.polygonVoxel.empty()) continue;
+    const glm::vec3 tex = sampler.sliceTexCoord(x, y, coords_[k]);
+    if (!sampler.insideTexture(tex)) continue;
+    const float value = sampler.sampleTexture(tex);
+    if (std::abs(value - iso) <= isoEpsilon) hit.ambiguous = true;
+    if (value < iso) continue;
+    hit.slice = &slice;
+    break;
+  }
+  return hit;
 }
 
 }  // namespace vsil::reference

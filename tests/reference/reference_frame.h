@@ -1,6 +1,8 @@
 #pragma once
 // What every CPU reference shares: the frame it returns, the same view and slice plan as the
 // GL path, and the technique's options resolved as the Renderer resolves them.
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include "core/frame.h"
@@ -33,5 +35,24 @@ ReferenceSetup setUpReference(const Volume& volume, const RenderSettings& settin
 // with `color`, a transparent colour image and no state image instead.
 ReferenceFrame emptyReferenceFrame(const ReferenceSetup& setup, glm::ivec2 size,
                                    bool color = false);
+
+class SliceSampler;
+
+// The first sample at or above `iso` along pixel (x, y)'s ray, front to back over the setup's
+// slices (what shaders/first_hit.frag keeps): its slice, or null when the ray finds none.
+// `ambiguous` turns true when a sample on the way lies within `isoEpsilon` of `iso`.
+struct FirstHit {
+  const Slice* slice = nullptr;
+  bool ambiguous = false;
+};
+class FirstHitFinder {
+ public:
+  FirstHitFinder(const Volume& volume, const ReferenceSetup& setup);
+  FirstHit at(const SliceSampler& sampler, int x, int y, float iso, float isoEpsilon) const;
+
+ private:
+  const ReferenceSetup& setup_;
+  std::vector<SliceTexCoords> coords_;  // per slice
+};
 
 }  // namespace vsil::reference

@@ -172,7 +172,9 @@ TEST_P(GlMatchesReference, PixelByPixel) {
             << maxDepthError << ", max shade error " << maxShadeError << ", max colour error "
             << maxColorError << "\n";
   EXPECT_GT(shown, 10) << "the scene should show something";
-  if (technique.outputs.state) EXPECT_GT(lines, 10) << "the scene should show lines";
+  if (technique.outputs.state) {
+    EXPECT_GT(lines, 10) << "the scene should show lines";
+  }
   EXPECT_EQ(unexplained, 0) << "mismatches away from decision thresholds:"
                             << firstMismatches.str();
   // Near-threshold disagreements are rare: at most 1 % of the pixels shown (the line pixels

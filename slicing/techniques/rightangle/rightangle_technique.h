@@ -1,11 +1,11 @@
 #pragma once
 // The right-angle baseline (RA): front-to-back iso-surface slicing; the first hit along each
 // ray is a line pixel where (1 - |∇f_n·V|)^k > ε (gradients by central differences). Slices
-// record the first hit (rightangle.frag); the line test and shade run once per pixel at the
-// end (rightangle.glsl in shaders/finish_hits.frag).
+// record the first hit (hit_records.h FirstHitRecorder); the line test and shade run once per
+// pixel at the end (rightangle.glsl in shaders/finish_hits.frag).
 #include <optional>
 
-#include "slicing/technique.h"
+#include "slicing/hit_records.h"
 #include "slicing/technique_table.h"
 
 namespace vsil {
@@ -21,13 +21,8 @@ class RightAngleTechnique : public Technique {
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:
-  struct Targets {
-    gl::RenderTarget record;         // RGBA32F records (state, depth, first-hit eye distance, hit)
-    gl::RenderTarget finished;       // RGBA32F (state, depth, shade, 0)
-    gl::EmptyFramebuffer depthOnly;  // record's depth buffer alone, for marking dead pixels
-  };
-  std::optional<Targets> targets_;
-  gl::Program* slicePass_ = nullptr;
+  FirstHitRecorder hits_;
+  std::optional<gl::RenderTarget> finished_;  // RGBA32F (state, depth, shade, 0)
   gl::Program* finish_ = nullptr;
 };
 

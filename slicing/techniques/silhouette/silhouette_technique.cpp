@@ -23,17 +23,12 @@ std::vector<std::string> sources() {
 }  // namespace
 
 TechniqueInfo silhouetteTechniqueInfo() {
-  OptionSpec pipeline;
-  pipeline.name = "pipeline";
-  pipeline.kind = OptionKind::Choice;
-  pipeline.help =
-      "fast (fused in-place passes, empty-space skipping) or paper (the paper's three passes); "
-      "the same pixels";
-  pipeline.defaultValue = std::string("fast");
-  pipeline.choices = {"fast", "paper"};
   return {"silhouette",
           "Nagy–Klein one-pixel iso-surface silhouettes (OPS), broadened to --width",
-          {isoOption(), pipeline},
+          {isoOption(),
+           OptionSpec::choice("pipeline", "fast", {"fast", "paper"},
+                              "fast (fused in-place passes, empty-space skipping) or paper (the "
+                              "paper's three passes); the same pixels")},
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<SilhouetteTechnique>(); }};
 }
