@@ -22,36 +22,54 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// `vsil <arguments>` in this process, in validate-only mode, with stdout and stderr captured.
-class ValidateOnlyRun {
+// While it lives: validate-only mode on, stdout and stderr captured. Restores both when it
+// ends, also when a command throws something unexpected (gtest then reports it).
+class ValidateOnlyScope {
  public:
-  explicit ValidateOnlyRun(const std::vector<std::string>& arguments) {
-    std::vector<const char*> argv{"vsil"};
-    for (const auto& argument : arguments) argv.push_back(argument.c_str());
-    std::streambuf* const out = std::cout.rdbuf(out_.rdbuf());
-    std::streambuf* const err = std::cerr.rdbuf(err_.rdbuf());
+  ValidateOnlyScope()
+      : oldOut_(std::cout.rdbuf(out_.rdbuf())), oldErr_(std::cerr.rdbuf(err_.rdbuf())) {
     cli::setValidateOnly(true);
-    CLI::App app{"vsil"};
-    cli::setUpApp(app);
-    try {
-      app.parse(int(argv.size()), argv.data());
-    } catch (const CLI::ParseError& e) {
-      error_ = std::string("CLI11: ") + e.what();
-    } catch (const InputError& e) {
-      error_ = e.what();
-    }
-    cli::setValidateOnly(false);
-    std::cout.rdbuf(out);
-    std::cerr.rdbuf(err);
   }
+  ~ValidateOnlyScope() {
+    cli::setValidateOnly(false);
+    std::cout.rdbuf(oldOut_);
+    std::cerr.rdbuf(oldErr_);
+  }
+  ValidateOnlyScope(const ValidateOnlyScope&) = delete;
+  ValidateOnlyScope& operator=(const ValidateOnlyScope&) = delete;
   std::string out() const { return out_.str(); }
   std::string err() const { return err_.str(); }
-  const std::string& error() const { return error_; }  // empty: the flags were accepted
 
  private:
   std::ostringstream out_, err_;
-  std::string error_;
+  std::streambuf* oldOut_;
+  std::streambuf* oldErr_;
 };
+
+struct ValidateOnlyRun {
+  std::string error;  // the refusal of bad flags; empty: the flags were accepted
+  std::string out, err;
+};
+
+// `vsil <arguments>` in this process, in validate-only mode.
+ValidateOnlyRun runValidateOnly(const std::vector<std::string>& arguments) {
+  std::vector<const char*> argv{"vsil"};
+  for (const auto& argument : arguments) argv.push_back(argument.c_str());
+  ValidateOnlyRun run;
+  const ValidateOnlyScope scope;
+  CLI::App app{"vsil"};
+  cli::setUpApp(app);
+  try {
+    app.parse(int(argv.size()), argv.data());
+  } catch (const CLI::ParseError& e) {
+    run.error = std::string("CLI11: ") + e.what();
+  } catch (const InputError& e) {
+    run.error = e.what();
+  }
+  run.out = scope.out();
+  run.err = scope.err();
+  return run;
+}
 
 std::string joined(const std::vector<std::string>& arguments) {
   std::string text;
@@ -130,10 +148,10 @@ TEST_P(ValidateOnlyCommand, AcceptsTheFlagsAndStopsBeforeWork) {
   std::set<fs::path> before;
   for (const auto& entry : fs::directory_iterator(out)) before.insert(entry.path());
 
-  const ValidateOnlyRun run(arguments);
-  EXPECT_EQ(run.error(), "") << "vsil " << joined(arguments);
-  EXPECT_EQ(run.out(), "") << "printed as if it had worked";
-  EXPECT_EQ(run.err(), "") << "progress or errors on stderr";
+  const ValidateOnlyRun run = runValidateOnly(arguments);
+  EXPECT_EQ(run.error, "") << "vsil " << joined(arguments);
+  EXPECT_EQ(run.out, "") << "printed as if it had worked";
+  EXPECT_EQ(run.err, "") << "progress or errors on stderr";
   for (const auto& entry : fs::directory_iterator(out)) {
     if (!before.count(entry.path())) ADD_FAILURE() << "wrote " << entry.path();
   }
@@ -160,10 +178,10 @@ void PrintTo(const BadFlags& c, std::ostream* out) {
 class ValidateOnlyBadFlags : public ::testing::TestWithParam<BadFlags> {};
 
 TEST_P(ValidateOnlyBadFlags, AreRefused) {
-  const ValidateOnlyRun run(GetParam().arguments);
-  EXPECT_NE(run.error().find(GetParam().mentions), std::string::npos)
-      << "vsil " << joined(GetParam().arguments) << "\nerror: " << run.error();
-  EXPECT_EQ(run.out(), "");
+  const ValidateOnlyRun run = runValidateOnly(GetParam().arguments);
+  EXPECT_NE(run.error.find(GetParam().mentions), std::string::npos)
+      << "vsil " << joined(GetParam().arguments) << "\nerror: " << run.error;
+  EXPECT_EQ(run.out, "");
 }
 
 INSTANTIATE_TEST_SUITE_P(
