@@ -26,7 +26,10 @@ class SelfCheckFailed : public std::runtime_error {
 
 void run(BenchFlags flags) {
   if (!flags.datasets.empty()) flags.options.datasetsDir = flags.datasets;
+  // Every flag: tables, --only names, sizes, frame counts, the datasets folder, output folders.
   const bench::BenchOptions options = bench::validateOptions(flags.options);
+  if (validateOnly()) return;
+
   const bench::BenchReport report =
       bench::runBench(options, std::cout, std::cerr, isatty(STDERR_FILENO) == 1);
   if (!report.failures.empty()) {
