@@ -75,6 +75,7 @@ void run(const RenderFlags& flags, const LoadOptions& loadOptions, const PostfxO
   RenderJob job;
   job.load(flags.input, loadOptions);
   RenderOutput output = job.render(request, loadOptions.limits);
+  for (const auto& warning : output.warnings) std::cerr << "vsil: warning: " << warning << "\n";
 
   writePng(flags.out, output.image);
   if (!flags.stateOut.empty()) writePng(flags.stateOut, stateImage(output.result.frame));

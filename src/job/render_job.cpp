@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
+#include <variant>
 
 #include "core/depth_image.h"
 #include "core/error.h"
@@ -118,6 +120,24 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
                       bytes, limits.maxBytes);
 }
 
+// An iso value outside the data's range finds no surface: the frame is empty, which is what
+// was asked, but rarely what was meant.
+std::vector<std::string> warnings(const RenderRequest& request, const Volume& volume) {
+  std::vector<std::string> found;
+  const auto given = request.settings.options.find("iso");
+  if (given == request.settings.options.end()) return found;
+  const double iso = std::get<double>(given->second);
+  const ValueRange range = valueRange(volume);
+  if (iso > range.max || iso < range.min) {
+    std::ostringstream line;
+    line << "--iso " << iso << " is outside the data's range " << range.min << " .. " << range.max
+         << " of " << volume.source << ": " << (iso > range.max ? "no" : "every")
+         << " sample reaches it";
+    found.push_back(line.str());
+  }
+  return found;
+}
+
 }  // namespace
 
 struct RenderJob::Impl {
@@ -186,6 +206,7 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
   output.postfxMs = millisecondsSince(postStart);
   output.metadata = metadata(request, impl_->input, volume, output.result,
                              impl_->context.renderer(), output.postfxMs);
+  output.warnings = warnings(request, volume);
   return output;
 }
 

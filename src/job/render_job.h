@@ -11,6 +11,7 @@
 //   vsil::RenderOutput out = job.render(request);    // out.image, out.result.frame, out.metadata
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -39,6 +40,9 @@ struct RenderOutput {
   // dataset, slices, camera, pixel counts, timings. The caller adds its own (output paths,
   // total time).
   nlohmann::json metadata;
+  // What the user should hear about although the frame was made (e.g. an iso value outside the
+  // data's range): one line each, for stderr or Python warnings.
+  std::vector<std::string> warnings;
 };
 
 class RenderJob {

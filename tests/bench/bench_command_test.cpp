@@ -31,6 +31,7 @@ int lineCount(const std::string& text) {
 class Nk3Run : public ::testing::Test {
  protected:
   void SetUp() override {
+  VSIL_REQUIRE_DATASETS();
     dir_ = test::scratchDir();
     result_ =
         test::runVsil("bench --table nk3 --datasets " + datasetsDir() +
@@ -103,6 +104,7 @@ TEST_F(Nk3Run, WritesMarkdownAndPlot) {
 }
 
 TEST(BenchCommand, SkullIsReportedMissingWithThePaperNumbers) {
+  VSIL_REQUIRE_DATASETS();
   const auto dir = test::scratchDir();
   const auto result = test::runVsil("bench --table nk3 --datasets " + datasetsDir() +
                                     " --only skull --json " + (dir / "skull.json").string());

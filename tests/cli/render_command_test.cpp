@@ -86,6 +86,19 @@ TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
   EXPECT_NEAR(depthSum / silhouettes, centreDepth, 0.02);
 }
 
+TEST(RenderCommand, WarnsWhenTheIsoValueLiesOutsideTheData) {
+  const auto dir = test::scratchDir();
+  const auto out = (dir / "empty.png").string();
+  const auto result = test::runVsil("render gen:sphere:16 --size 32x32 --iso 1000 --out " + out);
+  EXPECT_EQ(result.exitCode, 0) << "the empty frame is what was asked for";
+  EXPECT_TRUE(std::filesystem::exists(out));
+  EXPECT_EQ(result.err,
+            "vsil: warning: --iso 1000 is outside the data's range 0 .. 0.891747 of "
+            "gen:sphere:16: no sample reaches it\n");
+  const auto inside = test::runVsil("render gen:sphere:16 --size 32x32 --iso 0.5 --out " + out);
+  EXPECT_EQ(inside.err, "") << "no warning inside the range";
+}
+
 TEST(RenderCommand, PaperAndFastPipelinesGiveIdenticalImages) {
   const auto dir = test::scratchDir();
   std::string images[2];

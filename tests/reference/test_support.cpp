@@ -1,5 +1,7 @@
 #include "test_support.h"
 
+#include <cstdlib>
+
 #include <sys/wait.h>
 
 #include <unistd.h>
@@ -14,6 +16,18 @@ namespace vsil::test {
 
 std::filesystem::path datasetPath(const std::string& name) {
   return std::filesystem::path(VSIL_SHARED_DIR) / "datasets" / name;
+}
+
+std::optional<std::string> datasetsMissing() {
+  const auto folder = std::filesystem::path(VSIL_SHARED_DIR) / "datasets";
+  if (std::filesystem::is_directory(folder)) return std::nullopt;
+  return "the classic datasets are not at " + folder.string() +
+         " (clone shared/ beside the checkout, or configure with -DVSIL_SHARED_DIR=...)";
+}
+
+bool datasetsRequired() {
+  const char* required = std::getenv("VSIL_REQUIRE_DATASETS");
+  return required && std::string(required) == "1";
 }
 
 std::filesystem::path vsilBinary() {
