@@ -468,7 +468,7 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
     table.notes.push_back(isoNote);
 
     // One context and one renderer per dataset; the upload is not timed.
-    gl::GlContext context;
+    gl::GlContext context(options.gl);
     Renderer renderer(context);
     renderer.setVolume(volume);
     for (int window : sizes) {

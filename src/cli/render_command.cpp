@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_gl_options.h"
 #include "cli/cli_parse.h"
 #include "cli/cli_postfx_options.h"
 #include "cli/cli_volume_options.h"
@@ -130,8 +131,8 @@ void checkVolumeWork(const Volume& volume, const RenderSettings& settings,
                       loadOptions.limits.maxBytes);
 }
 
-void run(const RenderOptions& options, const LoadOptions& loadOptions,
-         const PostfxOptions& postfx) {
+void run(const RenderOptions& options, const LoadOptions& loadOptions, const PostfxOptions& postfx,
+         const gl::ContextOptions& glOptions) {
   const auto start = std::chrono::steady_clock::now();
   RenderSettings settings = checkedSettings(options, loadOptions, postfx);
   if (validateOnly()) return;
@@ -142,7 +143,7 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions,
   const ValueRange range = valueRange(volume);
   settings.iso = float(options.iso.value_or(0.5 * (double(range.min) + double(range.max))));
 
-  gl::GlContext context;
+  gl::GlContext context(glOptions);
   Renderer renderer(context);
   renderer.setVolume(volume);
   const RenderResult result = renderer.render(settings);
@@ -164,6 +165,7 @@ void run(const RenderOptions& options, const LoadOptions& loadOptions,
     nlohmann::json meta;
     meta["vsil_version"] = "0.1.0";
     meta["gl_renderer"] = context.renderer();
+    meta["gl"] = contextInfoJson(context.info());
     meta["parameters"] = {{"input", options.input},
                           {"technique", settings.technique},
                           {"pipeline", options.pipeline},
@@ -214,6 +216,7 @@ const CommandRegistration registration(10, [](CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
   auto load = std::make_shared<VolumeOptions>();
   auto postfx = std::make_shared<PostfxOptions>();
+  auto glFlags = std::make_shared<GlOptions>();
   CLI::App* command = app.add_subcommand("render", "Render one frame of a technique to PNG");
   command->add_option("input", options->input,
                       "Volume file (.nrrd .nhdr .vti .vtk, raw with --dims/--type) or "
@@ -252,7 +255,10 @@ const CommandRegistration registration(10, [](CLI::App& app) {
   command->add_option("--meta-out", options->metaOut, "JSON with parameters, camera, timings");
   addVolumeOptions(*command, *load);
   addPostfxOptions(*command, *postfx);
-  command->callback([options, load, postfx] { run(*options, toLoadOptions(*load), *postfx); });
+  addGlOptions(*command, *glFlags);
+  command->callback([options, load, postfx, glFlags] {
+    run(*options, toLoadOptions(*load), *postfx, toContextOptions(*glFlags));
+  });
 });
 
 }  // namespace

@@ -3,6 +3,7 @@
 // depend on the machine and its load (performance is measured, never asserted).
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -48,6 +49,9 @@ TEST_F(Nk3Run, SucceedsAndPrintsTheMachineAndTheTable) {
   EXPECT_NE(out.find("machine: "), std::string::npos) << out;
   EXPECT_NE(out.find("llvmpipe"), std::string::npos) << "GL renderer in the header\n" << out;
   EXPECT_NE(out.find("LP_NUM_THREADS="), std::string::npos) << out;
+  if (const char* backend = std::getenv("VSIL_GL")) {  // ctest runs this once per back end
+    EXPECT_NE(out.find("GL: " + std::string(backend) + " ("), std::string::npos) << out;
+  }
   EXPECT_NE(out.find("neghip"), std::string::npos) << out;
   EXPECT_NE(out.find("hydrogen_atom"), std::string::npos) << out;
   EXPECT_EQ(out.find("bonsai"), std::string::npos) << "--only leaves bonsai out\n" << out;
@@ -57,8 +61,9 @@ TEST_F(Nk3Run, SucceedsAndPrintsTheMachineAndTheTable) {
 TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
   ASSERT_EQ(result_.exitCode, 0) << result_.err;
   const auto document = nlohmann::json::parse(test::readFileBytes(dir_ / "nk3.json"));
-  for (const char* key : {"cpu", "hardware_threads", "gl_renderer", "gl_version", "lp_num_threads",
-                          "vsil_version", "build_type", "date_utc"}) {
+  for (const char* key :
+       {"cpu", "hardware_threads", "gl_backend", "gl_vendor", "gl_renderer", "gl_version",
+        "lp_num_threads", "vsil_version", "build_type", "date_utc"}) {
     EXPECT_TRUE(document["machine"].contains(key)) << key;
   }
   const auto& rows = document["rows"];
