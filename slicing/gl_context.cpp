@@ -312,7 +312,6 @@ const void* installedOwner = nullptr;
 }  // namespace
 
 struct GlContext::Impl {
-  ContextOptions options;
   std::unique_ptr<BackendContext> backend;
   EntryPoints entryPoints;
   ContextInfo info;
@@ -365,7 +364,6 @@ struct GlContext::Impl {
 };
 
 GlContext::GlContext(const ContextOptions& options) : impl_(std::make_unique<Impl>()) {
-  impl_->options = options;
   if (options.eglDevice) {
     if (*options.eglDevice < 0) {
       throw InputError("--gl-device " + std::to_string(*options.eglDevice) +

@@ -50,7 +50,8 @@ class GlContext {
  public:
   // Makes a 4.5 core-profile context as `options` ask and makes it current on this thread.
   // Throws UnavailableError (core/error.h) when no back end asked for gives one: one line naming
-  // what is missing and which --gl choices remain; InputError for --gl-device with osmesa.
+  // what is missing and which --gl choices work here (each tried); InputError for --gl-device
+  // with osmesa. Trying makes other contexts current: after a failure, make yours current again.
   explicit GlContext(const ContextOptions& options = {});
   ~GlContext();
   GlContext(const GlContext&) = delete;
@@ -61,8 +62,9 @@ class GlContext {
   std::string renderer() const;  // info().renderer
   std::string version() const;   // info().version
 
-  // Throws UnavailableError naming `user` (e.g. "--technique foo"), the missing extensions, this
-  // context's renderer and back end, and the --gl choices that remain.
+  // For a technique that needs more than 4.5 core (none does yet). Makes this context current;
+  // throws UnavailableError naming `user` (e.g. "--technique foo"), the missing extensions, this
+  // context's renderer and back end, and the other --gl choices that work here.
   void requireExtensions(const std::vector<std::string>& extensions, const std::string& user) const;
 
  private:

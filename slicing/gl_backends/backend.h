@@ -6,9 +6,12 @@
 //
 // Failures are `Unavailable` with a short phrase ("libEGL.so.1 not found"); GlContext turns
 // them into the one-line error that names the --gl choices left.
+#include <dlfcn.h>
+
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vsil::gl::backends {
@@ -19,6 +22,29 @@ using GetProcAddress = GlProc (*)(const char* name);
 class Unavailable : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// A library opened with dlopen (never closed) and its functions found by name. error() says
+// what was missing first: "libEGL.so.1 not found", "libEGL.so.1 lacks eglInitialize".
+class DynamicLibrary {
+ public:
+  explicit DynamicLibrary(std::string name)
+      : name_(std::move(name)), handle_(dlopen(name_.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+    if (!handle_) error_ = name_ + " not found";
+  }
+
+  template <typename Function>
+  void find(const char* symbol, Function& function) {
+    function = handle_ ? reinterpret_cast<Function>(dlsym(handle_, symbol)) : nullptr;
+    if (!function && error_.empty()) error_ = name_ + " lacks " + symbol;
+  }
+
+  const std::string& error() const { return error_; }  // empty while all was found
+
+ private:
+  std::string name_;
+  void* handle_;
+  std::string error_;
 };
 
 class BackendContext {

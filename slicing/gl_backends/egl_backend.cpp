@@ -5,7 +5,6 @@
 #define EGL_EGL_PROTOTYPES 0  // every EGL function comes through dlsym / eglGetProcAddress
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#include <dlfcn.h>
 
 #include <algorithm>
 #include <map>
@@ -16,8 +15,6 @@
 
 namespace vsil::gl::backends {
 namespace {
-
-constexpr const char* kLibrary = "libEGL.so.1";
 
 // Whole words of a space-separated extension string.
 bool hasExtension(const char* extensions, const std::string& name) {
@@ -52,12 +49,6 @@ struct EglLibrary {
 };
 
 template <typename Function>
-void find(void* library, const char* name, Function& function, std::string& error) {
-  function = reinterpret_cast<Function>(dlsym(library, name));
-  if (!function && error.empty()) error = std::string(kLibrary) + " lacks " + name;
-}
-
-template <typename Function>
 void findExtension(const EglLibrary& library, const char* extension, const char* name,
                    Function& function) {
   if (!hasExtension(library.clientExtensions.c_str(), extension)) return;
@@ -67,22 +58,19 @@ void findExtension(const EglLibrary& library, const char* extension, const char*
 const EglLibrary& eglLibrary() {
   static const EglLibrary library = [] {
     EglLibrary l;
-    void* handle = dlopen(kLibrary, RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      l.error = std::string(kLibrary) + " not found";
-      return l;
-    }
-    find(handle, "eglGetProcAddress", l.getProcAddress, l.error);
-    find(handle, "eglGetError", l.getError, l.error);
-    find(handle, "eglQueryString", l.queryString, l.error);
-    find(handle, "eglInitialize", l.initialize, l.error);
-    find(handle, "eglTerminate", l.terminate, l.error);
-    find(handle, "eglBindAPI", l.bindApi, l.error);
-    find(handle, "eglChooseConfig", l.chooseConfig, l.error);
-    find(handle, "eglCreateContext", l.createContext, l.error);
-    find(handle, "eglDestroyContext", l.destroyContext, l.error);
-    find(handle, "eglMakeCurrent", l.makeCurrent, l.error);
-    find(handle, "eglGetCurrentContext", l.getCurrentContext, l.error);
+    DynamicLibrary library("libEGL.so.1");
+    library.find("eglGetProcAddress", l.getProcAddress);
+    library.find("eglGetError", l.getError);
+    library.find("eglQueryString", l.queryString);
+    library.find("eglInitialize", l.initialize);
+    library.find("eglTerminate", l.terminate);
+    library.find("eglBindAPI", l.bindApi);
+    library.find("eglChooseConfig", l.chooseConfig);
+    library.find("eglCreateContext", l.createContext);
+    library.find("eglDestroyContext", l.destroyContext);
+    library.find("eglMakeCurrent", l.makeCurrent);
+    library.find("eglGetCurrentContext", l.getCurrentContext);
+    l.error = library.error();
     if (!l.error.empty()) return l;
     // Null (and EGL_BAD_DISPLAY) where EGL_EXT_client_extensions is missing: then none of these.
     const char* client = l.queryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);

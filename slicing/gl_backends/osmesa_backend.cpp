@@ -1,7 +1,6 @@
 // The OSMesa back end: Mesa's off-screen renderer (llvmpipe), opened with dlopen. Only osmesa.h
 // is needed to build it (libosmesa6-dev); the library is looked for when a context is asked for.
 #include <GL/osmesa.h>
-#include <dlfcn.h>
 
 #include <array>
 #include <cstdint>
@@ -11,8 +10,6 @@
 namespace vsil::gl::backends {
 namespace {
 
-constexpr const char* kLibrary = "libOSMesa.so.8";
-
 struct OsmesaLibrary {
   std::string error;  // empty when every function below was found
   decltype(&OSMesaCreateContextAttribs) createContextAttribs = nullptr;
@@ -21,25 +18,15 @@ struct OsmesaLibrary {
   decltype(&OSMesaGetProcAddress) getProcAddress = nullptr;
 };
 
-template <typename Function>
-bool find(void* library, const char* name, Function& function, std::string& error) {
-  function = reinterpret_cast<Function>(dlsym(library, name));
-  if (!function && error.empty()) error = std::string(kLibrary) + " lacks " + name;
-  return function != nullptr;
-}
-
 const OsmesaLibrary& osmesaLibrary() {
   static const OsmesaLibrary library = [] {
     OsmesaLibrary l;
-    void* handle = dlopen(kLibrary, RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      l.error = std::string(kLibrary) + " not found";
-      return l;
-    }
-    find(handle, "OSMesaCreateContextAttribs", l.createContextAttribs, l.error);
-    find(handle, "OSMesaMakeCurrent", l.makeCurrent, l.error);
-    find(handle, "OSMesaDestroyContext", l.destroyContext, l.error);
-    find(handle, "OSMesaGetProcAddress", l.getProcAddress, l.error);
+    DynamicLibrary library("libOSMesa.so.8");
+    library.find("OSMesaCreateContextAttribs", l.createContextAttribs);
+    library.find("OSMesaMakeCurrent", l.makeCurrent);
+    library.find("OSMesaDestroyContext", l.destroyContext);
+    library.find("OSMesaGetProcAddress", l.getProcAddress);
+    l.error = library.error();
     return l;
   }();
   return library;
