@@ -47,10 +47,18 @@ TEST_F(Nk3Run, SucceedsAndPrintsTheMachineAndTheTable) {
   ASSERT_EQ(result_.exitCode, 0) << result_.err;
   const std::string& out = result_.out;
   EXPECT_NE(out.find("machine: "), std::string::npos) << out;
-  EXPECT_NE(out.find("llvmpipe"), std::string::npos) << "GL renderer in the header\n" << out;
   EXPECT_NE(out.find("LP_NUM_THREADS="), std::string::npos) << out;
-  if (const char* backend = std::getenv("VSIL_GL")) {  // ctest runs this once per back end
-    EXPECT_NE(out.find("GL: " + std::string(backend) + " ("), std::string::npos) << out;
+  // The back end, vendor and renderer of the context the tables ran on: the one `vsil info --gl`
+  // reports for the same choice ($VSIL_GL: ctest runs this once per back end).
+  const auto info = test::runVsil("info --gl --json");
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  const auto gl = nlohmann::json::parse(info.out)["gl"];
+  const std::string header =
+      "GL: " + gl["backend"].get<std::string>() + " (" + gl["platform"].get<std::string>() + "), " +
+      gl["vendor"].get<std::string>() + ", " + gl["renderer"].get<std::string>() + ", ";
+  EXPECT_NE(out.find(header), std::string::npos) << header << " in\n" << out;
+  if (const char* backend = std::getenv("VSIL_GL")) {
+    EXPECT_EQ(gl["backend"], backend);
   }
   EXPECT_NE(out.find("neghip"), std::string::npos) << out;
   EXPECT_NE(out.find("hydrogen_atom"), std::string::npos) << out;
