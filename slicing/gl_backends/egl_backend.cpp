@@ -5,9 +5,7 @@
 #define EGL_EGL_PROTOTYPES 0  // every EGL function comes through dlsym / eglGetProcAddress
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#if defined(__SANITIZE_ADDRESS__)
-#include <sanitizer/lsan_interface.h>
-#endif
+#include <link.h>
 
 #include <algorithm>
 #include <map>
@@ -129,6 +127,20 @@ Unavailable eglFailure(const EglLibrary& library, const std::string& what) {
   return Unavailable(what + " (" + eglErrorName(library.getError()) + ")");
 }
 
+// Keeps the DRI drivers Mesa's EGL has loaded (swrast_dri.so ...) for the process, like the
+// libraries vsil opens itself (backend.h): Mesa would unload one at eglTerminate and load it
+// again for the next display. That also lets LeakSanitizer name their module at exit, where
+// tests/sanitizers/lsan.supp lists what they keep for the process.
+void keepDriversLoaded() {
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, std::size_t, void*) {
+        const std::string name = info->dlpi_name ? info->dlpi_name : "";
+        if (name.ends_with("_dri.so")) dlopen(name.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+        return 0;
+      },
+      nullptr);
+}
+
 // eglInitialize and eglTerminate are not counted by EGL (the first eglTerminate ends a display
 // for every context on it), so contexts share an initialized display through this count.
 class Displays {
@@ -143,17 +155,11 @@ class Displays {
     std::lock_guard lock(mutex_);
     Entry& entry = entries_[display];
     if (entry.users == 0) {
-#if defined(__SANITIZE_ADDRESS__)
-      // Mesa's display initialisation keeps a few hundred bytes for the process (a pthread_once
-      // in the DRI driver) that LeakSanitizer reports at exit. tests/sanitizers/lsan.supp cannot
-      // name them: the driver is unloaded by then and its frames have no module. So
-      // allocations made inside this one call are not leak-checked.
-      const __lsan::ScopedDisabler mesaInitialisation;
-#endif
       if (!library.initialize(display, &entry.major, &entry.minor)) {
         entries_.erase(display);
         throw eglFailure(library, "eglInitialize failed");
       }
+      keepDriversLoaded();
     }
     ++entry.users;
     major = entry.major;
