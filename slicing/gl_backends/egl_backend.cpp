@@ -129,8 +129,8 @@ Unavailable eglFailure(const EglLibrary& library, const std::string& what) {
 
 // Keeps the DRI drivers Mesa's EGL has loaded (swrast_dri.so ...) for the process, like the
 // libraries vsil opens itself (backend.h): Mesa would unload one at eglTerminate and load it
-// again for the next display. That also lets LeakSanitizer name their module at exit, where
-// tests/sanitizers/lsan.supp lists what they keep for the process.
+// again for the next display. Unloaded, the state a driver keeps for the process (a
+// pthread_once at eglInitialize) was reported by LeakSanitizer at exit with no module to name.
 void keepDriversLoaded() {
   dl_iterate_phdr(
       [](dl_phdr_info* info, std::size_t, void*) {
