@@ -10,8 +10,40 @@
 
 namespace vsil {
 
+namespace {
+
+// Premultiplied RGBA in [0, 1] over the background colour: c + (1 − α)·background.
+cv::Mat composeColorOverBackground(const cv::Mat4f& color, const Rgba& background) {
+  const bool opaque = background.a == 255;
+  const cv::Vec4b bg = background.bgra();
+  const double bgAlpha = background.a / 255.0;
+  cv::Mat4b image(color.size());
+  for (int y = 0; y < image.rows; ++y) {
+    const cv::Vec4f* in = color[y];
+    cv::Vec4b* out = image[y];
+    for (int x = 0; x < image.cols; ++x) {
+      const double alpha = std::clamp(double(in[x][3]), 0.0, 1.0);
+      // Colour premultiplied by the result's alpha, then un-premultiplied for the PNG.
+      const double outAlpha = alpha + (1.0 - alpha) * bgAlpha;
+      for (int c = 0; c < 3; ++c) {
+        const double rgb = in[x][2 - c] + (1.0 - alpha) * bgAlpha * (bg[c] / 255.0);  // BGR order
+        const double straight = outAlpha > 0 ? rgb / outAlpha : 0.0;
+        out[x][c] = cv::saturate_cast<std::uint8_t>(std::lround(straight * 255.0));
+      }
+      out[x][3] = cv::saturate_cast<std::uint8_t>(std::lround(outAlpha * 255.0));
+    }
+  }
+  if (!opaque) return image;
+  cv::Mat3b bgr;
+  cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+  return bgr;
+}
+
+}  // namespace
+
 cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& options,
                             FftGaussianBlur& blur, const cv::Mat1b& lines) {
+  if (frame.state.empty()) return composeColorOverBackground(frame.color, options.background);
   const cv::Mat1b band = lines.empty() ? broadenSilhouettes(frame, options.width, blur) : lines;
   const bool opaque = options.lineColor.a == 255 && options.background.a == 255 &&
                       (options.fill == FillMode::None || options.fillColor.a == 255);

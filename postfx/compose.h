@@ -1,7 +1,9 @@
 #pragma once
-// Composition of an illustration: broadened lines in the line colour over the fill of the
-// Filled pixels (none, a flat colour, or that colour shaded by the diffuse shade) over the
-// background. The result is 8-bit BGRA (BGR when every colour is opaque), ready for writePng.
+// Composition of an illustration. For techniques that return pixel states (silhouette,
+// rightangle): broadened lines in the line colour over the fill of the Filled pixels (none, a
+// flat colour, or that colour shaded by the diffuse shade) over the background. For techniques
+// that return colour (FrameBuffers::color, premultiplied): that colour over the background.
+// The result is 8-bit BGRA (BGR when every colour is opaque), ready for writePng.
 #include <opencv2/core.hpp>
 
 #include "core/frame.h"

@@ -27,38 +27,20 @@ double percentile(const std::vector<double>& sorted, double q) {
   return i + 1 < sorted.size() ? sorted[i] * (1 - f) + sorted[i + 1] * f : sorted[i];
 }
 
-std::optional<double> depthNear(const cv::Mat& depth, cv::Point p) {
+std::optional<double> depthNear(const cv::Mat1f& depth, cv::Point p) {
   std::optional<double> best;
   int bestDistance = 1 << 30;
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
       const int x = p.x + dx, y = p.y + dy;
       if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) continue;
-      double d = 0;
-      switch (depth.depth()) {
-        case CV_32F:
-          d = depth.at<float>(y, x);
-          break;
-        case CV_16U:
-          d = depth.at<std::uint16_t>(y, x) / 65535.0;
-          break;
-        default:
-          d = depth.at<std::uint8_t>(y, x) / 255.0;
-          break;
-      }
+      const float d = depth(y, x);
       if (std::isnan(d) || dx * dx + dy * dy >= bestDistance) continue;
       best = d;
       bestDistance = dx * dx + dy * dy;
     }
   }
   return best;
-}
-
-cv::Mat singleChannelDepth(const cv::Mat& depthImage) {
-  if (depthImage.channels() == 1) return depthImage;
-  std::vector<cv::Mat> channels;
-  cv::split(depthImage, channels);
-  return channels[0];
 }
 
 }  // namespace
@@ -162,8 +144,7 @@ WidthStatistics summarizeWidths(std::vector<double> widths, double binWidth) {
 }
 
 std::vector<DepthBin> widthAgainstDepth(const std::vector<LineWidthSample>& samples,
-                                        const cv::Mat& depthImage, int binCount) {
-  const cv::Mat depth = singleChannelDepth(depthImage);
+                                        const cv::Mat1f& depth, int binCount) {
   std::vector<std::vector<double>> perBin(static_cast<std::size_t>(binCount));
   for (const auto& sample : samples) {
     const auto d = depthNear(depth, sample.pixel);
@@ -184,8 +165,7 @@ std::vector<DepthBin> widthAgainstDepth(const std::vector<LineWidthSample>& samp
 }
 
 cv::Mat3b plotWidthAgainstDepth(const std::vector<LineWidthSample>& samples,
-                                const cv::Mat& depthImage, const std::vector<DepthBin>& bins) {
-  const cv::Mat depth = singleChannelDepth(depthImage);
+                                const cv::Mat1f& depth, const std::vector<DepthBin>& bins) {
   const int width = 640, height = 480, left = 70, right = 20, top = 30, bottom = 60;
   cv::Mat3b plot(height, width, cv::Vec3b(255, 255, 255));
   double maxWidth = 1;

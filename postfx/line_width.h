@@ -51,13 +51,14 @@ std::vector<LineWidthSample> measureLineWidths(const cv::Mat1b& lineMask);
 
 WidthStatistics summarizeWidths(std::vector<double> widths, double binWidth = 1.0);
 
-// Depth image: 32-bit float (NaN = nothing), 16-bit (v/65535) or 8-bit (v/255). A sample takes the
-// depth of the nearest pixel within 2 px that has one; samples without are left out.
+// `depth`: normalized depth per pixel, NaN where a pixel has none (core/depth_image.h decodes
+// `render --depth-out`). A sample takes the depth of the nearest pixel within 2 px that has one;
+// samples without are left out.
 std::vector<DepthBin> widthAgainstDepth(const std::vector<LineWidthSample>& samples,
-                                        const cv::Mat& depthImage, int binCount = 10);
+                                        const cv::Mat1f& depth, int binCount = 10);
 
 // Scatter of width against depth (points) with the bins' means (line), axes and labels.
 cv::Mat3b plotWidthAgainstDepth(const std::vector<LineWidthSample>& samples,
-                                const cv::Mat& depthImage, const std::vector<DepthBin>& bins);
+                                const cv::Mat1f& depth, const std::vector<DepthBin>& bins);
 
 }  // namespace vsil

@@ -1,5 +1,7 @@
 #include "slicing/empty_space.h"
 
+#include "slicing/gl_state.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,7 +10,7 @@ namespace vsil {
 
 namespace {
 
-constexpr int kB = BrickMaxima::kBrickSize;
+constexpr int kB = BrickRanges::kBrickSize;
 
 // The voxels brick k reads along one axis: positions [kB - 0.5, (k+1)B - 0.5] filter voxels
 // kB - 1 .. (k+1)B; one more on each side absorbs rounding of the sample position.
@@ -21,89 +23,100 @@ int lastVoxel(int brick) {
 
 }  // namespace
 
-BrickMaxima::BrickMaxima(const Volume& volume)
+BrickRanges::BrickRanges(const Volume& volume)
     : dims_(volume.dims), bricks_((volume.dims + kB - 1) / kB) {
-  const float lowest = -std::numeric_limits<float>::infinity();
-  // Separable maxima: along x per row, then y, then z.
+  const float inf = std::numeric_limits<float>::infinity();
+  const ValueRange none{inf, -inf};
+  const auto unite = [](ValueRange& r, ValueRange other) {
+    r.min = std::min(r.min, other.min);
+    r.max = std::max(r.max, other.max);
+  };
+  // Separable: ranges along x per row, then over y, then over z.
   auto voxelRange = [](int brick, int dim) {
     return std::pair{std::max(0, firstVoxel(brick)), std::min(dim - 1, lastVoxel(brick))};
   };
   const glm::ivec3 d = dims_, b = bricks_;
-  std::vector<float> alongX(std::size_t(b.x) * d.y * d.z, lowest);
+  std::vector<ValueRange> alongX(std::size_t(b.x) * d.y * d.z, none);
   volume.visit([&](auto samples) {
     for (int z = 0; z < d.z; ++z) {
       for (int y = 0; y < d.y; ++y) {
         const auto* row = &samples[volume.index(0, y, z)];
         for (int bx = 0; bx < b.x; ++bx) {
           const auto [x0, x1] = voxelRange(bx, d.x);
-          alongX[(std::size_t(z) * d.y + y) * b.x + bx] =
-              float(*std::max_element(row + x0, row + x1 + 1));
+          const auto [lo, hi] = std::minmax_element(row + x0, row + x1 + 1);
+          alongX[(std::size_t(z) * d.y + y) * b.x + bx] = {float(*lo), float(*hi)};
         }
       }
     }
   });
-  std::vector<float> alongY(std::size_t(b.x) * b.y * d.z, lowest);
+  std::vector<ValueRange> alongY(std::size_t(b.x) * b.y * d.z, none);
   for (int z = 0; z < d.z; ++z) {
     for (int by = 0; by < b.y; ++by) {
       const auto [y0, y1] = voxelRange(by, d.y);
       for (int y = y0; y <= y1; ++y) {
         for (int bx = 0; bx < b.x; ++bx) {
-          float& m = alongY[(std::size_t(z) * b.y + by) * b.x + bx];
-          m = std::max(m, alongX[(std::size_t(z) * d.y + y) * b.x + bx]);
+          unite(alongY[(std::size_t(z) * b.y + by) * b.x + bx],
+                alongX[(std::size_t(z) * d.y + y) * b.x + bx]);
         }
       }
     }
   }
-  maxima_.assign(std::size_t(b.x) * b.y * b.z, lowest);
+  ranges_.assign(std::size_t(b.x) * b.y * b.z, none);
   for (int bz = 0; bz < b.z; ++bz) {
     const auto [z0, z1] = voxelRange(bz, d.z);
     for (int z = z0; z <= z1; ++z) {
       for (int by = 0; by < b.y; ++by) {
         for (int bx = 0; bx < b.x; ++bx) {
-          float& m = maxima_[(std::size_t(bz) * b.y + by) * b.x + bx];
-          m = std::max(m, alongY[(std::size_t(z) * b.y + by) * b.x + bx]);
+          unite(ranges_[(std::size_t(bz) * b.y + by) * b.x + bx],
+                alongY[(std::size_t(z) * b.y + by) * b.x + bx]);
         }
       }
     }
   }
 }
 
-float BrickMaxima::maximum(glm::ivec3 brick) const {
-  return maxima_[(std::size_t(brick.z) * bricks_.y + brick.y) * bricks_.x + brick.x];
+ValueRange BrickRanges::range(glm::ivec3 brick) const {
+  return ranges_[(std::size_t(brick.z) * bricks_.y + brick.y) * bricks_.x + brick.x];
 }
 
-bool BrickMaxima::occupied(glm::ivec3 brick, float iso) const {
-  const float m = maximum(brick);
-  return m >= iso - 1e-5f * (std::abs(iso) + std::abs(m));
-}
-
-glm::dvec3 BrickMaxima::regionLow(glm::ivec3 brick) const {
+glm::dvec3 BrickRanges::regionLow(glm::ivec3 brick) const {
   return glm::dvec3(brick * kB) - 0.5;
 }
 
-glm::dvec3 BrickMaxima::regionHigh(glm::ivec3 brick) const {
+glm::dvec3 BrickRanges::regionHigh(glm::ivec3 brick) const {
   return glm::min(glm::dvec3((brick + 1) * kB), glm::dvec3(dims_)) - 0.5;
 }
 
-OccupiedFaces occupiedFaces(const BrickMaxima& maxima, float iso, const View& view) {
+OccupiedFaces occupiedFaces(const BrickRanges& ranges, const BrickOccupancy& occupied,
+                            const View& view) {
   const glm::dmat4 voxelFromEye = glm::inverse(view.eyeFromVoxel);
   // Perspective: a face is turned to the eye when the eye lies beyond its plane; orthographic:
   // when the direction towards the eye points out of it.
   const glm::dvec3 eye(voxelFromEye * glm::dvec4(0, 0, 0, 1));
   const glm::dvec3 towardsEye(voxelFromEye * glm::dvec4(0, 0, 1, 0));
-  const glm::ivec3 bricks = maxima.bricks();
+  const glm::ivec3 bricks = ranges.bricks();
   OccupiedFaces faces;
+  // Asked once per brick: the occupancy may be costly (a transfer function's opacity over a range).
+  std::vector<bool> occupiedBricks(std::size_t(bricks.x) * bricks.y * bricks.z);
+  for (int bz = 0, i = 0; bz < bricks.z; ++bz) {
+    for (int by = 0; by < bricks.y; ++by) {
+      for (int bx = 0; bx < bricks.x; ++bx, ++i) {
+        occupiedBricks[std::size_t(i)] = occupied(ranges.range({bx, by, bz}));
+      }
+    }
+  }
   auto isOccupied = [&](glm::ivec3 b) {
     return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) &&
-           glm::all(glm::lessThan(b, bricks)) && maxima.occupied(b, iso);
+           glm::all(glm::lessThan(b, bricks)) &&
+           occupiedBricks[(std::size_t(b.z) * bricks.y + b.y) * bricks.x + b.x];
   };
   for (int bz = 0; bz < bricks.z; ++bz) {
     for (int by = 0; by < bricks.y; ++by) {
       for (int bx = 0; bx < bricks.x; ++bx) {
         const glm::ivec3 brick(bx, by, bz);
-        if (!maxima.occupied(brick, iso)) continue;
-        const glm::dvec3 lo = maxima.regionLow(brick) - kEntryMargin;
-        const glm::dvec3 hi = maxima.regionHigh(brick) + kEntryMargin;
+        if (!isOccupied(brick)) continue;
+        const glm::dvec3 lo = ranges.regionLow(brick) - kEntryMargin;
+        const glm::dvec3 hi = ranges.regionHigh(brick) + kEntryMargin;
         for (int axis = 0; axis < 3; ++axis) {
           for (int side : {-1, 1}) {
             glm::ivec3 next = brick;
@@ -133,9 +146,20 @@ OccupiedFaces occupiedFaces(const BrickMaxima& maxima, float iso, const View& vi
   return faces;
 }
 
+namespace {
+gl::ProgramSpec facesProgram(std::vector<std::string> defines) {
+  return {{gl::ShaderSource::file("shaders/common.glsl"),
+           gl::ShaderSource::file("shaders/occupied_faces.vert")},
+          {gl::ShaderSource::file("shaders/common.glsl"),
+           gl::ShaderSource::file("shaders/occupied_faces.frag")},
+          {},
+          std::move(defines)};
+}
+}  // namespace
+
 EmptySpaceSkipping::EmptySpaceSkipping()
-    : entryProgram_("slice.vert", "occupied_faces.frag"),
-      exitProgram_("slice.vert", "occupied_faces.frag", "#define EXIT_DEPTH 1"),
+    : entryProgram_(facesProgram({})),
+      exitProgram_(facesProgram({"EXIT_DEPTH"})),
       buffer_(gl::createBuffer()),
       vertexArray_(gl::createVertexArray()) {
   VSIL_GL(glBindVertexArray(vertexArray_.id()));
@@ -145,8 +169,8 @@ EmptySpaceSkipping::EmptySpaceSkipping()
   glBindVertexArray(0);
 }
 
-void EmptySpaceSkipping::prepare(const BrickMaxima& maxima, float iso, const View& view,
-                                 bool enabled) {
+void EmptySpaceSkipping::prepare(const BrickRanges& ranges, const BrickOccupancy& occupied,
+                                 const View& view, bool enabled) {
   enabled_ = enabled;
   entryVertices_ = exitVertices_ = 0;
   if (!exitDepth_ || exitDepth_->size() != view.viewport) {
@@ -159,7 +183,7 @@ void EmptySpaceSkipping::prepare(const BrickMaxima& maxima, float iso, const Vie
   VSIL_GL(glClearBufferfv(GL_COLOR, 0, exitClear));
   if (!enabled) return;
 
-  OccupiedFaces faces = occupiedFaces(maxima, iso, view);
+  OccupiedFaces faces = occupiedFaces(ranges, occupied, view);
   entryVertices_ = GLsizei(faces.entry.size());
   exitVertices_ = GLsizei(faces.exit.size());
   std::vector<glm::vec3>& vertices = faces.entry;  // entry faces first, then exit faces
@@ -168,25 +192,17 @@ void EmptySpaceSkipping::prepare(const BrickMaxima& maxima, float iso, const Vie
   VSIL_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec3)),
                        vertices.data(), GL_STREAM_DRAW));
 
-  const glm::mat4 clipFromVoxel(view.clipFromVoxel());
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_MAX);
-  drawFaces(exitProgram_, clipFromVoxel, entryVertices_, exitVertices_);
-  glBlendEquation(GL_FUNC_ADD);
-  glDisable(GL_BLEND);
+  gl::Blending farthest(GL_MAX, GL_ONE, GL_ONE);
+  drawFaces(exitProgram_, glm::mat4(view.clipFromVoxel()), entryVertices_, exitVertices_);
 }
 
 void EmptySpaceSkipping::writeEntryDepth(const glm::mat4& clipFromVoxel) {
-  glDisable(GL_SCISSOR_TEST);
-  glDepthMask(GL_TRUE);
+  gl::Capability noScissor(GL_SCISSOR_TEST, false);
+  gl::DepthTest nearest(GL_LESS, /*write=*/true);
   glStencilMask(0xFF);
   VSIL_GL(glClearBufferfi(GL_DEPTH_STENCIL, 0, enabled_ ? 1.0f : 0.0f, 0));
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
+  gl::ColorMask depthOnly(false);
   drawFaces(entryProgram_, clipFromVoxel, 0, entryVertices_);
-  glDisable(GL_DEPTH_TEST);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 void EmptySpaceSkipping::drawFaces(gl::Program& program, const glm::mat4& clipFromVoxel,
@@ -194,12 +210,11 @@ void EmptySpaceSkipping::drawFaces(gl::Program& program, const glm::mat4& clipFr
   if (count == 0) return;
   // Faces in front of the near plane (the margin reaches past the box) must not be clipped:
   // clamped to depth 0 they still open their pixels from the first slice on.
-  glEnable(GL_DEPTH_CLAMP);
+  gl::Capability depthClamp(GL_DEPTH_CLAMP, true);
   program.use();
-  program.set("clipFromVoxel", clipFromVoxel);
+  program.set("facesClipFromVoxel", clipFromVoxel);
   glBindVertexArray(vertexArray_.id());
   VSIL_GL(glDrawArrays(GL_TRIANGLES, first, count));
-  glDisable(GL_DEPTH_CLAMP);
 }
 
 }  // namespace vsil

@@ -1,11 +1,13 @@
 #pragma once
-// Empty-space skipping, shared by every technique that looks for the iso-surface.
+// Empty-space skipping, shared by every technique.
 //
-// The volume is cut into bricks of kBrickSize³ voxels; each brick keeps the largest sample that
-// trilinear filtering can reach from any position inside it. A filtered sample is a convex
-// combination of its eight voxels, so in a brick whose maximum is below the iso value no slice
-// can find a FILLED sample. Before the slices, a technique draws the front faces of the
-// occupied bricks (maximum >= iso) into its depth buffer with depth test LESS: what remains is,
+// The volume is cut into bricks of kBrickSize³ voxels; each brick keeps the range [min, max] of
+// the samples that trilinear filtering can reach from any position inside it. A filtered sample
+// is a convex combination of its eight voxels, so it lies in that range. The technique decides
+// from the range whether a brick may hold anything it shows (Technique::occupancy: a brick whose
+// maximum is below the iso value holds no FILLED sample; one over whose range the transfer
+// function is transparent adds nothing). Before the slices, a technique draws the front faces of
+// the occupied bricks into its depth buffer with depth test LESS: what remains is,
 // per pixel, the depth where the view ray first enters an occupied brick, and 1 where it never
 // does. Slice passes that test GREATER against it then skip, before their shader runs, every
 // pixel in front of the volume's content and every pixel whose ray misses it. The faces turned
@@ -13,6 +15,7 @@
 // dead pixels (mark_dead.frag) mark those pixels too once the slices are past it. Skipped
 // pixels are exactly those whose samples stay below the iso value, so no output changes (the
 // GL tests compare against a CPU reference that samples everything).
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -21,21 +24,20 @@
 #include "core/camera.h"
 #include "core/volume.h"
 #include "slicing/gl_objects.h"
+#include "slicing/shader_program.h"
 
 namespace vsil {
 
-class BrickMaxima {
+class BrickRanges {
  public:
   // 8: bonsai 256³ at 512² rendered fastest with it among 4, 8, 16 and 32 (commit message).
   static constexpr int kBrickSize = 8;
 
-  explicit BrickMaxima(const Volume& volume);
+  explicit BrickRanges(const Volume& volume);
 
   glm::ivec3 bricks() const { return bricks_; }
-  float maximum(glm::ivec3 brick) const;
-  // True when some sample position inside the brick may filter to >= iso. A small relative
-  // slack absorbs float rounding in the filter's weights (R32F volumes).
-  bool occupied(glm::ivec3 brick, float iso) const;
+  // The smallest and largest voxel a trilinear sample inside the brick can read.
+  ValueRange range(glm::ivec3 brick) const;
   // The brick's sample positions: [kB - 0.5, (k+1)B - 0.5] per axis, cut to the volume's box.
   glm::dvec3 regionLow(glm::ivec3 brick) const;
   glm::dvec3 regionHigh(glm::ivec3 brick) const;
@@ -43,8 +45,11 @@ class BrickMaxima {
  private:
   glm::ivec3 dims_{0};
   glm::ivec3 bricks_{0};
-  std::vector<float> maxima_;  // x fastest
+  std::vector<ValueRange> ranges_;  // x fastest
 };
+
+// Whether a brick may hold anything a technique shows, from its value range.
+using BrickOccupancy = std::function<bool(ValueRange brick)>;
 
 // Triangles, in voxel coordinates, of the boundary faces of the occupied bricks: each occupied
 // brick's region grown by kEntryMargin voxels (so that float rounding in rasterization never
@@ -56,7 +61,8 @@ struct OccupiedFaces {
   std::vector<glm::vec3> entry;
   std::vector<glm::vec3> exit;
 };
-OccupiedFaces occupiedFaces(const BrickMaxima& maxima, float iso, const View& view);
+OccupiedFaces occupiedFaces(const BrickRanges& ranges, const BrickOccupancy& occupied,
+                            const View& view);
 constexpr double kEntryMargin = 0.5;
 
 // The GL side: per frame, the occupied bricks' entry faces (drawn into a technique's depth
@@ -66,7 +72,8 @@ class EmptySpaceSkipping {
   EmptySpaceSkipping();
   // Uploads this frame's faces and draws the exit depth image; `enabled` false turns skipping
   // off (entry depth 0, exit depth 1 everywhere).
-  void prepare(const BrickMaxima& maxima, float iso, const View& view, bool enabled);
+  void prepare(const BrickRanges& ranges, const BrickOccupancy& occupied, const View& view,
+               bool enabled);
   // Into the bound framebuffer's depth-stencil buffer: stencil 0 and, per pixel, a depth no
   // greater than that of the first slice whose sample there may reach the iso value (1 where
   // none can). Colour buffers are left untouched.
@@ -79,7 +86,7 @@ class EmptySpaceSkipping {
   void drawFaces(gl::Program& program, const glm::mat4& clipFromVoxel, GLint first, GLsizei count);
 
   bool enabled_ = true;
-  gl::Program entryProgram_;
+  gl::Program entryProgram_;  // shaders/occupied_faces.{vert,frag}
   gl::Program exitProgram_;
   gl::BufferName buffer_;
   gl::VertexArrayName vertexArray_;

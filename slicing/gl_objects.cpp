@@ -1,14 +1,8 @@
 #include "slicing/gl_objects.h"
 
-#include <algorithm>
-
-#include <glm/gtc/type_ptr.hpp>
-#include <vector>
+#include <string>
 
 namespace vsil::gl {
-
-// Defined in the generated embedded_shaders.cpp (cmake/EmbedShadersScript.cmake).
-std::string_view embeddedShaderSource(std::string_view name);
 
 TextureName createTexture() {
   GLuint id = 0;
@@ -38,103 +32,6 @@ VertexArrayName createVertexArray() {
 
 namespace {
 
-// Compiles one stage; the `#line 1 1` lets compiler messages count lines in `file` itself
-// (source string 0 is the prelude, 1 the file).
-GLuint compileStage(GLenum stage, std::string_view file, std::string_view defines) {
-  const char* stageDefine = stage == GL_FRAGMENT_SHADER ? "#define VSIL_FRAGMENT_SHADER 1\n"
-                                                        : "#define VSIL_VERTEX_SHADER 1\n";
-  const std::string source = "#version 450 core\n" + std::string(stageDefine) +
-                             std::string(defines) + "\n" +
-                             std::string(embeddedShaderSource("common.glsl")) + "\n#line 1 1\n" +
-                             std::string(embeddedShaderSource(file));
-  const GLuint shader = glCreateShader(stage);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(std::size_t(std::max(length, 1)));
-    glGetShaderInfoLog(shader, length, nullptr, log.data());
-    glDeleteShader(shader);
-    throw GlError("compiling shaders/" + std::string(file) +
-                  " (source 1 = this file): " + std::string(log.data()));
-  }
-  return shader;
-}
-
-}  // namespace
-
-Program::Program(std::string_view vertexFile, std::string_view fragmentFile,
-                 std::string_view defines)
-    : label_(std::string(vertexFile) + "+" + std::string(fragmentFile)) {
-  const GLuint vertex = compileStage(GL_VERTEX_SHADER, vertexFile, defines);
-  GLuint fragment = 0;
-  try {
-    fragment = compileStage(GL_FRAGMENT_SHADER, fragmentFile, defines);
-  } catch (...) {
-    glDeleteShader(vertex);
-    throw;
-  }
-  name_ = GlName<ProgramTraits>(glCreateProgram());
-  glAttachShader(name_.id(), vertex);
-  glAttachShader(name_.id(), fragment);
-  glLinkProgram(name_.id());
-  glDeleteShader(vertex);  // flagged for deletion; freed with the program
-  glDeleteShader(fragment);
-  GLint ok = GL_FALSE;
-  glGetProgramiv(name_.id(), GL_LINK_STATUS, &ok);
-  if (!ok) {
-    GLint length = 0;
-    glGetProgramiv(name_.id(), GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(std::size_t(std::max(length, 1)));
-    glGetProgramInfoLog(name_.id(), length, nullptr, log.data());
-    throw GlError("linking " + label_ + ": " + std::string(log.data()));
-  }
-  checkGlError(("building program " + label_).c_str(), __FILE__, __LINE__);
-}
-
-void Program::use() const {
-  VSIL_GL(glUseProgram(name_.id()));
-}
-
-GLint Program::location(const char* name) {
-  auto it = locations_.find(name);
-  if (it == locations_.end()) {
-    it = locations_.emplace(name, glGetUniformLocation(name_.id(), name)).first;
-  }
-  return it->second;
-}
-
-void Program::set(const char* name, int value) {
-  glUniform1i(location(name), value);
-}
-void Program::set(const char* name, unsigned value) {
-  glUniform1ui(location(name), value);
-}
-void Program::set(const char* name, float value) {
-  glUniform1f(location(name), value);
-}
-void Program::set(const char* name, glm::vec2 value) {
-  glUniform2fv(location(name), 1, glm::value_ptr(value));
-}
-void Program::set(const char* name, glm::vec3 value) {
-  glUniform3fv(location(name), 1, glm::value_ptr(value));
-}
-void Program::set(const char* name, glm::ivec2 value) {
-  glUniform2iv(location(name), 1, glm::value_ptr(value));
-}
-void Program::set(const char* name, const glm::mat3& value) {
-  glUniformMatrix3fv(location(name), 1, GL_FALSE, glm::value_ptr(value));
-}
-void Program::set(const char* name, const glm::mat4& value) {
-  glUniformMatrix4fv(location(name), 1, GL_FALSE, glm::value_ptr(value));
-}
-
-namespace {
-
 struct FormatInfo {
   GLenum format;
   GLenum type;
@@ -156,6 +53,12 @@ FormatInfo uploadFormat(GLenum internalFormat) {
       return {GL_RGBA, GL_FLOAT};
     case GL_RGBA8:
       return {GL_RGBA, GL_UNSIGNED_BYTE};
+    case GL_RGBA16F:
+      return {GL_RGBA, GL_FLOAT};
+    case GL_RG16F:
+      return {GL_RG, GL_FLOAT};
+    case GL_R16F:
+      return {GL_RED, GL_FLOAT};
   }
   throw GlError("RenderTarget: unsupported internal format " + std::to_string(internalFormat));
 }
@@ -218,9 +121,5 @@ void EmptyFramebuffer::bindForDrawing() const {
   VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
 }
 
-void bindImage(GLuint unit, const RenderTarget& target) {
-  VSIL_GL(glBindImageTexture(unit, target.texture(), 0, GL_FALSE, 0, GL_READ_WRITE,
-                             target.internalFormat()));
-}
 
 }  // namespace vsil::gl

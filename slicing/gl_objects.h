@@ -1,9 +1,6 @@
 #pragma once
 // Move-only owners of GL objects: each deletes exactly the name it owns, leaves 0 behind when
 // moved from, and cannot be copied. A GL context must be current when they are made and destroyed.
-#include <string>
-#include <string_view>
-#include <unordered_map>
 #include <utility>
 
 #include <glm/glm.hpp>
@@ -54,7 +51,7 @@ struct BufferTraits {
 struct VertexArrayTraits {
   static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); }
 };
-struct ProgramTraits {
+struct ProgramTraits {  // programs are built by shader_program.h
   static void destroy(GLuint id) { glDeleteProgram(id); }
 };
 
@@ -69,33 +66,6 @@ FramebufferName createFramebuffer();
 RenderbufferName createRenderbuffer();
 BufferName createBuffer();
 VertexArrayName createVertexArray();
-
-// A linked program built from embedded shader files (slicing/shaders). Every stage gets
-// `#version 450 core`, the given defines and common.glsl in front of its own file.
-class Program {
- public:
-  Program(std::string_view vertexFile, std::string_view fragmentFile,
-          std::string_view defines = {});
-  GLuint id() const { return name_.id(); }
-  void use() const;
-
-  // Uniform setters; the program must be in use. Unknown names are ignored (GL optimises away
-  // unused uniforms), so one setter can serve programs that share uniforms.
-  void set(const char* name, int value);
-  void set(const char* name, unsigned value);
-  void set(const char* name, float value);
-  void set(const char* name, glm::vec2 value);
-  void set(const char* name, glm::vec3 value);
-  void set(const char* name, glm::ivec2 value);
-  void set(const char* name, const glm::mat3& value);
-  void set(const char* name, const glm::mat4& value);
-
- private:
-  GLint location(const char* name);
-  GlName<ProgramTraits> name_;
-  std::string label_;
-  std::unordered_map<std::string, GLint> locations_;
-};
 
 // A 2D texture with a framebuffer that renders into it (and an optional depth-stencil buffer).
 class RenderTarget {
@@ -116,9 +86,9 @@ class RenderTarget {
   RenderbufferName depthStencil_;
 };
 
-// A framebuffer without colour attachments, for passes whose only outputs are image stores:
-// it sets the raster size and, optionally, shares another target's depth-stencil buffer so
-// the pass can be limited by the stencil test.
+// A framebuffer without colour attachments, for passes whose only outputs are image stores or
+// depth: it sets the raster size and, optionally, shares another target's depth-stencil buffer
+// so the pass can be limited (and its pixels marked) by the depth test.
 class EmptyFramebuffer {
  public:
   explicit EmptyFramebuffer(glm::ivec2 size, GLuint depthStencilRenderbuffer = 0);
@@ -130,7 +100,5 @@ class EmptyFramebuffer {
   FramebufferName framebuffer_;
 };
 
-// Binds `target`'s texture to image unit `unit` for read-write image load/store.
-void bindImage(GLuint unit, const RenderTarget& target);
 
 }  // namespace vsil::gl

@@ -8,9 +8,12 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "slicing/empty_space.h"
+#include "slicing/frame_uniforms.h"
 #include "slicing/gl_context.h"
 #include "slicing/gl_state.h"
 #include "slicing/technique.h"
+#include "slicing/technique_table.h"
+#include "slicing/texture_units.h"
 #include "slicing/volume_texture.h"
 
 namespace vsil {
@@ -32,7 +35,6 @@ void validate(const RenderSettings& settings) {
                      std::to_string(settings.size.y) + " is outside 1.." +
                      std::to_string(kMaxImageSide) + " pixels per side");
   }
-  if (!std::isfinite(settings.iso)) throw InputError("--iso: must be a finite number");
   if (!(settings.samplesPerVoxel > 0) || settings.samplesPerVoxel > kMaxSamplesPerVoxel) {
     throw InputError("--sampling: must be in (0, 64] slices per voxel");
   }
@@ -42,9 +44,8 @@ void validate(const RenderSettings& settings) {
   if (!std::isfinite(settings.camera.azimuthDeg) || !std::isfinite(settings.camera.elevationDeg)) {
     throw InputError("--view: angles must be finite");
   }
-  if (!(settings.rightAngleExponent > 0) || !std::isfinite(settings.rightAngleThreshold)) {
-    throw InputError("--ra-exponent/--ra-threshold: exponent must be positive, threshold finite");
-  }
+  const TechniqueInfo& technique = findTechnique(settings.technique);
+  checkOptions(technique.options, settings.options, "technique '" + technique.name + "'");
 }
 
 }  // namespace
@@ -56,18 +57,22 @@ void Renderer::validateSettings(const RenderSettings& settings) {
 struct Renderer::Impl {
   gl::GlContext* context = nullptr;
   std::optional<VolumeTexture> volumeTexture;
-  std::optional<BrickMaxima> brickMaxima;
+  std::optional<BrickRanges> brickRanges;
   std::optional<EmptySpaceSkipping> emptySpace;
+  std::optional<FrameUniforms> uniforms;
+  gl::ProgramCache programs;
   glm::ivec3 dims{0};
   glm::dvec3 spacing{1.0};
+  ValueRange valueRange;
+  float defaultIso = 0.5f;
   gl::BufferName sliceBuffer;
   gl::VertexArrayName sliceVertexArray;
   gl::VertexArrayName screenVertexArray;
   std::map<std::string, std::unique_ptr<Technique>> techniques;
 
-  Technique& technique(const std::string& name) {
-    auto it = techniques.find(name);
-    if (it == techniques.end()) it = techniques.emplace(name, makeTechnique(name)).first;
+  Technique& technique(const TechniqueInfo& info) {
+    auto it = techniques.find(info.name);
+    if (it == techniques.end()) it = techniques.emplace(info.name, info.create()).first;
     return *it->second;
   }
 };
@@ -87,25 +92,30 @@ Renderer::Renderer(gl::GlContext& context) : impl_(std::make_unique<Impl>()) {
 
 Renderer::~Renderer() = default;
 
-std::vector<std::string> Renderer::techniqueNames() {
-  return {"silhouette", "rightangle"};
+const gl::ProgramCache& Renderer::programs() const {
+  return impl_->programs;
 }
 
 void Renderer::setVolume(const Volume& volume) {
   impl_->volumeTexture.reset();
   impl_->volumeTexture.emplace(volume);
-  impl_->brickMaxima.emplace(volume);
+  impl_->brickRanges.emplace(volume);
   impl_->dims = volume.dims;
   impl_->spacing = volume.spacing;
+  impl_->valueRange = valueRange(volume);
+  impl_->defaultIso = defaultIso(volume);
 }
 
 RenderResult Renderer::render(const RenderSettings& settings) {
   if (!impl_->volumeTexture) throw std::logic_error("Renderer::render before setVolume");
   validate(settings);
-  Technique& technique = impl_->technique(settings.technique);
+  const TechniqueInfo& info = findTechnique(settings.technique);
+  Technique& technique = impl_->technique(info);
+  const OptionReader options(info.options, settings.options, {impl_->defaultIso});
 
   RenderResult result;
   result.view = makeView(settings.camera, impl_->dims, impl_->spacing, settings.size);
+  result.options = options.toJson();
   const SlicePlan plan =
       planSlices(result.view, impl_->dims, impl_->spacing, settings.samplesPerVoxel);
   result.sliceCount = int(plan.slices.size());
@@ -132,29 +142,42 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   VSIL_GL(glBindBuffer(GL_ARRAY_BUFFER, impl_->sliceBuffer.id()));
   VSIL_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec3)),
                        vertices.data(), GL_STREAM_DRAW));
+  if (!impl_->uniforms) impl_->uniforms.emplace();
+  impl_->uniforms->upload(result.view, impl_->dims, plan);
   glViewport(0, 0, settings.size.x, settings.size.y);
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_3D, impl_->volumeTexture->id());
-  if (!impl_->emptySpace) impl_->emptySpace.emplace();
-  impl_->emptySpace->prepare(*impl_->brickMaxima, settings.iso, result.view,
-                             settings.emptySpaceSkipping);
+  gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, impl_->volumeTexture->id());
 
   FrameContext frame;
   frame.settings = &settings;
+  frame.options = &options;
   frame.view = &result.view;
   frame.plan = &plan;
   frame.dims = impl_->dims;
   frame.spacing = impl_->spacing;
+  frame.valueRange = impl_->valueRange;
   frame.volumeTexture = impl_->volumeTexture->id();
   frame.sliceVertexArray = impl_->sliceVertexArray.id();
   frame.screenVertexArray = impl_->screenVertexArray.id();
+  frame.programs = &impl_->programs;
+  frame.uniforms = &*impl_->uniforms;
+  if (!impl_->emptySpace) impl_->emptySpace.emplace();
+  impl_->emptySpace->prepare(*impl_->brickRanges, technique.occupancy(frame), result.view,
+                             settings.emptySpaceSkipping);
   frame.emptySpace = &*impl_->emptySpace;
 
   technique.beginFrame(frame);
-  for (const SliceContext& slice : slices) technique.drawSlice(frame, slice);
+  const int sweeps = technique.sweepCount(frame);
+  for (frame.sweep = 0; frame.sweep < sweeps; ++frame.sweep) {
+    technique.beginSweep(frame);
+    for (const SliceContext& slice : slices) {
+      impl_->uniforms->bindSlice(slice.index);
+      technique.drawSlice(frame, slice);
+    }
+  }
+  frame.sweep = sweeps - 1;
   technique.endFrame(frame);
   VSIL_GL(glFinish());
   result.timings.renderMs = millisecondsSince(start);

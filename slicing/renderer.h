@@ -9,34 +9,32 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/camera.h"
 #include "core/frame.h"
+#include "core/options.h"
 #include "core/volume.h"
 
 namespace vsil {
 namespace gl {
 class GlContext;
-}
+class ProgramCache;
+}  // namespace gl
 
-// How the silhouette technique runs its per-slice passes. Both give the same pixels.
-//  Fast:  footprint, then contour and decision table fused, updating the intermediate record in
-//         place (image load/store); final pixels (Filled, Silhouette) are skipped.
-//  Paper: Nagy–Klein's three passes (footprint, contour, decision) over ping-pong targets.
-enum class SilhouettePipeline { Fast, Paper };
-
+// What a frame is made of: the technique (technique_table.h) and its options, and what every
+// technique shares (image, camera, sampling, empty-space skipping).
 struct RenderSettings {
-  std::string technique = "silhouette";  // silhouette | rightangle
+  std::string technique = "silhouette";
   glm::ivec2 size{512, 512};
-  float iso = 0.5f;  // in the data's own units
   CameraSpec camera;
   double samplesPerVoxel = 1.0;  // slices per voxel along the view direction
-  SilhouettePipeline silhouettePipeline = SilhouettePipeline::Fast;
-  // Skip pixels whose samples cannot reach the iso value (slicing/empty_space.h); the pixels
-  // are the same either way. Off: every slice samples its whole polygon, as in the papers.
+  // Skip what cannot change a pixel (slicing/empty_space.h); the pixels are the same either
+  // way. Off: every slice samples its whole polygon, as in the papers.
   bool emptySpaceSkipping = true;
-  // rightangle: a first hit is a line pixel where (1 - |n·v|)^exponent > threshold.
-  double rightAngleExponent = 8.0;
-  double rightAngleThreshold = 0.3;
+  // The technique's options by name (its entry in technique_table.h declares them); options
+  // not given take their declared defaults, the iso value the volume's default.
+  OptionValues options;
 };
 
 struct RenderTimings {
@@ -47,6 +45,7 @@ struct RenderTimings {
 struct RenderResult {
   FrameBuffers frame;
   View view;
+  nlohmann::json options;  // every option of the technique with the value used
   int sliceCount = 0;  // slices drawn, not counting the extra empty one
   double sliceStepEye = 0;
   RenderTimings timings;
@@ -66,9 +65,11 @@ class Renderer {
   void setVolume(const Volume& volume);
   RenderResult render(const RenderSettings& settings);
 
-  static std::vector<std::string> techniqueNames();
-  // The checks render() makes first (size, sampling, zoom, angles, ...; core/limits.h), callable
-  // before any GL work. Throws InputError naming the flag.
+  // The programs built so far (tests count recompiles).
+  const gl::ProgramCache& programs() const;
+
+  // The checks render() makes first (technique and options, size, sampling, zoom, angles;
+  // core/limits.h), callable before any GL work. Throws InputError naming the flag.
   static void validateSettings(const RenderSettings& settings);
 
  private:

@@ -1,15 +1,21 @@
 #pragma once
-// A technique is one paper's method expressed as passes over the shared slicing loop:
-// the Renderer walks the slices front to back and calls drawSlice for each; the technique owns
-// its render targets and programs. New techniques (illustrate, mip, semantic) plug in here.
+// A technique is one paper's method expressed as passes over the shared slicing loop. The
+// Renderer walks the slices front to back once per sweep (most techniques need one; DEMIP two)
+// and calls drawSlice for each; the technique owns its render targets and takes its programs
+// from the Renderer's cache. What a technique is called, which options it reads and what it
+// returns is declared once in technique_table.h.
 #include <array>
 #include <memory>
 #include <string>
 
 #include "core/frame.h"
+#include "core/options.h"
+#include "core/volume.h"
 #include "slicing/empty_space.h"
+#include "slicing/frame_uniforms.h"
 #include "slicing/gl_objects.h"
 #include "slicing/renderer.h"
+#include "slicing/shader_program.h"
 #include "slicing/slicer.h"
 
 namespace vsil {
@@ -17,16 +23,21 @@ namespace vsil {
 // What every pass of a frame shares. Owned by the Renderer.
 struct FrameContext {
   const RenderSettings* settings = nullptr;
+  const OptionReader* options = nullptr;  // the technique's options, defaults resolved
   const View* view = nullptr;
   const SlicePlan* plan = nullptr;
   glm::ivec3 dims{0};
   glm::dvec3 spacing{1.0};
-  GLuint volumeTexture = 0;      // GL_TEXTURE_3D, R16F or R32F, data units, linear filtering
+  ValueRange valueRange;
+  GLuint volumeTexture = 0;      // bound to TextureUnit::Volume for the whole frame
   GLuint sliceVertexArray = 0;   // all slice polygons, slice k at [firstVertex, +vertexCount)
   GLuint screenVertexArray = 0;  // empty VAO for the full-screen triangle (gl_VertexID)
   // Writes the depth where rays first enter occupied bricks into the bound depth buffer
   // (empty_space.h); slice passes testing GREATER against it skip empty space.
   EmptySpaceSkipping* emptySpace = nullptr;
+  gl::ProgramCache* programs = nullptr;
+  const FrameUniforms* uniforms = nullptr;
+  int sweep = 0;  // which sweep over the slices is being drawn (0 .. sweepCount - 1)
 };
 
 struct SliceContext {
@@ -45,40 +56,31 @@ struct SliceContext {
 class Technique {
  public:
   virtual ~Technique() = default;
+  virtual int sweepCount(const FrameContext&) const { return 1; }
+  // Which bricks may hold something this frame shows (empty_space.h); the others are skipped
+  // without sampling, so the occupancy must refuse only bricks that cannot change a pixel.
+  virtual BrickOccupancy occupancy(const FrameContext& frame) const = 0;
   virtual void beginFrame(const FrameContext& frame) = 0;
+  virtual void beginSweep(const FrameContext&) {}
   virtual void drawSlice(const FrameContext& frame, const SliceContext& slice) = 0;
-  // GPU work after the last slice (e.g. the extra empty slice); the Renderer then calls glFinish.
+  // GPU work after the last sweep (e.g. the extra empty slice); the Renderer then calls glFinish.
   virtual void endFrame(const FrameContext& frame) = 0;
   virtual FrameBuffers readBack(const FrameContext& frame) = 0;
 };
 
-// "silhouette" or "rightangle"; throws InputError listing the names for anything else.
-std::unique_ptr<Technique> makeTechnique(const std::string& name);
+// The occupancy of techniques that look for the iso-surface: a brick may hold a FILLED sample
+// when its maximum reaches the iso value. A small relative slack absorbs float rounding in the
+// filter's weights (R32F volumes).
+BrickOccupancy reachesIso(float iso);
 
-// Uniforms every slice shader reads (common.glsl): the volume, the camera and this slice.
-void setSliceUniforms(gl::Program& program, const FrameContext& frame, const Slice* slice);
-
-// Dead pixels are marked every this many slices: often enough to skip most of them, rarely
-// enough that the marking pass costs little.
-constexpr int kMarkDeadInterval = 8;
-
-// Writes depth 1 through `depthOnly` (a framebuffer with only the technique's depth buffer)
-// at the pixels of this slice's polygon that `markDead` (mark_dead.frag) keeps, reading the
-// records in `record`; slice passes testing GREATER then skip them.
-void markDeadPixels(gl::Program& markDead, const FrameContext& frame, const SliceContext& slice,
-                    const gl::EmptyFramebuffer& depthOnly, const gl::RenderTarget& record);
-
-// The last pass of a frame: shades the first hit recorded in `record` (state, depth, first-hit
-// eye distance, ...; common.glsl) and writes (state, depth, shade, 0) into `output` (finish.frag).
-void finishRecords(gl::Program& finish, const FrameContext& frame, const gl::RenderTarget& record,
-                   const gl::RenderTarget& output);
+// Draws the slice's polygon (it rasterizes the pixels whose centres lie in the box on this
+// plane); the Renderer has bound the slice's uniform block before drawSlice.
+void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice);
+// One triangle over the viewport (screen passes; limit them with a scissor).
+void drawScreen(const FrameContext& frame);
 
 // GL texture rows run bottom-up; FrameBuffers rows top-down. Reads the target's colour
 // attachment as floats with `channels` channels (1 or 4) and flips it.
 cv::Mat readTargetFlipped(const gl::RenderTarget& target, int channels);
-
-// Splits an RGBA32F (state, depth, shade, 0) image into FrameBuffers: depth NaN where EMPTY,
-// shade NaN where not FILLED.
-FrameBuffers frameFromStateImage(const cv::Mat& stateDepthShade);
 
 }  // namespace vsil

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
+#include <string_view>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
@@ -17,36 +20,29 @@ constexpr auto kFont = cv::FONT_HERSHEY_SIMPLEX;
 const cv::Scalar kColors[] = {{180, 119, 31}, {14, 127, 255},  {44, 160, 44},
                               {40, 39, 214},  {189, 103, 148}, {75, 86, 140}};
 
-// ASCII only: putText's Hershey fonts have no '²', 'σ' or '–'.
+// ASCII only: putText's Hershey fonts have no '²', 'σ' or '–'. Other characters become one '?'
+// per code point.
 std::string ascii(const std::string& text) {
+  static const std::pair<std::string_view, std::string_view> kReplacements[] = {
+      {"²", "^2"}, {"³", "^3"}, {"σ", "s"}, {"–", "-"}};
   std::string out;
-  for (std::size_t i = 0; i < text.size(); ++i) {
+  for (std::size_t i = 0; i < text.size();) {
     const unsigned char c = text[i];
     if (c < 0x80) {
       out += char(c);
+      ++i;
       continue;
     }
-    if (text.compare(i, 2, "²") == 0) {
-      out += "^2";
-      i += 1;
+    const auto* replacement =
+        std::find_if(std::begin(kReplacements), std::end(kReplacements),
+                     [&](const auto& r) { return text.compare(i, r.first.size(), r.first) == 0; });
+    if (replacement != std::end(kReplacements)) {
+      out += replacement->second;
+      i += replacement->first.size();
       continue;
     }
-    if (text.compare(i, 2, "³") == 0) {
-      out += "^3";
-      i += 1;
-      continue;
-    }
-    if (text.compare(i, 2, "σ") == 0) {
-      out += "s";
-      i += 1;
-      continue;
-    }
-    if (text.compare(i, 3, "–") == 0) {
-      out += "-";
-      i += 2;
-      continue;
-    }
-    if ((c & 0xC0) == 0xC0) out += '?';  // other characters: one '?' per code point
+    if ((c & 0xC0) == 0xC0) out += '?';  // a lead byte; continuation bytes are dropped
+    ++i;
   }
   return out;
 }

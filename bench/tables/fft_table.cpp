@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cstdio>
 #include <random>
+#include <string>
 
 #include <opencv2/imgproc.hpp>
 
+#include "harness/text_table.h"
 #include "harness/timing_stats.h"
 #include "postfx/gaussian_fft.h"
 
@@ -68,30 +70,112 @@ std::vector<FftTableRow> measureFftTable(const FftTableSpec& spec) {
   return rows;
 }
 
-std::string formatFftTable(const std::vector<FftTableRow>& rows) {
-  std::string out =
-      "| size | sigma | FFT (ms) | GaussianBlur (ms) | FFT/spatial | max diff |\n"
-      "| --- | --- | --- | --- | --- | --- |\n";
-  for (const auto& r : rows) {
-    char line[160];
-    std::snprintf(line, sizeof line, "| %d² | %g | %.2f | %.2f | %.2f | %.1e |\n", r.size, r.sigma,
-                  r.fftMs, r.spatialMs, r.ratio, r.maxDifference);
-    out += line;
-  }
-  return out;
+namespace {
+
+// The two filters compute the same convolution (zero outside the image); they may differ by float
+// round-off and by the spatial kernel's truncation at 3 sigma (OpenCV's default size). Values are
+// in [0, 1] (a line image); 1e-2 catches a wrong sigma or a shifted image.
+constexpr double kMaxDifference = 1e-2;
+
+std::string checkOf(const FftTableRow& r) {
+  return r.maxDifference <= kMaxDifference ? "ok" : "FAILED: FFT and spatial results differ";
 }
 
-nlohmann::json fftTableJson(const std::vector<FftTableRow>& rows) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const auto& r : rows) {
-    out.push_back({{"size", r.size},
-                   {"sigma", r.sigma},
-                   {"fft_ms", r.fftMs},
-                   {"spatial_ms", r.spatialMs},
-                   {"ratio_fft_over_spatial", r.ratio},
-                   {"max_difference", r.maxDifference}});
+std::string sizeLabel(const FftTableRow& r) {
+  return std::to_string(r.size) + "²";
+}
+
+std::string sigmaLabel(const FftTableRow& r) {
+  char sigma[16];
+  std::snprintf(sigma, sizeof sigma, "%g", r.sigma);
+  return sigma;
+}
+
+// Two rows: the FFT's times and the spatial filter's.
+std::vector<nlohmann::json> jsonRows(const FftTableRow& r, const FftTableSpec& spec) {
+  std::vector<nlohmann::json> rows;
+  for (const bool fft : {true, false}) {
+    const double med = fft ? r.fftMs : r.spatialMs;
+    rows.push_back({{"table", "fft"},
+                    {"dataset", "lines"},
+                    {"width", r.size},
+                    {"height", r.size},
+                    {"technique", fft ? "fft" : "spatial"},
+                    {"sigma", r.sigma},
+                    {"frames", spec.repetitions},
+                    {"ms_median", med},
+                    {"ms_min", fft ? r.fftMinMs : r.spatialMinMs},
+                    {"ms_max", fft ? r.fftMaxMs : r.spatialMaxMs},
+                    {"fps", med > 0 ? 1000.0 / med : 0.0},
+                    {"ratio_fft_over_spatial", r.ratio},
+                    {"max_difference", r.maxDifference},
+                    {"check", checkOf(r)}});
   }
-  return out;
+  return rows;
+}
+
+TextTable textTable(const std::vector<FftTableRow>& measured) {
+  TextTable text({"size", "sigma", "FFT ms", "[min–max]", "spatial ms", "[min–max]", "FFT/spatial",
+                  "max diff", "check"});
+  for (const auto& r : measured) {
+    char cells[6][48];
+    std::snprintf(cells[0], 48, "%.3f", r.fftMs);
+    std::snprintf(cells[1], 48, "[%.3f–%.3f]", r.fftMinMs, r.fftMaxMs);
+    std::snprintf(cells[2], 48, "%.3f", r.spatialMs);
+    std::snprintf(cells[3], 48, "[%.3f–%.3f]", r.spatialMinMs, r.spatialMaxMs);
+    std::snprintf(cells[4], 48, "%.2f", r.ratio);
+    std::snprintf(cells[5], 48, "%.1e", r.maxDifference);
+    text.addRow({sizeLabel(r), sigmaLabel(r), cells[0], cells[1], cells[2], cells[3], cells[4],
+                 cells[5], checkOf(r)});
+  }
+  return text;
+}
+
+PlotSpec plotSpec(const std::vector<FftTableRow>& measured) {
+  PlotSpec plot;
+  plot.title = "fft: blur time per image (ms)";
+  plot.valueLabel = "ms";
+  plot.series = {{"FFT", false}, {"GaussianBlur", false}};
+  for (const auto& r : measured) {
+    plot.groups.push_back(sizeLabel(r) + " σ" + sigmaLabel(r));
+    plot.values.push_back({r.fftMs, r.spatialMs});
+  }
+  return plot;
+}
+
+}  // namespace
+
+TableResult fftTableResult(const std::vector<FftTableRow>& measured, const FftTableSpec& spec) {
+  TableResult table;
+  table.name = "fft";
+  table.title = "Broadening cost against sigma: FFT (FFTW, zero padded) vs OpenCV GaussianBlur, ms";
+  for (const auto& r : measured) {
+    for (auto& row : jsonRows(r, spec)) table.rows.push_back(std::move(row));
+    if (checkOf(r) != "ok") {
+      table.failures.push_back("fft " + sizeLabel(r) + " sigma " + sigmaLabel(r) + ": " +
+                               checkOf(r));
+    }
+  }
+  const TextTable text = textTable(measured);
+  table.text = text.plain();
+  table.markdown = text.markdown();
+  table.plot = plotSpec(measured);
+  table.notes.push_back(
+      "image: 40 one-pixel circles (fixed seed); FFT plans and kernel spectra cached before "
+      "timing; single thread");
+  return table;
+}
+
+TableResult runFftTable(const BenchOptions& options, Progress& progress) {
+  FftTableSpec spec;
+  if (!options.sizes.empty()) spec.sizes = options.sizes;
+  spec.repetitions = options.frames;
+  progress.setTotalCases(1);
+  progress.startCase("fft: " + std::to_string(spec.sizes.size() * spec.sigmas.size()) +
+                     " sizes × sigmas, " + std::to_string(spec.repetitions) + " repetitions each");
+  const auto measured = measureFftTable(spec);
+  progress.finish();
+  return fftTableResult(measured, spec);
 }
 
 }  // namespace vsil::bench

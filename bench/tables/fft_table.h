@@ -1,11 +1,10 @@
 #pragma once
-// FFT Gaussian blur (postfx) against OpenCV's spatial GaussianBlur: median times per sigma and
-// image size, and their ratio. The broadening's cost should not grow with sigma (the line width);
-// the spatial filter's grows linearly.
-#include <string>
+// fft: the FFT Gaussian blur of broadening (postfx) against OpenCV's spatial GaussianBlur:
+// median times per sigma and image size, and their ratio. The broadening's cost should not grow
+// with sigma (the line width); the spatial filter's grows linearly.
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include "harness/table.h"
 
 namespace vsil::bench {
 
@@ -28,7 +27,12 @@ struct FftTableSpec {
 };
 
 std::vector<FftTableRow> measureFftTable(const FftTableSpec& spec = {});
-std::string formatFftTable(const std::vector<FftTableRow>& rows);  // Markdown
-nlohmann::json fftTableJson(const std::vector<FftTableRow>& rows);
+
+// The measured rows as the harness reports them: the self-check of each row, two JSON rows per
+// (size, sigma) (technique "fft" and "spatial"), the printed and Markdown table, the plot.
+TableResult fftTableResult(const std::vector<FftTableRow>& measured, const FftTableSpec& spec);
+
+// `vsil bench --table fft`: --sizes replaces the sizes, --frames sets the repetitions.
+TableResult runFftTable(const BenchOptions& options, Progress& progress);
 
 }  // namespace vsil::bench

@@ -1,3 +1,7 @@
+// Table 3 in four steps, each a section below: choosing (the datasets and window sizes, and the
+// missing ones), measuring (each case's frames, timed, then self-checked), rows (JSON rows,
+// failed checks, table lines) and formatting (text, Markdown, plot, notes). runNk3Table at the
+// end calls them in that order.
 #include "tables/nk3_table.h"
 
 #include <algorithm>
@@ -18,6 +22,7 @@
 #include "postfx/compose.h"
 #include "slicing/gl_context.h"
 #include "slicing/renderer.h"
+#include "slicing/technique_table.h"
 
 namespace vsil::bench {
 namespace {
@@ -114,23 +119,92 @@ constexpr double kMinStepSlack = 0.125;
 constexpr int kPlacementRadius = 2;
 constexpr double kMinPlacedFraction = 0.98;
 
-enum class Technique { Ra, Ops, Bs };
-const char* techniqueKey(Technique t) {
-  return t == Technique::Ra ? "ra" : t == Technique::Ops ? "ops" : "bs";
+// The three columns of Table 3, in order: what each renders (an entry of the table of
+// techniques) and what it adds after the render.
+struct Nk3Column {
+  std::string key;    // JSON "technique", progress and failures: ra, ops, bs
+  std::string label;  // the printed table and the plot: RA, OPS, BS
+  const TechniqueInfo& technique;
+  bool broadened;        // BS: FFT broadening to kBroadenedWidth and composition, timed
+  bool resolvesContour;  // finished frames hold no Contour pixel (the extra empty slice)
+  double PaperFps::*paperFps;
+};
+
+const std::vector<Nk3Column>& nk3Columns() {
+  static const std::vector<Nk3Column> columns = {
+      {"ra", "RA", findTechnique("rightangle"), false, false, &PaperFps::ra},
+      {"ops", "OPS", findTechnique("silhouette"), false, true, &PaperFps::ops},
+      {"bs", "BS", findTechnique("silhouette"), true, true, &PaperFps::bs},
+  };
+  return columns;
 }
+// Positions in nk3Columns(), for the checks between columns.
+constexpr std::size_t kRa = 0, kOps = 1, kBs = 2;
+
+// ---- Choosing: which datasets at which window sizes, and which of them cannot be measured ---
+
+struct Nk3Choice {
+  const Nk3Dataset& dataset;
+  std::filesystem::path path;
+  std::string missing;  // why it cannot be measured; empty: it can (if its file reads)
+};
+
+std::vector<int> windowSizes(const BenchOptions& options) {
+  return options.sizes.empty() ? std::vector<int>{256, 512} : options.sizes;
+}
+
+std::vector<Nk3Choice> chooseDatasets(const BenchOptions& options) {
+  std::vector<Nk3Choice> chosen;
+  for (const Nk3Dataset& d : kDatasets) {
+    if (!options.only.empty() &&
+        std::find(options.only.begin(), options.only.end(), d.name) == options.only.end()) {
+      continue;
+    }
+    if (!d.file) {
+      chosen.push_back({d, {}, kSkullMissing});
+      continue;
+    }
+    const std::filesystem::path path = options.datasetsDir / d.file;
+    const bool found = std::filesystem::exists(path);
+    chosen.push_back(
+        {d, path, found ? "" : "not found: " + path.string() + " (use --datasets DIR)"});
+  }
+  return chosen;
+}
+
+int casesToMeasure(const std::vector<Nk3Choice>& chosen, const std::vector<int>& sizes) {
+  const auto present = std::count_if(chosen.begin(), chosen.end(),
+                                     [](const Nk3Choice& c) { return c.missing.empty(); });
+  return int(present * std::ptrdiff_t(sizes.size()));
+}
+
+// ---- Measuring: the frames of each case, timed, then checked ---------------------------------
 
 struct FrameSample {
   double ms = 0, renderMs = 0, readbackMs = 0, postfxMs = 0;
   int silhouettes = 0, filled = 0, contours = 0, linePixels = 0;
 };
 
+// One column at one window size.
 struct CaseResult {
-  Technique technique = Technique::Ops;
+  const Nk3Column* column = nullptr;
   std::vector<FrameSample> frames;  // timed frames only
   TimingStats stats;
   cv::Mat1b firstState;  // timed frame 0 (orbit start)
   int sliceCount = 0;
   std::vector<std::string> problems;
+};
+
+// A dataset as measured: every window size, each with its three cases (none when missing).
+struct Nk3Measured {
+  const Nk3Dataset& dataset;
+  std::string missing;  // why it was not measured; empty: measured
+  glm::ivec3 dims{0};
+  struct Window {
+    int size = 0;
+    std::vector<CaseResult> cases;  // in nk3Columns() order
+  };
+  std::vector<Window> windows;
 };
 
 double msSince(std::chrono::steady_clock::time_point start) {
@@ -168,8 +242,8 @@ cv::Mat1b statesEqualTo(const cv::Mat1b& state, PixelState wanted) {
 // it. Counting pixels for the self-checks happens after the timed region.
 void renderFrame(Renderer& renderer, RenderSettings settings, int k, const BenchOptions& options,
                  FftGaussianBlur& blur, CaseResult& result, std::vector<cv::Mat1b>& warmupStates) {
-  const Technique technique = result.technique;
-  settings.technique = technique == Technique::Ra ? "rightangle" : "silhouette";
+  const Nk3Column& column = *result.column;
+  settings.technique = column.technique.name;
   const bool warm = k < options.warmup;
   const int timedIndex = k - options.warmup;
   settings.camera.azimuthDeg = kOrbitStartDeg + kOrbitStepDeg * std::max(timedIndex, 0);
@@ -180,7 +254,7 @@ void renderFrame(Renderer& renderer, RenderSettings settings, int k, const Bench
   const auto start = std::chrono::steady_clock::now();
   RenderResult frame = renderer.render(settings);
   cv::Mat1b lines;
-  if (technique == Technique::Bs) {
+  if (column.broadened) {
     const auto postStart = std::chrono::steady_clock::now();
     lines = broadenSilhouettes(frame.frame, postfx.width, blur);
     const cv::Mat illustration = composeIllustration(frame.frame, postfx, blur, lines);
@@ -201,7 +275,7 @@ void renderFrame(Renderer& renderer, RenderSettings settings, int k, const Bench
     return;
   }
   countStates(state, sample);
-  if (technique == Technique::Bs) {
+  if (column.broadened) {
     sample.linePixels = cv::countNonZero(lines);
     cv::Mat1b uncovered;
     cv::bitwise_and(statesEqualTo(state, PixelState::Silhouette), ~lines, uncovered);
@@ -224,17 +298,17 @@ void renderFrame(Renderer& renderer, RenderSettings settings, int k, const Bench
 std::vector<CaseResult> runCases(Renderer& renderer, const RenderSettings& settings,
                                  const std::string& label, const BenchOptions& options,
                                  Progress& progress) {
-  const Technique techniques[] = {Technique::Ra, Technique::Ops, Technique::Bs};
-  std::vector<CaseResult> results(3);
-  std::vector<std::vector<cv::Mat1b>> warmupStates(3);
+  const std::vector<Nk3Column>& columns = nk3Columns();
+  std::vector<CaseResult> results(columns.size());
+  for (std::size_t t = 0; t < columns.size(); ++t) results[t].column = &columns[t];
+  std::vector<std::vector<cv::Mat1b>> warmupStates(columns.size());
   FftGaussianBlur blur;  // plans cached per window size, made during the warm-up frames
   progress.startCase(label);
   const int total = options.warmup + options.frames;
   for (int k = 0; k < total; ++k) {
-    for (int t = 0; t < 3; ++t) {
-      results[t].technique = techniques[t];
+    for (std::size_t t = 0; t < columns.size(); ++t) {
       const bool warm = k < options.warmup;
-      progress.step(std::string(techniqueKey(techniques[t])) + " " +
+      progress.step(columns[t].key + " " +
                     (warm
                          ? "warm-up " + std::to_string(k + 1) + "/" + std::to_string(options.warmup)
                          : "frame " + std::to_string(k - options.warmup + 1) + "/" +
@@ -242,7 +316,7 @@ std::vector<CaseResult> runCases(Renderer& renderer, const RenderSettings& setti
       renderFrame(renderer, settings, k, options, blur, results[t], warmupStates[t]);
     }
   }
-  for (int t = 0; t < 3; ++t) {
+  for (std::size_t t = 0; t < columns.size(); ++t) {
     CaseResult& result = results[t];
     std::vector<double> ms;
     for (const auto& f : result.frames) ms.push_back(f.ms);
@@ -268,26 +342,16 @@ std::vector<CaseResult> runCases(Renderer& renderer, const RenderSettings& setti
 //    five datasets at 256² and 512² (JSON field "silhouette_step_change_max"): OPS at most 3 %,
 //    RA at most 18 % (its lines are short dashes of a thresholded dot product that come and
 //    go). A frame that lost or invented a large part of its lines exceeds the bound.
-// The largest relative change of the silhouette count between consecutive timed frames.
-double maxStepChange(const std::vector<FrameSample>& frames) {
-  double largest = 0;
-  for (std::size_t i = 1; i < frames.size(); ++i) {
-    const double a = frames[i - 1].silhouettes, b = frames[i].silhouettes;
-    largest = std::max(largest, std::abs(b - a) / std::max(1.0, std::max(a, b)));
-  }
-  return largest;
-}
-
 void checkFrames(CaseResult& result, int window) {
   for (std::size_t i = 0; i < result.frames.size(); ++i) {
     const FrameSample& f = result.frames[i];
     const std::string frame = "frame " + std::to_string(i + 1);
     if (f.silhouettes == 0) result.problems.push_back(frame + " has no line pixels");
-    if (result.technique != Technique::Ra && f.contours != 0) {
+    if (result.column->resolvesContour && f.contours != 0) {
       result.problems.push_back(frame + " has " + std::to_string(f.contours) +
                                 " Contour pixels (a finished frame has none)");
     }
-    if (result.technique == Technique::Bs && f.linePixels < f.silhouettes) {
+    if (result.column->broadened && f.linePixels < f.silhouettes) {
       result.problems.push_back(frame + ": fewer broadened line pixels than silhouette pixels");
     }
     if (i == 0) continue;
@@ -299,6 +363,16 @@ void checkFrames(CaseResult& result, int window) {
       result.problems.push_back(text);
     }
   }
+}
+
+// The largest relative change of the silhouette count between consecutive timed frames.
+double maxStepChange(const std::vector<FrameSample>& frames) {
+  double largest = 0;
+  for (std::size_t i = 1; i < frames.size(); ++i) {
+    const double a = frames[i - 1].silhouettes, b = frames[i].silhouettes;
+    largest = std::max(largest, std::abs(b - a) / std::max(1.0, std::max(a, b)));
+  }
+  return largest;
 }
 
 // The same views give the same silhouettes: BS renders what OPS rendered, frame for frame.
@@ -338,16 +412,49 @@ void checkPlacement(const CaseResult& ra, CaseResult& ops) {
   }
 }
 
-double medianOf(const std::vector<FrameSample>& frames, double FrameSample::*field) {
-  std::vector<double> values;
-  for (const auto& f : frames) values.push_back(f.*field);
-  return median(values);
+// RA, OPS and BS of one dataset at one window size, each checked on its own and against the
+// others.
+std::vector<CaseResult> measureWindow(Renderer& renderer, const Nk3Dataset& d, int window,
+                                      const BenchOptions& options, Progress& progress) {
+  RenderSettings settings;
+  settings.size = {window, window};
+  settings.options["iso"] = double(d.iso);
+  settings.camera.elevationDeg = kElevationDeg;
+  settings.samplesPerVoxel = 1.0;
+  std::vector<CaseResult> results =
+      runCases(renderer, settings, std::string(d.name) + " " + std::to_string(window) + "²",
+               options, progress);
+  for (CaseResult& result : results) checkFrames(result, window);
+  checkPlacement(results[kRa], results[kOps]);
+  checkSameSilhouettes(results[kOps], results[kBs]);
+  return results;
 }
-double medianOf(const std::vector<FrameSample>& frames, int FrameSample::*field) {
-  std::vector<double> values;
-  for (const auto& f : frames) values.push_back(f.*field);
-  return median(values);
+
+// Every window size of a chosen dataset; one GL context and one renderer for them all, and the
+// upload is not timed. A file that cannot be read makes the dataset missing, not the run fail.
+Nk3Measured measureDataset(const Nk3Choice& chosen, const std::vector<int>& sizes,
+                           const BenchOptions& options, Progress& progress) {
+  Nk3Measured measured{chosen.dataset, chosen.missing, {}, {}};
+  for (int window : sizes) measured.windows.push_back({window, {}});
+  if (!measured.missing.empty()) return measured;
+  Volume volume;
+  try {
+    volume = loadVolume(chosen.path.string());
+  } catch (const InputError& e) {
+    measured.missing = std::string("cannot be read: ") + e.what();
+    return measured;
+  }
+  measured.dims = volume.dims;
+  gl::GlContext context(options.gl);
+  Renderer renderer(context);
+  renderer.setVolume(volume);
+  for (auto& window : measured.windows) {
+    window.cases = measureWindow(renderer, chosen.dataset, window.size, options, progress);
+  }
+  return measured;
 }
+
+// ---- Rows: the JSON rows, the failed checks, and the lines of the printed table --------------
 
 std::optional<PaperFps> paperFor(const Nk3Dataset& dataset, int window) {
   if (window == 256) return dataset.paper256;
@@ -355,15 +462,137 @@ std::optional<PaperFps> paperFor(const Nk3Dataset& dataset, int window) {
   return std::nullopt;
 }
 
-double paperFpsOf(const PaperFps& p, Technique t) {
-  return t == Technique::Ra ? p.ra : t == Technique::Ops ? p.ops : p.bs;
+template <typename Field>
+double medianOf(const std::vector<FrameSample>& frames, Field FrameSample::*field) {
+  std::vector<double> values;
+  for (const auto& f : frames) values.push_back(f.*field);
+  return median(values);
 }
+
+// The case's failed checks, "; " between them ("" when all passed).
+std::string problemsOf(const CaseResult& result) {
+  std::string text;
+  for (const auto& problem : result.problems) text += (text.empty() ? "" : "; ") + problem;
+  return text;
+}
+
+std::string checkOf(const CaseResult& result) {
+  return result.problems.empty() ? "ok" : "FAILED: " + problemsOf(result);
+}
+
+// What a row says of any case, measured or missing.
+nlohmann::json caseRow(const Nk3Dataset& d, int window, const Nk3Column& column) {
+  const auto paper = paperFor(d, window);
+  return {{"table", "nk3"},
+          {"dataset", d.name},
+          {"width", window},
+          {"height", window},
+          {"technique", column.key},
+          {"paper_fps", paper ? nlohmann::json((*paper).*column.paperFps) : nlohmann::json()}};
+}
+
+nlohmann::json missingRow(const Nk3Measured& m, int window, const Nk3Column& column) {
+  nlohmann::json row = caseRow(m.dataset, window, column);
+  row.update({{"frames", 0},
+              {"ms_median", nullptr},
+              {"ms_min", nullptr},
+              {"ms_max", nullptr},
+              {"fps", nullptr},
+              {"missing", m.missing},
+              {"check", nullptr}});
+  return row;
+}
+
+nlohmann::json measuredRow(const Nk3Measured& m, int window, const CaseResult& r,
+                           const BenchOptions& options) {
+  nlohmann::json row = caseRow(m.dataset, window, *r.column);
+  row.update({{"frames", r.stats.frames},
+              {"warmup", options.warmup},
+              {"ms_median", r.stats.msMedian},
+              {"ms_min", r.stats.msMin},
+              {"ms_max", r.stats.msMax},
+              {"fps", r.stats.fps()},
+              {"render_ms_median", medianOf(r.frames, &FrameSample::renderMs)},
+              {"readback_ms_median", medianOf(r.frames, &FrameSample::readbackMs)},
+              {"postfx_ms_median", medianOf(r.frames, &FrameSample::postfxMs)},
+              {"silhouette_pixels_median", medianOf(r.frames, &FrameSample::silhouettes)},
+              {"silhouette_step_change_max", maxStepChange(r.frames)},
+              {"iso", m.dataset.iso},
+              {"dims", {m.dims.x, m.dims.y, m.dims.z}},
+              {"slices", r.sliceCount},
+              {"check", checkOf(r)}});
+  if (r.column->broadened) {
+    row["line_width"] = kBroadenedWidth;
+    row["line_pixels_median"] = medianOf(r.frames, &FrameSample::linePixels);
+  }
+  return row;
+}
+
+// One row per window size and column.
+std::vector<nlohmann::json> jsonRows(const Nk3Measured& m, const BenchOptions& options) {
+  std::vector<nlohmann::json> rows;
+  for (const auto& window : m.windows) {
+    if (!m.missing.empty()) {
+      for (const Nk3Column& column : nk3Columns()) {
+        rows.push_back(missingRow(m, window.size, column));
+      }
+    }
+    for (const CaseResult& r : window.cases) {
+      rows.push_back(measuredRow(m, window.size, r, options));
+    }
+  }
+  return rows;
+}
+
+// "bonsai 512² ops: reason; reason" for each case whose checks failed.
+std::vector<std::string> failedChecks(const Nk3Measured& m) {
+  std::vector<std::string> failures;
+  for (const auto& window : m.windows) {
+    for (const CaseResult& r : window.cases) {
+      if (r.problems.empty()) continue;
+      failures.push_back(std::string(m.dataset.name) + " " + std::to_string(window.size) + "² " +
+                         r.column->key + ": " + problemsOf(r));
+    }
+  }
+  return failures;
+}
+
+// One line of the printed table: a dataset at one window size.
+struct Nk3Line {
+  std::string dataset, size, window;
+  std::vector<double> fps;  // per column (0: not measured)
+  std::optional<PaperFps> paper;
+  std::string check;
+};
 
 std::string dimsLabel(glm::ivec3 dims) {
   if (dims.x == dims.y && dims.y == dims.z) return std::to_string(dims.x) + "³";
   if (dims.x == dims.y) return std::to_string(dims.x) + "²·" + std::to_string(dims.z);
   return std::to_string(dims.x) + "·" + std::to_string(dims.y) + "·" + std::to_string(dims.z);
 }
+
+std::vector<Nk3Line> tableLines(const Nk3Measured& m) {
+  std::vector<Nk3Line> lines;
+  const bool missing = !m.missing.empty();
+  for (const auto& window : m.windows) {
+    Nk3Line line{m.dataset.name,
+                 missing ? m.dataset.paperSize : dimsLabel(m.dims),
+                 std::to_string(window.size) + "²",
+                 std::vector<double>(nk3Columns().size(), 0.0),
+                 paperFor(m.dataset, window.size),
+                 missing ? "missing" : "ok"};
+    std::string failed;
+    for (std::size_t i = 0; i < window.cases.size(); ++i) {
+      line.fps[i] = window.cases[i].stats.fps();
+      if (!window.cases[i].problems.empty()) failed += " " + window.cases[i].column->key;
+    }
+    if (!failed.empty()) line.check = "FAILED:" + failed;
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+// ---- Formatting: the printed table, Markdown, the plot and the notes -------------------------
 
 std::string formatFps(double fps) {
   if (!(fps > 0)) return "–";
@@ -379,191 +608,54 @@ std::string formatRatio(double ratio) {
   return text;
 }
 
-// One line of the printed table: a dataset at one window size.
-struct Nk3Line {
-  std::string dataset, size, window;
-  double fps[3] = {0, 0, 0};  // ra, ops, bs (0: not measured)
-  std::optional<PaperFps> paper;
-  std::string check;
-};
-
-}  // namespace
-
-std::vector<std::string> nk3DatasetNames() {
-  std::vector<std::string> names;
-  for (const auto& d : kDatasets) names.push_back(d.name);
-  return names;
+// Ours, then the paper's: fps per column and RA/OPS.
+TextTable textTable(const std::vector<Nk3Line>& lines) {
+  const auto& columns = nk3Columns();
+  std::vector<std::string> header{"dataset", "size", "window"};
+  for (const auto& c : columns) header.push_back(c.label + " fps");
+  header.push_back("RA/OPS");
+  for (const auto& c : columns) header.push_back("paper " + c.label);
+  header.insert(header.end(), {"paper RA/OPS", "check"});
+  TextTable text(header);
+  for (const Nk3Line& l : lines) {
+    std::vector<std::string> cells{l.dataset, l.size, l.window};
+    for (double fps : l.fps) cells.push_back(formatFps(fps));
+    cells.push_back(formatRatio(l.fps[kRa] / l.fps[kOps]));
+    for (const auto& c : columns) {
+      cells.push_back(l.paper ? formatFps((*l.paper).*c.paperFps) : "–");
+    }
+    cells.push_back(l.paper ? formatRatio(l.paper->raOverOps) : "–");
+    cells.push_back(l.check);
+    text.addRow(std::move(cells));
+  }
+  return text;
 }
 
-TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
-  TableResult table;
-  table.name = "nk3";
-  table.title =
-      "Nagy–Klein Table 3: frames per second, ours beside the paper's (3 GHz Pentium 4, "
-      "ATI Fire GL X1)";
-  const std::vector<int> sizes = options.sizes.empty() ? std::vector<int>{256, 512} : options.sizes;
-
-  std::vector<const Nk3Dataset*> selected;
-  for (const auto& d : kDatasets) {
-    if (options.only.empty() ||
-        std::find(options.only.begin(), options.only.end(), d.name) != options.only.end()) {
-      selected.push_back(&d);
-    }
+// Bars per line: each column's fps, ours solid beside the paper's hatched.
+PlotSpec plotSpec(const std::vector<Nk3Line>& lines) {
+  const auto& columns = nk3Columns();
+  PlotSpec plot;
+  plot.title = "nk3: frames per second (ours solid, paper hatched)";
+  plot.valueLabel = "fps";
+  plot.logScale = true;
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    plot.series.push_back({columns[i].label, false, int(i)});
+    plot.series.push_back({columns[i].label + " paper", true, int(i)});
   }
-  int cases = 0;
-  for (const auto* d : selected) {
-    if (d->file && std::filesystem::exists(options.datasetsDir / d->file)) {
-      cases += int(sizes.size());
-    }
-  }
-  progress.setTotalCases(cases);
-
-  std::vector<Nk3Line> lines;
-  const Technique techniques[] = {Technique::Ra, Technique::Ops, Technique::Bs};
-
-  auto missingRows = [&](const Nk3Dataset& d, const std::string& reason) {
-    table.notes.push_back(std::string(d.paperName) + ": " + reason);
-    for (int window : sizes) {
-      const auto paper = paperFor(d, window);
-      lines.push_back(
-          {d.name, d.paperSize, std::to_string(window) + "²", {0, 0, 0}, paper, "missing"});
-      for (Technique t : techniques) {
-        table.rows.push_back(
-            {{"table", "nk3"},
-             {"dataset", d.name},
-             {"width", window},
-             {"height", window},
-             {"technique", techniqueKey(t)},
-             {"frames", 0},
-             {"ms_median", nullptr},
-             {"ms_min", nullptr},
-             {"ms_max", nullptr},
-             {"fps", nullptr},
-             {"paper_fps", paper ? nlohmann::json(paperFpsOf(*paper, t)) : nlohmann::json(nullptr)},
-             {"missing", reason},
-             {"check", nullptr}});
-      }
-    }
-  };
-
-  for (const Nk3Dataset* d : selected) {
-    if (!d->file) {
-      missingRows(*d, kSkullMissing);
-      continue;
-    }
-    const std::filesystem::path path = options.datasetsDir / d->file;
-    if (!std::filesystem::exists(path)) {
-      missingRows(*d, "not found: " + path.string() + " (use --datasets DIR)");
-      continue;
-    }
-    Volume volume;
-    try {
-      volume = loadVolume(path.string());
-    } catch (const InputError& e) {
-      missingRows(*d, std::string("cannot be read: ") + e.what());
-      continue;
-    }
-    char isoNote[256];
-    std::snprintf(isoNote, sizeof isoNote, "%s: %s", d->paperName, d->isoReason);
-    table.notes.push_back(isoNote);
-
-    // One context and one renderer per dataset; the upload is not timed.
-    gl::GlContext context;
-    Renderer renderer(context);
-    renderer.setVolume(volume);
-    for (int window : sizes) {
-      RenderSettings settings;
-      settings.size = {window, window};
-      settings.iso = d->iso;
-      settings.camera.elevationDeg = kElevationDeg;
-      settings.samplesPerVoxel = 1.0;
-      std::vector<CaseResult> results =
-          runCases(renderer, settings, std::string(d->name) + " " + std::to_string(window) + "²",
-                   options, progress);
-      for (CaseResult& result : results) checkFrames(result, window);
-      checkPlacement(results[0], results[1]);
-      checkSameSilhouettes(results[1], results[2]);
-
-      Nk3Line line;
-      line.dataset = d->name;
-      line.size = dimsLabel(volume.dims);
-      line.window = std::to_string(window) + "²";
-      line.paper = paperFor(*d, window);
-      std::vector<std::string> failed;
-      for (std::size_t i = 0; i < results.size(); ++i) {
-        CaseResult& r = results[i];
-        const Technique t = r.technique;
-        std::string check = "ok";
-        if (!r.problems.empty()) {
-          check = "FAILED: " + r.problems.front();
-          for (std::size_t k = 1; k < r.problems.size(); ++k) check += "; " + r.problems[k];
-          table.failures.push_back(std::string(d->name) + " " + std::to_string(window) + "² " +
-                                   techniqueKey(t) + ": " + check.substr(8));
-          failed.push_back(techniqueKey(t));
-        }
-        line.fps[i] = r.stats.fps();
-        nlohmann::json row = {
-            {"table", "nk3"},
-            {"dataset", d->name},
-            {"width", window},
-            {"height", window},
-            {"technique", techniqueKey(t)},
-            {"frames", r.stats.frames},
-            {"warmup", options.warmup},
-            {"ms_median", r.stats.msMedian},
-            {"ms_min", r.stats.msMin},
-            {"ms_max", r.stats.msMax},
-            {"fps", r.stats.fps()},
-            {"render_ms_median", medianOf(r.frames, &FrameSample::renderMs)},
-            {"readback_ms_median", medianOf(r.frames, &FrameSample::readbackMs)},
-            {"postfx_ms_median", medianOf(r.frames, &FrameSample::postfxMs)},
-            {"silhouette_pixels_median", medianOf(r.frames, &FrameSample::silhouettes)},
-            {"silhouette_step_change_max", maxStepChange(r.frames)},
-            {"iso", d->iso},
-            {"dims", {volume.dims.x, volume.dims.y, volume.dims.z}},
-            {"slices", r.sliceCount},
-            {"paper_fps",
-             line.paper ? nlohmann::json(paperFpsOf(*line.paper, t)) : nlohmann::json(nullptr)},
-            {"check", check}};
-        if (t == Technique::Bs) {
-          row["line_width"] = kBroadenedWidth;
-          row["line_pixels_median"] = medianOf(r.frames, &FrameSample::linePixels);
-        }
-        table.rows.push_back(std::move(row));
-      }
-      if (failed.empty()) {
-        line.check = "ok";
-      } else {
-        line.check = "FAILED:";
-        for (const auto& f : failed) line.check += " " + f;
-      }
-      lines.push_back(line);
-    }
-  }
-  progress.finish();
-
-  // Printed table and Markdown.
-  TextTable text({"dataset", "size", "window", "RA fps", "OPS fps", "BS fps", "RA/OPS", "paper RA",
-                  "paper OPS", "paper BS", "paper RA/OPS", "check"});
-  table.plot.title = "nk3: frames per second (ours solid, paper hatched)";
-  table.plot.valueLabel = "fps";
-  table.plot.logScale = true;
-  table.plot.series = {{"RA", false, 0},       {"RA paper", true, 0}, {"OPS", false, 1},
-                       {"OPS paper", true, 1}, {"BS", false, 2},      {"BS paper", true, 2}};
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const Nk3Line& l : lines) {
-    const auto& p = l.paper;
-    text.addRow({l.dataset, l.size, l.window, formatFps(l.fps[0]), formatFps(l.fps[1]),
-                 formatFps(l.fps[2]), formatRatio(l.fps[0] / l.fps[1]), p ? formatFps(p->ra) : "–",
-                 p ? formatFps(p->ops) : "–", p ? formatFps(p->bs) : "–",
-                 p ? formatRatio(p->raOverOps) : "–", l.check});
-    table.plot.groups.push_back(l.dataset + " " + l.window);
-    auto measured = [&](int i) { return l.fps[i] > 0 ? l.fps[i] : nan; };
-    table.plot.values.push_back({measured(0), p ? p->ra : nan, measured(1), p ? p->ops : nan,
-                                 measured(2), p ? p->bs : nan});
+    plot.groups.push_back(l.dataset + " " + l.window);
+    std::vector<double> values;
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      values.push_back(l.fps[i] > 0 ? l.fps[i] : nan);
+      values.push_back(l.paper ? (*l.paper).*columns[i].paperFps : nan);
+    }
+    plot.values.push_back(std::move(values));
   }
-  table.text = text.plain();
-  table.markdown = text.markdown();
+  return plot;
+}
+
+std::string methodNote(const BenchOptions& options) {
   char method[512];
   std::snprintf(method, sizeof method,
                 "method: %d warm-up + %d timed frames per technique, RA/OPS/BS taking turns, orbit "
@@ -574,7 +666,50 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
                 "BS adds broadening to W = %.0f px and composition",
                 options.warmup, options.frames, kOrbitStartDeg, kOrbitStepDeg, kElevationDeg,
                 kBroadenedWidth);
-  table.notes.insert(table.notes.begin(), method);
+  return method;
+}
+
+// Why a dataset is missing, or the iso value it was measured at and why.
+std::string datasetNote(const Nk3Measured& m) {
+  return std::string(m.dataset.paperName) + ": " +
+         (m.missing.empty() ? std::string(m.dataset.isoReason) : m.missing);
+}
+
+}  // namespace
+
+std::vector<std::string> nk3DatasetNames() {
+  std::vector<std::string> names;
+  for (const auto& d : kDatasets) names.push_back(d.name);
+  return names;
+}
+
+TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
+  const std::vector<int> sizes = windowSizes(options);
+  const std::vector<Nk3Choice> chosen = chooseDatasets(options);
+  progress.setTotalCases(casesToMeasure(chosen, sizes));
+  std::vector<Nk3Measured> measured;
+  for (const Nk3Choice& c : chosen) measured.push_back(measureDataset(c, sizes, options, progress));
+  progress.finish();
+
+  TableResult table;
+  table.name = "nk3";
+  table.title =
+      "Nagy–Klein Table 3: frames per second, ours beside the paper's (3 GHz Pentium 4, "
+      "ATI Fire GL X1)";
+  table.notes.push_back(methodNote(options));
+  std::vector<Nk3Line> lines;
+  for (const Nk3Measured& m : measured) {
+    table.notes.push_back(datasetNote(m));
+    for (auto& row : jsonRows(m, options)) table.rows.push_back(std::move(row));
+    const auto failures = failedChecks(m);
+    table.failures.insert(table.failures.end(), failures.begin(), failures.end());
+    const auto datasetLines = tableLines(m);
+    lines.insert(lines.end(), datasetLines.begin(), datasetLines.end());
+  }
+  const TextTable text = textTable(lines);
+  table.text = text.plain();
+  table.markdown = text.markdown();
+  table.plot = plotSpec(lines);
   return table;
 }
 

@@ -1,29 +1,33 @@
-// common.glsl: put in front of every vsil shader (after #version and the defines).
-// Pixel states, equal to vsil::PixelState (src/core/frame.h; a GL test checks they agree),
-// and the geometry every slice pass shares: which volume sample a pixel sees on this slice.
-// The CPU references in tests/reference repeat these formulas operation for operation.
-#define STATE_EMPTY 0u
-#define STATE_FILLED 1u
-#define STATE_CONTOUR 2u
-#define STATE_SILHOUETTE 3u
+// common.glsl: first in every vsil program (shader_program.h). What every technique shares: the
+// frame's and the slice's uniform blocks (slicing/frame_uniforms.h mirrors them), which volume
+// sample a pixel sees on this slice, and gradients by central differences. The CPU references
+// in tests/reference repeat these formulas operation for operation.
 
-uniform sampler3D volumeTexture;      // data units, linear filtering, clamp to edge
-uniform vec3 volumeDims;              // samples along x, y, z
-uniform mat4 voxelFromEye;
-uniform mat3 eyeFromVoxelGradient;    // inverse transpose of eyeFromVoxel's linear part
-uniform vec2 viewportSize;
-uniform vec2 halfExtent;              // View::halfExtent
-uniform int orthographic;
-uniform float isoValue;
-uniform float sliceEyeDistance;       // -z_eye of this slice's plane
-uniform float sliceDepth;             // its normalized depth d
-uniform float sliceWindowDepth;       // its window depth (what the depth test compares)
-// Where pixel centres sample the volume on this slice (slicer.h SliceTexCoords): texture
-// coordinates affine in NDC, tex = ndc.x * sliceTexPerNdcX + ndc.y * sliceTexPerNdcY +
-// sliceTexAtNdcOrigin. Cheaper per fragment than the eye point and the matrix.
-uniform vec3 sliceTexPerNdcX;
-uniform vec3 sliceTexPerNdcY;
-uniform vec3 sliceTexAtNdcOrigin;
+layout(std140, binding = 0) uniform FrameBlock {
+  mat4 voxelFromEye;
+  mat4 clipFromVoxel;
+  mat3 eyeFromVoxelGradient;  // inverse transpose of eyeFromVoxel's linear part
+  vec3 volumeDims;            // samples along x, y, z
+  int orthographic;
+  vec2 viewportSize;
+  vec2 halfExtent;  // View::halfExtent
+};
+
+layout(std140, binding = 1) uniform SliceBlock {
+  // Where pixel centres sample the volume on this slice (slicer.h SliceTexCoords): texture
+  // coordinates affine in NDC, tex = ndc.x * sliceTexPerNdcX + ndc.y * sliceTexPerNdcY +
+  // sliceTexAtNdcOrigin. Cheaper per fragment than the eye point and the matrix.
+  vec3 sliceTexPerNdcX;
+  float sliceEyeDistance;  // -z_eye of this slice's plane
+  vec3 sliceTexPerNdcY;
+  float sliceDepth;  // its normalized depth d
+  vec3 sliceTexAtNdcOrigin;
+  float sliceWindowDepth;    // its window depth (what the depth test compares)
+  float previousSliceDepth;  // the previous slice's d (0 before the first)
+  uint sliceIndex;
+};
+
+layout(binding = UNIT_VOLUME) uniform sampler3D volumeTexture;  // data units, linear, clamped
 
 #ifdef VSIL_FRAGMENT_SHADER
 // This pixel's centre in normalized device coordinates.
@@ -70,60 +74,4 @@ float facingRatio(vec3 voxel, vec3 eye) {
   if (length2 <= 0.0) return 1.0;
   vec3 toEye = orthographic != 0 ? vec3(0.0, 0.0, 1.0) : -normalize(eye);
   return abs(dot(normalEye * inversesqrt(length2), toEye));
-}
-
-// Nagy–Klein Table 2: the intermediate state t (rows) combined with this slice's contour value
-// c (columns EMPTY, FILLED, CONTOUR, and SILHOUETTE, which c never is). The only copy in GLSL.
-const uint decisionTable[16] = uint[16](
-    STATE_EMPTY, STATE_FILLED, STATE_CONTOUR, STATE_EMPTY,                    // t = EMPTY
-    STATE_FILLED, STATE_FILLED, STATE_FILLED, STATE_FILLED,                   // t = FILLED
-    STATE_SILHOUETTE, STATE_FILLED, STATE_CONTOUR, STATE_CONTOUR,             // t = CONTOUR
-    STATE_SILHOUETTE, STATE_SILHOUETTE, STATE_SILHOUETTE, STATE_SILHOUETTE);  // t = SILHOUETTE
-
-uint decide(uint t, uint c) { return decisionTable[t * 4u + c]; }
-
-// FILLED and SILHOUETTE never change again.
-bool isFinal(uint state) { return state == STATE_FILLED || state == STATE_SILHOUETTE; }
-
-// Footprints: the footprint pass writes footprintTag where this slice is FILLED; any other
-// value is EMPTY. The fast pipeline tags each slice differently (its index + 1), so the
-// footprint never needs clearing between slices; the paper pipeline clears and tags with 1.
-uniform uint footprintTag;
-
-// The contour value of a pixel from a footprint: STATE_CONTOUR for a FILLED pixel whose
-// 8-neighbourhood is not all FILLED; pixels beyond the image count as EMPTY.
-uint contourAt(usampler2D footprint, ivec2 pixel) {
-  ivec2 size = textureSize(footprint, 0);
-  if (texelFetch(footprint, pixel, 0).r != footprintTag) return STATE_EMPTY;
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      ivec2 neighbour = pixel + ivec2(dx, dy);
-      if (any(lessThan(neighbour, ivec2(0))) || any(greaterThanEqual(neighbour, size)) ||
-          texelFetch(footprint, neighbour, 0).r != footprintTag) {
-        return STATE_CONTOUR;
-      }
-    }
-  }
-  return STATE_FILLED;
-}
-
-// Records t = (state, depth, first-hit eye distance, depth of the latest CONTOUR sample).
-// depth: for FILLED the first hit's normalized depth; for SILHOUETTE the middle of the run of
-// CONTOUR samples that ended in the detection, where the view ray grazes the surface. The shade
-// is computed once per pixel after the last slice (finish.frag): llvmpipe runs both sides of a
-// branch, so per-slice gradients would cost every pixel.
-float silhouetteDepth(vec4 t) { return 0.5 * (t.g + t.a); }
-
-// Applies one slice's contour value c to the record t (the decision table, with the depths).
-vec4 decideRecord(vec4 t, uint c) {
-  uint state = uint(t.r);
-  uint next = decide(state, c);
-  vec4 result = vec4(float(next), t.g, t.b, t.a);
-  if (state == STATE_EMPTY && next != STATE_EMPTY) {
-    result.g = sliceDepth;
-    result.b = sliceEyeDistance;
-  }
-  if (next == STATE_CONTOUR) result.a = sliceDepth;
-  if (state == STATE_CONTOUR && next == STATE_SILHOUETTE) result.g = silhouetteDepth(t);
-  return result;
 }

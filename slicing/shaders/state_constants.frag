@@ -1,5 +1,5 @@
-// state_constants.frag: writes the four STATE_* constants into pixels 0..3 of an R8UI target,
-// so a test can check them against vsil::PixelState.
+// state_constants.frag: writes the four STATE_* constants (hit_records.glsl) into pixels 0..3 of
+// an R8UI target, so a test can check them against vsil::PixelState.
 layout(location = 0) out uint value;
 
 void main() {

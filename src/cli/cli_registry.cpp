@@ -1,6 +1,9 @@
 #include "cli/commands.h"
 
 #include <algorithm>
+#include <string>
+
+#include "core/version.h"
 
 namespace vsil::cli {
 
@@ -15,7 +18,7 @@ CommandRegistration::CommandRegistration(int order, CommandSetup setup) {
 
 void setUpApp(CLI::App& app) {
   app.require_subcommand(1);
-  app.set_version_flag("--version", "vsil 0.1.0");
+  app.set_version_flag("--version", std::string("vsil ") + kVsilVersion);
   auto commands = registeredCommands();
   std::stable_sort(commands.begin(), commands.end(),
                    [](const auto& a, const auto& b) { return a.order < b.order; });

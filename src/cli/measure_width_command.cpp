@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "core/atomic_file.h"
+#include "core/depth_image.h"
 #include "core/error.h"
 #include "core/image_file.h"
 #include "postfx/line_width.h"
@@ -59,7 +60,7 @@ void run(const MeasureWidthArgs& args) {
             << stats.mean << "  median " << stats.median << "  p05 " << stats.p05 << "  p95 "
             << stats.p95 << "  min " << stats.min << "  max " << stats.max << "\n";
   if (!args.depth.empty()) {
-    const cv::Mat depth = readImage(args.depth);
+    const cv::Mat1f depth = decodeDepthImage(readImage(args.depth), args.depth);
     if (depth.size() != image.size()) {
       throwInputError(args.depth, "is not the size of " + args.image);
     }

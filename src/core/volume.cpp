@@ -155,4 +155,9 @@ VolumeSubset planVolume(const std::string& where, glm::ivec3 fileDims, SampleTyp
   return subset;
 }
 
+float defaultIso(const Volume& volume) {
+  const ValueRange range = valueRange(volume);
+  return float(0.5 * (double(range.min) + double(range.max)));
+}
+
 }  // namespace vsil

@@ -125,6 +125,9 @@ struct ValueRange {
 };
 ValueRange valueRange(const Volume& volume);
 
+// The iso value a technique uses when none is given: the middle of the value range.
+float defaultIso(const Volume& volume);
+
 // Limits checked before a reader allocates or reads any payload. maxBytes bounds the memory of
 // the whole task the volume is read for (default: half the physical memory, core/limits.h);
 // maxDimension bounds each axis of the volume as kept (the GL 3D texture limit, 2048).

@@ -1,7 +1,8 @@
 // The bad-input corpus (tests/bad_inputs/): each case in cases.json runs `vsil` on a hostile
 // file or flag and must end with its exit status and its exact one-line error on stderr,
 // nothing on stdout, and no file left in the output folder (neither a partial target nor a
-// temporary). Placeholders: {DIR} the corpus folder, {OUT} a fresh output folder.
+// temporary). Placeholders: {DIR} the corpus folder, {OUT} a fresh output folder,
+// {TECHNIQUES} the names in the table of techniques (slicing/technique_table.h).
 #include <unistd.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "reference/test_support.h"
+#include "slicing/technique_table.h"
 
 namespace vsil {
 namespace {
@@ -57,8 +59,12 @@ class BadInputCase : public ::testing::TestWithParam<BadInput> {};
 TEST_P(BadInputCase, FailsWithItsExactError) {
   const BadInput& c = GetParam();
   const fs::path out = test::scratchDir();
+  std::string techniques;
+  for (const auto& name : techniqueNames()) techniques += (techniques.empty() ? "" : ", ") + name;
   const auto expand = [&](const std::string& text) {
-    return substitute(substitute(text, "{DIR}", kCorpus.string()), "{OUT}", out.string());
+    return substitute(
+        substitute(substitute(text, "{DIR}", kCorpus.string()), "{OUT}", out.string()),
+        "{TECHNIQUES}", techniques);
   };
   const test::CommandResult result = test::runVsil(expand(c.args));
   EXPECT_EQ(result.exitCode, c.exit) << c.args << "\nstderr: " << result.err;

@@ -1,21 +1,23 @@
 // vsil render → vsil measure-width, end to end through the built binary: a sphere rendered with
 // --width 9 measures 9 px, and the JSON report has its documented schema.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/depth_image.h"
+#include "core/image_file.h"
 #include "test_support.h"
+#include "width_tolerances.h"
 
 namespace vsil {
 namespace {
 
 TEST(RenderThenMeasureWidth, SphereAtWidthNineMeasuresNine) {
-  // Inputs in a folder of their own: runVsil() does not touch it.
-  const auto dir = test::scratchDir().parent_path() / "render-measure-width";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const auto dir = test::scratchDir();
   const auto out = (dir / "out.png").string(), depth = (dir / "depth.png").string(),
              state = (dir / "state.png").string(), json = (dir / "report.json").string();
   const auto render = test::runVsil(
@@ -59,6 +61,57 @@ TEST(RenderThenMeasureWidth, SphereAtWidthNineMeasuresNine) {
     }
   }
   EXPECT_GT(binned, widths["count"].get<int>() / 2) << "most samples find a depth";
+}
+
+// A width study as a user runs it (the issue that found the depth PNG read back wrongly):
+// the Engine rendered with a depth law, its depth image into measure-width. Every depth bin
+// that holds samples must lie where silhouettes lie, and its median width on the law.
+TEST(RenderThenMeasureWidth, DepthLawStudyOnTheEngine) {
+  VSIL_REQUIRE_DATASETS();
+  const auto dir = test::scratchDir();
+  const auto out = (dir / "engine.png").string(), depth = (dir / "depth.png").string(),
+             json = (dir / "report.json").string(), plot = (dir / "plot.png").string();
+  const double nearWidth = 8, farWidth = 2;
+  const auto render = test::runVsil("render " + test::datasetPath("engine.vti").string() +
+                                    " --iso 80 --view 40,25 --width-near 8 --width-far 2 --out " +
+                                    out + " --depth-out " + depth);
+  ASSERT_EQ(render.exitCode, 0) << render.err;
+  const auto measure = test::runVsil("measure-width " + out + " --depth " + depth +
+                                     " --plot " + plot + " --json " + json);
+  ASSERT_EQ(measure.exitCode, 0) << measure.err;
+  EXPECT_TRUE(std::filesystem::exists(plot));
+
+  // Where the silhouettes lie, straight from the depth image.
+  const cv::Mat1f lineDepth = decodeDepthImage(readImage(depth), depth);
+  double lo = 1, hi = 0;
+  int lines = 0;
+  for (float d : cv::Mat_<float>(lineDepth)) {
+    if (std::isnan(d)) continue;
+    lo = std::min(lo, double(d));
+    hi = std::max(hi, double(d));
+    ++lines;
+  }
+  ASSERT_GT(lines, 500);
+
+  std::ifstream in(json);
+  const auto report = nlohmann::json::parse(in);
+  int binned = 0, checked = 0;
+  for (const auto& bin : report["by_depth"]) {
+    const int count = bin["count"].get<int>();
+    if (count == 0) continue;
+    binned += count;
+    const double from = bin["depth_from"].get<double>(), to = bin["depth_to"].get<double>();
+    EXPECT_TRUE(to > lo && from <= hi) << "samples in bin " << bin.dump()
+                                       << " where no silhouette lies (silhouettes at " << lo
+                                       << ".." << hi << ")";
+    if (count < 100) continue;  // a few samples near a bin edge say little about the law
+    const double d = 0.5 * (from + to);
+    const double law = nearWidth + (farWidth - nearWidth) * d;
+    EXPECT_NEAR(bin["median_width"].get<double>(), law, test::depthTolerance(law)) << bin.dump();
+    ++checked;
+  }
+  EXPECT_GT(binned, report["widths"]["count"].get<int>() / 2) << "most samples find a depth";
+  EXPECT_GE(checked, 3) << "the law is checked over several depths";
 }
 
 }  // namespace

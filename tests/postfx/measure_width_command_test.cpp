@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/depth_image.h"
 #include "core/image_file.h"
 #include "digital_curves.h"
 #include "postfx/broaden.h"
@@ -30,13 +31,7 @@ TEST(MeasureWidthCommand, ReportsWidthsAndWidthAgainstDepth) {
   cv::Mat1b image(band.size(), std::uint8_t(255));
   image.setTo(0, band);
   writePng(dir / "lines.png", image);
-  cv::Mat1w depth(frame.depth.size(), std::uint16_t(0));
-  for (int y = 0; y < depth.rows; ++y) {
-    for (int x = 0; x < depth.cols; ++x) {
-      if (!std::isnan(frame.depth(y, x))) depth(y, x) = std::uint16_t(frame.depth(y, x) * 65535);
-    }
-  }
-  writePng(dir / "depth.png", depth);
+  writePng(dir / "depth.png", encodeDepthImage(frame.depth));
 
   const auto result =
       test::runVsil("measure-width " + (dir / "lines.png").string() + " --json " +

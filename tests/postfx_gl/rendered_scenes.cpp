@@ -9,7 +9,7 @@ RenderResult renderOrthographic(const Volume& volume, glm::ivec2 size, double az
   RenderSettings settings;
   settings.technique = "silhouette";
   settings.size = size;
-  settings.iso = 0.5f;
+  settings.options["iso"] = 0.5;
   settings.camera.orthographic = true;
   settings.camera.azimuthDeg = azimuthDeg;
   settings.camera.elevationDeg = elevationDeg;

@@ -1,7 +1,6 @@
 #include "silhouette_reference.h"
 
 #include <cmath>
-#include <limits>
 #include <vector>
 
 #include "slice_sampler.h"
@@ -25,42 +24,13 @@ PixelState decide(PixelState t, PixelState c) {
   return t;
 }
 
-namespace {
-
-constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
-
-struct Setup {
-  View view;
-  SlicePlan plan;
-};
-
-Setup setUp(const Volume& volume, const RenderSettings& settings) {
-  Setup setup;
-  setup.view = makeView(settings.camera, volume.dims, volume.spacing, settings.size);
-  setup.plan = planSlices(setup.view, volume.dims, volume.spacing, settings.samplesPerVoxel);
-  return setup;
-}
-
-// A frame of the setup's size with every pixel Empty (depth and shade NaN), nothing ambiguous.
-ReferenceFrame emptyFrame(const Setup& setup, glm::ivec2 size) {
-  ReferenceFrame result;
-  result.view = setup.view;
-  result.sliceCount = int(setup.plan.slices.size());
-  result.ambiguous = cv::Mat1b(size.y, size.x, std::uint8_t(0));
-  result.frame.state = cv::Mat1b(size.y, size.x, std::uint8_t(PixelState::Empty));
-  result.frame.depth = cv::Mat1f(size.y, size.x, kNan);
-  result.frame.shade = cv::Mat1f(size.y, size.x, kNan);
-  return result;
-}
-
-}  // namespace
-
 ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& settings,
                                 float isoEpsilon) {
-  const Setup setup = setUp(volume, settings);
+  const ReferenceSetup setup = setUpReference(volume, settings);
+  const float iso = float(setup.options.number("iso"));
   const SliceSampler sampler(volume, setup.view);
   const int w = settings.size.x, h = settings.size.y;
-  ReferenceFrame result = emptyFrame(setup, settings.size);
+  ReferenceFrame result = emptyReferenceFrame(setup, settings.size);
   cv::Mat1b state(h, w, std::uint8_t(PixelState::Empty));
   cv::Mat1f depth(h, w, 0.0f), shade(h, w, 0.0f);
   cv::Mat1b footprint(h, w), nearIso(h, w);
@@ -75,8 +45,8 @@ ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& sett
           const glm::vec3 tex = sampler.sliceTexCoord(x, y, coords);
           if (!sampler.insideTexture(tex)) continue;
           const float value = sampler.sampleTexture(tex);
-          footprint(y, x) = value >= settings.iso;
-          nearIso(y, x) = std::abs(value - settings.iso) <= isoEpsilon;
+          footprint(y, x) = value >= iso;
+          nearIso(y, x) = std::abs(value - iso) <= isoEpsilon;
         }
       }
     }
@@ -126,46 +96,6 @@ ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& sett
       const auto s = PixelState(state(y, x));
       if (s != PixelState::Empty) result.frame.depth(y, x) = depth(y, x);
       if (s == PixelState::Filled) result.frame.shade(y, x) = shade(y, x);
-    }
-  }
-  return result;
-}
-
-ReferenceFrame renderRightAngle(const Volume& volume, const RenderSettings& settings,
-                                float isoEpsilon) {
-  const Setup setup = setUp(volume, settings);
-  const SliceSampler sampler(volume, setup.view);
-  const int w = settings.size.x, h = settings.size.y;
-  ReferenceFrame result = emptyFrame(setup, settings.size);
-  std::vector<SliceTexCoords> coords;
-  for (const Slice& slice : setup.plan.slices) {
-    coords.push_back(sliceTexCoords(setup.view, volume.dims, slice.eyeDistance));
-  }
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      for (std::size_t k = 0; k < setup.plan.slices.size(); ++k) {
-        const Slice& slice = setup.plan.slices[k];
-        if (slice.polygonVoxel.empty()) continue;
-        const glm::vec3 tex = sampler.sliceTexCoord(x, y, coords[k]);
-        if (!sampler.insideTexture(tex)) continue;
-        const float value = sampler.sampleTexture(tex);
-        if (std::abs(value - settings.iso) <= isoEpsilon) result.ambiguous(y, x) = 1;
-        if (value < settings.iso) continue;
-        // The first hit is shaded where finish.frag shades it: at the eye point.
-        const glm::vec3 eye = sampler.eyePoint(x, y, float(slice.eyeDistance));
-        const glm::vec3 voxel = sampler.voxelFromEyePoint(eye);
-        const float facing = sampler.facingRatio(voxel, eye);
-        const bool line = std::pow(1.0f - facing, float(settings.rightAngleExponent)) >
-                          float(settings.rightAngleThreshold);
-        // A line decision within a hair of the threshold may also round either way.
-        const float margin = std::abs(std::pow(1.0f - facing, float(settings.rightAngleExponent)) -
-                                      float(settings.rightAngleThreshold));
-        if (margin < 1e-4f) result.ambiguous(y, x) = 1;
-        result.frame.state(y, x) = std::uint8_t(line ? PixelState::Silhouette : PixelState::Filled);
-        result.frame.depth(y, x) = float(slice.depth);
-        if (!line) result.frame.shade(y, x) = facing;
-        break;
-      }
     }
   }
   return result;

@@ -14,12 +14,15 @@
 #include "slice_sampler.h"
 #include "slicing/empty_space.h"
 #include "slicing/gl_objects.h"
+#include "frame_compare.h"
 #include "slicing/renderer.h"
+#include "slicing/technique.h"
+#include "slicing/technique_table.h"
 
 namespace vsil {
 namespace {
 
-constexpr int kB = BrickMaxima::kBrickSize;
+constexpr int kB = BrickRanges::kBrickSize;
 
 // Sparse: -1 almost everywhere, random peaks at about one voxel in 200, so that each brick's
 // maximum comes from a few voxels and a brick that misses one of its reach shows.
@@ -44,32 +47,37 @@ Volume spikesVolume(glm::ivec3 dims, const std::vector<glm::ivec3>& spikes) {
   return volume;
 }
 
-TEST(BrickMaxima, EqualTheMaximumOverEachBricksFilterReach) {
+TEST(BrickRanges, EqualTheRangeOverEachBricksFilterReach) {
   // Dims that are not multiples of the brick size: the last bricks are partial.
   const Volume volume = randomVolume({2 * kB + 5, kB + 3, 3 * kB + 1}, 7);
-  const BrickMaxima maxima(volume);
-  ASSERT_EQ(maxima.bricks(), glm::ivec3(3, 2, 4));
-  for (int bz = 0; bz < maxima.bricks().z; ++bz) {
-    for (int by = 0; by < maxima.bricks().y; ++by) {
-      for (int bx = 0; bx < maxima.bricks().x; ++bx) {
+  const BrickRanges ranges(volume);
+  ASSERT_EQ(ranges.bricks(), glm::ivec3(3, 2, 4));
+  for (int bz = 0; bz < ranges.bricks().z; ++bz) {
+    for (int by = 0; by < ranges.bricks().y; ++by) {
+      for (int bx = 0; bx < ranges.bricks().x; ++bx) {
         const glm::ivec3 brick(bx, by, bz);
         const glm::ivec3 lo = glm::max(brick * kB - 2, glm::ivec3(0));
         const glm::ivec3 hi = glm::min((brick + 1) * kB + 1, volume.dims - 1);
-        float expected = -std::numeric_limits<float>::infinity();
+        float expectedMax = -std::numeric_limits<float>::infinity();
+        float expectedMin = std::numeric_limits<float>::infinity();
         for (int z = lo.z; z <= hi.z; ++z) {
           for (int y = lo.y; y <= hi.y; ++y) {
-            for (int x = lo.x; x <= hi.x; ++x) expected = std::max(expected, volume.at(x, y, z));
+            for (int x = lo.x; x <= hi.x; ++x) {
+              expectedMax = std::max(expectedMax, volume.at(x, y, z));
+              expectedMin = std::min(expectedMin, volume.at(x, y, z));
+            }
           }
         }
-        EXPECT_EQ(maxima.maximum(brick), expected) << bx << "," << by << "," << bz;
+        EXPECT_EQ(ranges.range(brick).max, expectedMax) << bx << "," << by << "," << bz;
+        EXPECT_EQ(ranges.range(brick).min, expectedMin) << bx << "," << by << "," << bz;
       }
     }
   }
 }
 
-TEST(BrickMaxima, BoundEveryTrilinearSampleInTheirRegion) {
+TEST(BrickRanges, BoundEveryTrilinearSampleInTheirRegion) {
   const Volume volume = randomVolume({2 * kB + 3, 2 * kB, kB + 7}, 11);
-  const BrickMaxima maxima(volume);
+  const BrickRanges ranges(volume);
   const View view = makeView(CameraSpec{}, volume.dims, volume.spacing, {64, 64});
   const reference::SliceSampler sampler(volume, view);
   std::mt19937 random(3);
@@ -81,15 +89,17 @@ TEST(BrickMaxima, BoundEveryTrilinearSampleInTheirRegion) {
       p[axis] = along(random);
     }
     const glm::ivec3 brick = glm::clamp(glm::ivec3(glm::floor((p + 0.5f) / float(kB))),
-                                        glm::ivec3(0), maxima.bricks() - 1);
-    ASSERT_TRUE(glm::all(glm::greaterThanEqual(glm::dvec3(p), maxima.regionLow(brick))));
-    ASSERT_TRUE(glm::all(glm::lessThanEqual(glm::dvec3(p), maxima.regionHigh(brick))));
+                                        glm::ivec3(0), ranges.bricks() - 1);
+    ASSERT_TRUE(glm::all(glm::greaterThanEqual(glm::dvec3(p), ranges.regionLow(brick))));
+    ASSERT_TRUE(glm::all(glm::lessThanEqual(glm::dvec3(p), ranges.regionHigh(brick))));
     // The sample is a convex combination of voxels within the brick's reach, up to float
-    // rounding of the weights (occupied() allows for it): the brick counts as occupied for
-    // any iso value the sample reaches.
+    // rounding of the weights (reachesIso allows for it): the brick counts as occupied for
+    // any iso value the sample reaches, and the sample is not below the brick's minimum.
     const float value = sampler.sample(p);
-    ASSERT_TRUE(maxima.occupied(brick, value))
-        << p.x << "," << p.y << "," << p.z << ": " << value << " > " << maxima.maximum(brick);
+    ASSERT_TRUE(reachesIso(value)(ranges.range(brick)))
+        << p.x << "," << p.y << "," << p.z << ": " << value << " > " << ranges.range(brick).max;
+    ASSERT_GE(value, ranges.range(brick).min - 1e-5f * std::abs(ranges.range(brick).min))
+        << p.x << "," << p.y << "," << p.z;
     ++checked;
   }
   EXPECT_EQ(checked, 200000);
@@ -97,17 +107,17 @@ TEST(BrickMaxima, BoundEveryTrilinearSampleInTheirRegion) {
 
 TEST(OccupiedFaces, OneBrickShowsEachOfItsSixFacesOnExactlyOneSide) {
   const Volume volume = spikesVolume({4 * kB, 4 * kB, 4 * kB}, {{kB + 3, 2 * kB + 4, kB + 5}});
-  const BrickMaxima maxima(volume);
+  const BrickRanges ranges(volume);
   const View view = makeView(CameraSpec{}, volume.dims, volume.spacing, {64, 64});
-  const auto [entry, exit] = occupiedFaces(maxima, 0.5f, view);
+  const auto [entry, exit] = occupiedFaces(ranges, reachesIso(0.5f), view);
   // The spike's filter reach lies inside one brick: 6 faces of 2 triangles, none shared.
   EXPECT_EQ(entry.size() + exit.size(), 6u * 6u);
   EXPECT_GE(entry.size(), 6u);
   EXPECT_GE(exit.size(), 6u);
   // Every vertex lies on the brick's region grown by the margin.
   const glm::ivec3 brick(1, 2, 1);
-  const glm::dvec3 lo = maxima.regionLow(brick) - kEntryMargin;
-  const glm::dvec3 hi = maxima.regionHigh(brick) + kEntryMargin;
+  const glm::dvec3 lo = ranges.regionLow(brick) - kEntryMargin;
+  const glm::dvec3 hi = ranges.regionHigh(brick) + kEntryMargin;
   for (const auto& v : entry) {
     for (int axis = 0; axis < 3; ++axis) {
       EXPECT_GE(v[axis], lo[axis] - 1e-6);
@@ -115,19 +125,19 @@ TEST(OccupiedFaces, OneBrickShowsEachOfItsSixFacesOnExactlyOneSide) {
     }
   }
   // Nothing is occupied above the spike's value.
-  EXPECT_TRUE(occupiedFaces(maxima, 1.5f, view).entry.empty());
+  EXPECT_TRUE(occupiedFaces(ranges, reachesIso(1.5f), view).entry.empty());
 }
 
 TEST(OccupiedFaces, FacesBetweenTwoOccupiedBricksAreLeftOut) {
   // A spike on a brick border reaches into both bricks along x.
   const Volume volume = spikesVolume({4 * kB, 4 * kB, 4 * kB}, {{2 * kB, kB + 3, kB + 3}});
-  const BrickMaxima maxima(volume);
-  ASSERT_TRUE(maxima.occupied({1, 1, 1}, 0.5f));
-  ASSERT_TRUE(maxima.occupied({2, 1, 1}, 0.5f));
-  ASSERT_FALSE(maxima.occupied({0, 1, 1}, 0.5f));
-  ASSERT_FALSE(maxima.occupied({3, 1, 1}, 0.5f));
+  const BrickRanges ranges(volume);
+  ASSERT_TRUE(reachesIso(0.5f)(ranges.range({1, 1, 1})));
+  ASSERT_TRUE(reachesIso(0.5f)(ranges.range({2, 1, 1})));
+  ASSERT_FALSE(reachesIso(0.5f)(ranges.range({0, 1, 1})));
+  ASSERT_FALSE(reachesIso(0.5f)(ranges.range({3, 1, 1})));
   const View view = makeView(CameraSpec{}, volume.dims, volume.spacing, {64, 64});
-  const auto [entry, exit] = occupiedFaces(maxima, 0.5f, view);
+  const auto [entry, exit] = occupiedFaces(ranges, reachesIso(0.5f), view);
   EXPECT_EQ(entry.size() + exit.size(), 10u * 6u);  // 12 faces, less the 2 they share
 }
 
@@ -179,18 +189,18 @@ TEST_P(EntryAndExitDepth, MatchRaysThroughTheOccupiedBricks) {
   const glm::ivec3 dims(5 * kB, 4 * kB, 3 * kB + 3);
   const Volume volume = spikesVolume(
       dims, {{kB + 2, kB + 2, kB + 2}, {3 * kB + 4, 2 * kB, kB + 1}, {dims.x - 1, 0, dims.z - 1}});
-  const BrickMaxima maxima(volume);
+  const BrickRanges ranges(volume);
   const float iso = 0.5f;
   const glm::ivec2 size(96, 80);
   const View view = makeView(GetParam().camera, dims, volume.spacing, size);
 
   std::vector<std::pair<glm::dvec3, glm::dvec3>> boxes;
-  for (int bz = 0; bz < maxima.bricks().z; ++bz) {
-    for (int by = 0; by < maxima.bricks().y; ++by) {
-      for (int bx = 0; bx < maxima.bricks().x; ++bx) {
-        if (!maxima.occupied({bx, by, bz}, iso)) continue;
-        boxes.emplace_back(maxima.regionLow({bx, by, bz}) - kEntryMargin,
-                           maxima.regionHigh({bx, by, bz}) + kEntryMargin);
+  for (int bz = 0; bz < ranges.bricks().z; ++bz) {
+    for (int by = 0; by < ranges.bricks().y; ++by) {
+      for (int bx = 0; bx < ranges.bricks().x; ++bx) {
+        if (!reachesIso(iso)(ranges.range({bx, by, bz}))) continue;
+        boxes.emplace_back(ranges.regionLow({bx, by, bz}) - kEntryMargin,
+                           ranges.regionHigh({bx, by, bz}) + kEntryMargin);
       }
     }
   }
@@ -199,7 +209,7 @@ TEST_P(EntryAndExitDepth, MatchRaysThroughTheOccupiedBricks) {
   gl::RenderTarget target(size, GL_R8UI, /*withDepthStencil=*/true);
   EmptySpaceSkipping skipping;
   glViewport(0, 0, size.x, size.y);
-  skipping.prepare(maxima, iso, view, /*enabled=*/true);
+  skipping.prepare(ranges, reachesIso(iso), view, /*enabled=*/true);
   target.bindForDrawing();
   skipping.writeEntryDepth(glm::mat4(view.clipFromVoxel()));
   std::vector<float> entry(std::size_t(size.x * size.y)), exit(entry.size());
@@ -270,7 +280,7 @@ INSTANTIATE_TEST_SUITE_P(Views, EntryAndExitDepth,
 struct SceneCase {
   std::string name;
   std::string technique;
-  SilhouettePipeline pipeline;
+  OptionValues options;
   CameraSpec camera;
 };
 
@@ -280,10 +290,6 @@ void PrintTo(const SceneCase& c, std::ostream* out) {
 
 class SkippingChangesNoPixel : public test::GlTest,
                                public ::testing::WithParamInterface<SceneCase> {};
-
-bool sameFloat(float a, float b) {
-  return (std::isnan(a) && std::isnan(b)) || a == b;
-}
 
 // Spikes whose filter reach crosses brick borders, edges and corners, and the volume's own
 // faces: the worst case for a conservative bound. Skipping on and off must agree exactly.
@@ -300,27 +306,17 @@ TEST_P(SkippingChangesNoPixel, OnSpikesAtBrickBorders) {
   renderer.setVolume(volume);
   RenderSettings settings;
   settings.technique = c.technique;
-  settings.silhouettePipeline = c.pipeline;
+  settings.options = c.options;
   settings.size = {120, 100};
-  settings.iso = 0.2f;
   settings.camera = c.camera;
   settings.emptySpaceSkipping = false;
   const RenderResult all = renderer.render(settings);
   settings.emptySpaceSkipping = true;
   const RenderResult skipped = renderer.render(settings);
 
-  int hitPixels = 0, differing = 0;
-  for (int y = 0; y < settings.size.y; ++y) {
-    for (int x = 0; x < settings.size.x; ++x) {
-      const bool same = all.frame.state(y, x) == skipped.frame.state(y, x) &&
-                        sameFloat(all.frame.depth(y, x), skipped.frame.depth(y, x)) &&
-                        sameFloat(all.frame.shade(y, x), skipped.frame.shade(y, x));
-      differing += same ? 0 : 1;
-      hitPixels += all.frame.state(y, x) != std::uint8_t(PixelState::Empty) ? 1 : 0;
-    }
-  }
-  EXPECT_EQ(differing, 0);
-  EXPECT_GT(hitPixels, 20) << "the spikes must show, or the comparison says nothing";
+  EXPECT_EQ(test::differingPixels(all.frame, skipped.frame), 0);
+  EXPECT_GT(test::shownPixels(all.frame), 20)
+      << "the spikes must show, or the comparison says nothing";
 }
 
 std::vector<SceneCase> sceneCases() {
@@ -329,10 +325,13 @@ std::vector<SceneCase> sceneCases() {
       {"Behind", camera(200, -35, false, 1.5)},
       {"Orthographic", camera(95, 60, true, 1)},
       {"ZoomedIn", camera(-20, 10, false, 2.5)}};
+  // Every technique of the table: each decides for itself what is occupied.
   std::vector<SceneCase> cases;
   for (const auto& [viewName, spec] : views) {
-    cases.push_back({"SilhouetteFast" + viewName, "silhouette", SilhouettePipeline::Fast, spec});
-    cases.push_back({"RightAngle" + viewName, "rightangle", SilhouettePipeline::Fast, spec});
+    for (const auto& technique : techniqueTable()) {
+      cases.push_back({technique.name + viewName, technique.name,
+                       test::isoOptions(technique, 0.2), spec});
+    }
   }
   return cases;
 }

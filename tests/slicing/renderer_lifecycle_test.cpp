@@ -10,9 +10,11 @@
 #include <gtest/gtest.h>
 
 #include "generators/generators.h"
+#include "frame_compare.h"
 #include "reference/gl_harness.h"
 #include "slicing/gl.h"
 #include "slicing/renderer.h"
+#include "slicing/technique_table.h"
 
 namespace vsil {
 namespace {
@@ -62,11 +64,11 @@ LiveObjects liveObjects() {
 void renderCycle(const Volume& volume) {
   Renderer renderer(test::sharedGlContext());
   renderer.setVolume(volume);
-  for (const char* technique : {"silhouette", "rightangle"}) {
+  for (const auto& technique : techniqueTable()) {
     RenderSettings settings;
-    settings.technique = technique;
+    settings.technique = technique.name;
+    settings.options = test::isoOptions(technique, 0.5);
     settings.size = {256, 192};
-    settings.iso = 0.5f;
     renderer.render(settings);
   }
 }

@@ -8,7 +8,10 @@
 #include "gl_harness.h"
 #include "silhouette_reference.h"
 #include "slicing/gl_objects.h"
+#include "slicing/frame_uniforms.h"
 #include "slicing/gl_state.h"
+#include "slicing/shader_program.h"
+#include "slicing/texture_units.h"
 
 namespace vsil {
 namespace {
@@ -36,7 +39,8 @@ void drawScreenTriangle(const gl::RenderTarget& target) {
 TEST_F(GlTest, GlslStateConstantsEqualThePixelStateEnum) {
   gl::ScopedState restore;
   gl::RenderTarget target({4, 1}, GL_R8UI);
-  gl::Program program("screen.vert", "state_constants.frag");
+  gl::Program program(gl::screenPassProgram({"shaders/hit_records.glsl"},
+                                            "shaders/state_constants.frag"));
   program.use();
   drawScreenTriangle(target);
   const auto values = readUint8(target);
@@ -88,17 +92,17 @@ TEST_F(GlTest, DecisionShaderMatchesThePaperInAllTwelveCases) {
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 
   gl::RenderTarget target({3, 4}, GL_RGBA32F);
-  gl::Program program("screen.vert", "decision.frag");
+  // The pass as the paper pipeline runs it, with a frame's uniform blocks bound.
+  gl::Program program(gl::screenPassProgram(
+      {"shaders/hit_records.glsl", "techniques/silhouette/silhouette.glsl"},
+      "techniques/silhouette/decision.frag", {"PAPER_PIPELINE"}));
+  const glm::ivec3 dims(4);
+  const View view = makeView(CameraSpec{}, dims, glm::dvec3(1.0), {3, 4});
+  FrameUniforms uniforms;
+  uniforms.upload(view, dims, planSlices(view, dims, glm::dvec3(1.0), 1.0));
   program.use();
-  program.set("contourTexture", 1);
-  program.set("intermediateTexture", 2);
-  program.set("emptySlice", 0);
-  program.set("viewportSize", glm::vec2(3, 4));
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, contourTexture.id());
-  glActiveTexture(GL_TEXTURE2);
-  glBindTexture(GL_TEXTURE_2D, intermediateTexture.id());
-  glActiveTexture(GL_TEXTURE0);
+  gl::bindTexture(gl::TextureUnit::Contour, GL_TEXTURE_2D, contourTexture.id());
+  gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, intermediateTexture.id());
   drawScreenTriangle(target);
 
   std::vector<float> result(3 * 4 * 4);

@@ -33,7 +33,7 @@ RenderResult renderOrthographic(const Volume& volume, glm::ivec2 size, double az
                                 double elevation = 0) {
   RenderSettings settings;
   settings.size = size;
-  settings.iso = 0.5f;
+  settings.options["iso"] = 0.5;
   settings.camera.orthographic = true;
   settings.camera.azimuthDeg = azimuth;
   settings.camera.elevationDeg = elevation;
@@ -145,7 +145,7 @@ TEST_F(SilhouetteAnalytic, RenderingIsDeterministic) {
   const Volume volume = test::ballsVolume({64, 64, 64}, {{{30, 34, 32}, 17.0}});
   RenderSettings settings;
   settings.size = {150, 130};
-  settings.iso = 0.5f;
+  settings.options["iso"] = 0.5;
   Renderer renderer(test::sharedGlContext());
   renderer.setVolume(volume);
   for (const char* technique : {"silhouette", "rightangle"}) {

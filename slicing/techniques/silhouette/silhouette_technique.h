@@ -1,10 +1,10 @@
 #pragma once
 // Nagy–Klein one-pixel silhouettes (OPS). Per slice a footprint pass (alpha test), the contour
-// of the footprint (8-neighbourhood) and the decision table combining it with the intermediate
-// record; one extra empty slice after the last turns contours at the back into silhouettes.
-// Two pipelines give the same pixels (RenderSettings::silhouettePipeline):
-//  Paper: three passes, the intermediate record in ping-pong targets, as the paper draws it.
-//  Fast:  the footprint pass writes this slice's depth at FILLED pixels; one pass fuses
+// of the footprint (8-neighbourhood) and the decision table combining it with the record
+// (silhouette.glsl); one extra empty slice after the last turns contours at the back into
+// silhouettes. Two pipelines give the same pixels (--pipeline):
+//  paper: three passes, the record in ping-pong targets, as the paper draws it.
+//  fast:  the footprint pass writes this slice's depth at FILLED pixels; one pass fuses
 //         contour and decision, runs only there (early depth test EQUAL) and updates the record
 //         in place; detection (CONTOUR meeting an empty slice) is applied lazily
 //         (decision_inplace.frag), the extra empty slice by the finishing pass. The depth
@@ -16,48 +16,47 @@
 #include <optional>
 
 #include "slicing/technique.h"
+#include "slicing/technique_table.h"
 
 namespace vsil {
 
+TechniqueInfo silhouetteTechniqueInfo();
+
 class SilhouetteTechnique : public Technique {
  public:
+  BrickOccupancy occupancy(const FrameContext& frame) const override;
   void beginFrame(const FrameContext& frame) override;
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
   void endFrame(const FrameContext& frame) override;
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:
+  enum class Pipeline { Fast, Paper };
+  struct Programs {
+    gl::Program *footprint, *contour, *decision, *emptySliceDecision, *decisionInPlace, *finish;
+  };
   void drawFootprint(const FrameContext& frame, const SliceContext& slice);
-  // What the footprint pass writes where a slice is FILLED (common.glsl footprintTag): the fast
-  // pipeline tags every slice differently and never clears; the paper one clears and uses 1.
-  unsigned footprintTag(const SliceContext& slice) const {
-    return pipeline_ == SilhouettePipeline::Fast ? unsigned(slice.index) + 1 : 1u;
-  }
   // Paper pipeline: contour pass, then the decision pass into the other ping-pong target over
-  // `bounds`; `slice` null means the extra empty slice (every c EMPTY).
+  // `bounds`; `emptySlice` means the extra empty slice (every c EMPTY).
   void contourPaper(const FrameContext& frame, const PixelRect& bounds);
-  void decidePaper(const FrameContext& frame, const Slice* slice, const PixelRect& bounds);
+  void decidePaper(const FrameContext& frame, bool emptySlice, const PixelRect& bounds);
   void decideInPlace(const FrameContext& frame, const SliceContext& slice);
 
   struct Targets {
-    // R32UI: footprintTag FILLED, else EMPTY. Fast pipeline: its depth holds the slice depth of the
-    // latest FILLED sample (before any: where the ray enters occupied bricks), 1 at dead pixels.
+    // R32UI: footprintTag() FILLED, else EMPTY. Fast pipeline: its depth holds the slice depth
+    // of the latest FILLED sample (before any: where the ray enters occupied bricks), 1 at dead
+    // pixels.
     gl::RenderTarget footprint;
     gl::RenderTarget contour;  // R8UI: EMPTY, FILLED, CONTOUR (paper pipeline)
-    // RGBA32F records (common.glsl): ping-pong (paper) or [0] updated in place (fast); the
+    // RGBA32F records (silhouette.glsl): ping-pong (paper) or [0] updated in place (fast); the
     // finished frame (state, depth, shade, 0) goes to the other one.
-    std::array<gl::RenderTarget, 2> intermediate;
+    std::array<gl::RenderTarget, 2> records;
     gl::EmptyFramebuffer depthOnly;  // the footprint's depth, no colour: the in-place pass
   };
-  struct Programs {
-    Programs();  // out of line: clang cannot default-construct it inside std::optional here
-    gl::Program footprint, contour, decision, decisionInPlace, finish, markDead;
-  };
   std::optional<Targets> targets_;
-  std::optional<Programs> programs_;
-  SilhouettePipeline pipeline_ = SilhouettePipeline::Fast;
-  int current_ = 0;  // the intermediate target holding the latest record
-  double previousSliceDepth_ = 0;
+  Programs programs_{};
+  Pipeline pipeline_ = Pipeline::Fast;
+  int current_ = 0;  // the record target holding the latest record
 };
 
 }  // namespace vsil

@@ -1,0 +1,65 @@
+#include "slicing/frame_uniforms.h"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+namespace vsil {
+
+FrameUniforms::FrameUniforms() : frameBuffer_(gl::createBuffer()), sliceBuffer_(gl::createBuffer()) {
+  GLint alignment = 256;
+  glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
+  const GLsizeiptr size = sizeof(SliceBlock);
+  sliceStride_ = (size + alignment - 1) / alignment * alignment;
+}
+
+void FrameUniforms::upload(const View& view, glm::ivec3 dims, const SlicePlan& plan) {
+  FrameBlock frame{};
+  frame.voxelFromEye = glm::mat4(glm::inverse(view.eyeFromVoxel));
+  frame.clipFromVoxel = glm::mat4(view.clipFromVoxel());
+  const glm::mat3 gradient(glm::transpose(glm::inverse(glm::dmat3(view.eyeFromVoxel))));
+  for (int column = 0; column < 3; ++column) {
+    frame.eyeFromVoxelGradient[column] = glm::vec4(gradient[column], 0.0f);
+  }
+  frame.volumeDims = glm::vec3(dims);
+  frame.orthographic = view.orthographic ? 1 : 0;
+  frame.viewportSize = glm::vec2(view.viewport);
+  frame.halfExtent = glm::vec2(view.halfExtent);
+  VSIL_GL(glBindBuffer(GL_UNIFORM_BUFFER, frameBuffer_.id()));
+  VSIL_GL(glBufferData(GL_UNIFORM_BUFFER, sizeof(frame), &frame, GL_STREAM_DRAW));
+
+  // At least one block, so that screen passes always have one bound.
+  slices_ = int(plan.slices.size());
+  std::vector<std::byte> blocks(std::size_t(sliceStride_) * std::size_t(std::max(slices_, 1)));
+  for (int k = 0; k < slices_; ++k) {
+    const Slice& slice = plan.slices[std::size_t(k)];
+    const SliceTexCoords tex = sliceTexCoords(view, dims, slice.eyeDistance);
+    SliceBlock block{};
+    block.texPerNdcX = tex.perNdcX;
+    block.texPerNdcY = tex.perNdcY;
+    block.texAtNdcOrigin = tex.atNdcOrigin;
+    block.eyeDistance = float(slice.eyeDistance);
+    block.depth = float(slice.depth);
+    const glm::dvec4 clip = view.clipFromEye * glm::dvec4(0.0, 0.0, -slice.eyeDistance, 1.0);
+    block.windowDepth = float(0.5 * clip.z / clip.w + 0.5);
+    block.previousDepth = k > 0 ? float(plan.slices[std::size_t(k - 1)].depth) : 0.0f;
+    block.index = std::uint32_t(k);
+    std::memcpy(blocks.data() + std::size_t(k) * std::size_t(sliceStride_), &block, sizeof(block));
+  }
+  VSIL_GL(glBindBuffer(GL_UNIFORM_BUFFER, sliceBuffer_.id()));
+  VSIL_GL(glBufferData(GL_UNIFORM_BUFFER, GLsizeiptr(blocks.size()), blocks.data(), GL_STREAM_DRAW));
+  glBindBuffer(GL_UNIFORM_BUFFER, 0);
+  bindFrame();
+}
+
+void FrameUniforms::bindSlice(int k) const {
+  glBindBufferRange(GL_UNIFORM_BUFFER, kSliceBlockBinding, sliceBuffer_.id(),
+                    GLintptr(k) * sliceStride_, sizeof(SliceBlock));
+}
+
+void FrameUniforms::bindFrame() const {
+  glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBlockBinding, frameBuffer_.id());
+  bindSlice(0);
+}
+
+}  // namespace vsil

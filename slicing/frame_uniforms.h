@@ -1,0 +1,69 @@
+#pragma once
+// The uniforms every pass reads (shaders/common.glsl), in two std140 uniform blocks: the
+// frame's (camera, volume) uploaded once per frame, and one block per slice (where its pixels
+// sample the volume, its depths), all uploaded once per frame into one buffer; a pass binds its
+// slice's block with one glBindBufferRange instead of about fifteen glUniform calls per program.
+#include <cstddef>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "core/camera.h"
+#include "slicing/gl_objects.h"
+#include "slicing/slicer.h"
+
+namespace vsil {
+
+// Mirrors `uniform FrameBlock` in shaders/common.glsl (std140 offsets checked below).
+struct FrameBlock {
+  glm::mat4 voxelFromEye;
+  glm::mat4 clipFromVoxel;
+  glm::vec4 eyeFromVoxelGradient[3];  // mat3 columns, each padded to a vec4 (std140)
+  glm::vec3 volumeDims;
+  std::int32_t orthographic;
+  glm::vec2 viewportSize;
+  glm::vec2 halfExtent;
+};
+static_assert(offsetof(FrameBlock, eyeFromVoxelGradient) == 128);
+static_assert(offsetof(FrameBlock, volumeDims) == 176);
+static_assert(offsetof(FrameBlock, orthographic) == 188);
+static_assert(offsetof(FrameBlock, viewportSize) == 192);
+static_assert(offsetof(FrameBlock, halfExtent) == 200);
+
+// Mirrors `uniform SliceBlock` in shaders/common.glsl.
+struct SliceBlock {
+  glm::vec3 texPerNdcX;  // slicer.h SliceTexCoords
+  float eyeDistance;     // -z_eye of the plane
+  glm::vec3 texPerNdcY;
+  float depth;  // normalized depth d of the plane
+  glm::vec3 texAtNdcOrigin;
+  float windowDepth;    // what the depth test compares
+  float previousDepth;  // the previous slice's d (0 before the first)
+  std::uint32_t index;  // the slice's index in the plan
+};
+static_assert(offsetof(SliceBlock, texPerNdcY) == 16);
+static_assert(offsetof(SliceBlock, texAtNdcOrigin) == 32);
+static_assert(offsetof(SliceBlock, previousDepth) == 48);
+static_assert(offsetof(SliceBlock, index) == 52);
+
+inline constexpr GLuint kFrameBlockBinding = 0;
+inline constexpr GLuint kSliceBlockBinding = 1;
+
+class FrameUniforms {
+ public:
+  FrameUniforms();
+  // The frame's block and one block per slice of `plan`, uploaded in one call each.
+  void upload(const View& view, glm::ivec3 dims, const SlicePlan& plan);
+  // Binds slice k's block (and the frame's block) to their binding points.
+  void bindSlice(int k) const;
+  // For passes that read no slice (screen passes): slice 0's block, or nothing to read.
+  void bindFrame() const;
+
+ private:
+  gl::BufferName frameBuffer_;
+  gl::BufferName sliceBuffer_;
+  GLsizeiptr sliceStride_ = 0;  // sizeof(SliceBlock) rounded up to the offset alignment
+  int slices_ = 0;
+};
+
+}  // namespace vsil

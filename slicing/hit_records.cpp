@@ -1,0 +1,94 @@
+#include "slicing/hit_records.h"
+
+#include <limits>
+
+#include "slicing/gl_state.h"
+#include "slicing/texture_units.h"
+
+namespace vsil {
+
+void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
+                    const gl::EmptyFramebuffer& depthOnly, const gl::RenderTarget& record,
+                    bool neighboursFinal) {
+  gl::Program& markDead = frame.programs->get(gl::slicePassProgram(
+      hitRecordSources(), "shaders/mark_dead.frag",
+      neighboursFinal ? std::vector<std::string>{"NEIGHBOURS_FINAL"} : std::vector<std::string>{}));
+  depthOnly.bindForDrawing();
+  gl::Capability noScissor(GL_SCISSOR_TEST, false);
+  gl::DepthTest depthTest(GL_GREATER, /*write=*/true);  // pixels already dead (depth 1) skipped
+  gl::DepthRange everyFragmentAtOne(1.0, 1.0);
+  markDead.use();
+  gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, record.texture());
+  gl::bindTexture(gl::TextureUnit::ExitDepth, GL_TEXTURE_2D, frame.emptySpace->exitDepthTexture());
+  drawSlicePolygon(frame, slice);
+}
+
+void FirstHitRecorder::beginFrame(const FrameContext& frame) {
+  const glm::ivec2 size = frame.view->viewport;
+  if (!targets_ || targets_->record.size() != size) {
+    targets_.reset();
+    gl::RenderTarget record(size, GL_RGBA32F, /*withDepthStencil=*/true);
+    const GLuint depth = record.depthStencil();
+    targets_.emplace(Targets{std::move(record), gl::EmptyFramebuffer(size, depth)});
+  }
+  slicePass_ = &frame.programs->get(
+      gl::slicePassProgram(hitRecordSources(), "shaders/first_hit.frag"));
+  slicePass_->use();
+  slicePass_->set("isoValue", float(frame.options->number("iso")));
+  gl::Capability noScissor(GL_SCISSOR_TEST, false);
+  const GLfloat zero[4] = {0, 0, 0, 0};
+  targets_->record.bindForDrawing();
+  VSIL_GL(glClearBufferfv(GL_COLOR, 0, zero));
+  frame.emptySpace->writeEntryDepth(glm::mat4(frame.view->clipFromVoxel()));
+}
+
+void FirstHitRecorder::drawSlice(const FrameContext& frame, const SliceContext& slice) {
+  if (slice.vertexCount == 0) return;
+  targets_->record.bindForDrawing();
+  {
+    // GREATER, no depth writes: skips empty space in front (empty_space.h) and dead pixels,
+    // early. The blending keeps each pixel's first hit (first_hit.frag).
+    gl::DepthTest skipEmptyAndDead(GL_GREATER, /*write=*/false);
+    gl::Blending keepFirstHit(GL_FUNC_ADD, GL_ONE_MINUS_DST_ALPHA, GL_DST_ALPHA);
+    slicePass_->use();
+    drawSlicePolygon(frame, slice);
+  }
+  if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
+    markDeadPixels(frame, slice, targets_->depthOnly, targets_->record, /*neighboursFinal=*/false);
+  }
+}
+
+gl::Program& finishProgram(const FrameContext& frame, const std::vector<std::string>& shared) {
+  std::vector<std::string> sources = hitRecordSources();
+  sources.insert(sources.end(), shared.begin(), shared.end());
+  return frame.programs->get(gl::screenPassProgram(sources, "shaders/finish_hits.frag"));
+}
+
+void finishRecords(const FrameContext& frame, gl::Program& finish, const gl::RenderTarget& record,
+                   const gl::RenderTarget& output) {
+  output.bindForDrawing();
+  gl::Capability noScissor(GL_SCISSOR_TEST, false);
+  finish.use();
+  gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, record.texture());
+  drawScreen(frame);
+}
+
+FrameBuffers frameFromStateImage(const cv::Mat& stateDepthShade) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  FrameBuffers frame;
+  frame.state.create(stateDepthShade.rows, stateDepthShade.cols);
+  frame.depth.create(stateDepthShade.rows, stateDepthShade.cols);
+  frame.shade.create(stateDepthShade.rows, stateDepthShade.cols);
+  for (int y = 0; y < stateDepthShade.rows; ++y) {
+    const cv::Vec4f* row = stateDepthShade.ptr<cv::Vec4f>(y);
+    for (int x = 0; x < stateDepthShade.cols; ++x) {
+      const auto state = PixelState(std::uint8_t(row[x][0] + 0.5f));
+      frame.state(y, x) = std::uint8_t(state);
+      frame.depth(y, x) = state == PixelState::Empty ? nan : row[x][1];
+      frame.shade(y, x) = state == PixelState::Filled ? row[x][2] : nan;
+    }
+  }
+  return frame;
+}
+
+}  // namespace vsil

@@ -1,0 +1,65 @@
+#pragma once
+// What the techniques that look for the iso-surface's first hit share (silhouette, rightangle,
+// firsthit): a per-pixel record (shaders/hit_records.glsl: state, depth, first-hit eye
+// distance, a value of the technique's own), pixels marked dead once no later slice can change
+// them, and a finishing pass that shades the first hit once per pixel and settles the state.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "slicing/technique.h"
+
+namespace vsil {
+
+// shaders/hit_records.glsl, to list after common.glsl in these techniques' programs.
+inline const std::vector<std::string>& hitRecordSources() {
+  static const std::vector<std::string> sources{"shaders/hit_records.glsl"};
+  return sources;
+}
+
+// Dead pixels are marked every this many slices: often enough to skip most of them, rarely
+// enough that the marking pass costs little.
+constexpr int kMarkDeadInterval = 8;
+
+// Writes depth 1 through `depthOnly` (a framebuffer with only the technique's depth buffer)
+// at the pixels of this slice's polygon that mark_dead.frag keeps, reading the records in
+// `record`; slice passes testing GREATER then skip them. `neighboursFinal`: a pixel is dead only
+// when its 8 neighbours' records are final too (silhouette's contour test reads them).
+void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
+                    const gl::EmptyFramebuffer& depthOnly, const gl::RenderTarget& record,
+                    bool neighboursFinal);
+
+// Records each pixel's first iso-surface hit (shaders/first_hit.frag), for the techniques that
+// need no more of a ray (rightangle, firsthit): one pass per slice keeps the first hit by
+// blending, skips empty space in front and, every kMarkDeadInterval slices, pixels that have
+// their hit.
+class FirstHitRecorder {
+ public:
+  // Targets for the frame's size, the slice pass's program and iso value, the record cleared
+  // and the depth where rays enter occupied bricks written.
+  void beginFrame(const FrameContext& frame);
+  void drawSlice(const FrameContext& frame, const SliceContext& slice);
+  // RGBA32F (STATE_FILLED, depth, first-hit eye distance, 1) at hits, 0 elsewhere.
+  const gl::RenderTarget& record() const { return targets_->record; }
+
+ private:
+  struct Targets {
+    gl::RenderTarget record;
+    gl::EmptyFramebuffer depthOnly;  // record's depth buffer alone, for marking dead pixels
+  };
+  std::optional<Targets> targets_;
+  gl::Program* slicePass_ = nullptr;
+};
+
+// The last pass of a frame (shaders/finish_hits.frag): shades the first hit recorded in
+// `record` and writes (state, depth, shade, 0) into `output`. `shared` holds the technique's
+// GLSL defining finishState(); the caller sets that function's uniforms.
+gl::Program& finishProgram(const FrameContext& frame, const std::vector<std::string>& shared);
+void finishRecords(const FrameContext& frame, gl::Program& finish, const gl::RenderTarget& record,
+                   const gl::RenderTarget& output);
+
+// Splits an RGBA32F (state, depth, shade, 0) image into FrameBuffers: depth NaN where EMPTY,
+// shade NaN where not FILLED.
+FrameBuffers frameFromStateImage(const cv::Mat& stateDepthShade);
+
+}  // namespace vsil

@@ -1,7 +1,0 @@
-// contour.frag (paper pipeline, pass 2 of 3): contour of the footprint.
-// In: footprintTexture (footprintTag FILLED, anything else EMPTY; common.glsl). Out: STATE_EMPTY, STATE_FILLED or STATE_CONTOUR
-// (contourAt in common.glsl).
-uniform usampler2D footprintTexture;
-layout(location = 0) out uint contour;
-
-void main() { contour = contourAt(footprintTexture, ivec2(gl_FragCoord.xy)); }

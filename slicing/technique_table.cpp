@@ -1,0 +1,50 @@
+#include "slicing/technique_table.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "slicing/techniques/firsthit/firsthit_technique.h"
+#include "slicing/techniques/rightangle/rightangle_technique.h"
+#include "slicing/techniques/silhouette/silhouette_technique.h"
+
+namespace vsil {
+
+const std::vector<TechniqueInfo>& techniqueTable() {
+  static const std::vector<TechniqueInfo> table{
+      silhouetteTechniqueInfo(),
+      rightAngleTechniqueInfo(),
+      firstHitTechniqueInfo(),
+  };
+  return table;
+}
+
+const OptionSpec* TechniqueInfo::option(const std::string& optionName) const {
+  const auto it = std::find_if(options.begin(), options.end(),
+                               [&](const OptionSpec& spec) { return spec.name == optionName; });
+  return it == options.end() ? nullptr : &*it;
+}
+
+std::vector<std::string> techniqueNames() {
+  std::vector<std::string> names;
+  for (const auto& info : techniqueTable()) names.push_back(info.name);
+  return names;
+}
+
+const TechniqueInfo& findTechnique(const std::string& name) {
+  for (const auto& info : techniqueTable()) {
+    if (info.name == name) return info;
+  }
+  std::string known;
+  for (const auto& other : techniqueNames()) known += (known.empty() ? "" : ", ") + other;
+  throw InputError("--technique: unknown technique '" + name + "' (known: " + known + ")");
+}
+
+OptionSpec isoOption() {
+  OptionSpec spec = OptionSpec::number("iso", 0, "iso value in the data's own units");
+  spec.defaultValue.reset();
+  spec.derived = OptionSpec::Derived::VolumeIso;
+  spec.defaultNote = "from the volume (vsil info)";
+  return spec;
+}
+
+}  // namespace vsil

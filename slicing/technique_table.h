@@ -1,0 +1,44 @@
+#pragma once
+// The table of techniques: each declares itself once — its name, a one-line summary, its
+// options with defaults and ranges (core/options.h), what its frames return, and how to make
+// it. The CLI's flags and help, the metadata, the benchmark, the names listed in errors and the
+// Python keywords all read this table. A new technique is a folder under slicing/techniques/
+// and one entry in technique_table.cpp.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/options.h"
+
+namespace vsil {
+
+class Technique;
+
+// What a technique's frames hold (core/frame.h FrameBuffers).
+struct FrameOutputs {
+  bool state = false;  // pixel states (Nagy–Klein) and the shade of FILLED pixels
+  bool color = false;  // premultiplied RGBA
+  bool depth = false;  // normalized depth of what each pixel shows
+};
+
+struct TechniqueInfo {
+  std::string name;     // --technique NAME
+  std::string summary;  // one line: what it draws, after which paper
+  std::vector<OptionSpec> options;
+  FrameOutputs outputs;
+  std::function<std::unique_ptr<Technique>()> create;  // needs a current GL context
+
+  const OptionSpec* option(const std::string& optionName) const;
+  bool usesIso() const { return option("iso") != nullptr; }
+};
+
+const std::vector<TechniqueInfo>& techniqueTable();
+// The entry named `name`; InputError "--technique: unknown technique 'x' (known: ...)".
+const TechniqueInfo& findTechnique(const std::string& name);
+std::vector<std::string> techniqueNames();
+
+// The iso-value option of the techniques that look for an iso-surface.
+OptionSpec isoOption();
+
+}  // namespace vsil

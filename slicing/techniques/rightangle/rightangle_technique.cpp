@@ -1,0 +1,46 @@
+#include "slicing/techniques/rightangle/rightangle_technique.h"
+
+namespace vsil {
+
+TechniqueInfo rightAngleTechniqueInfo() {
+  return {"rightangle",
+          "the right-angle line test on the first iso-surface hit (RA, the Nagy–Klein baseline)",
+          {isoOption(),
+           OptionSpec::number("ra-exponent", 8.0,
+                              "exponent k of the line test (1 - |n.v|)^k > threshold")
+               .above(0),
+           OptionSpec::number("ra-threshold", 0.3,
+                              "a first hit is a line pixel where (1 - |n.v|)^k exceeds this")},
+          FrameOutputs{.state = true, .color = false, .depth = true},
+          [] { return std::make_unique<RightAngleTechnique>(); }};
+}
+
+BrickOccupancy RightAngleTechnique::occupancy(const FrameContext& frame) const {
+  return reachesIso(float(frame.options->number("iso")));
+}
+
+void RightAngleTechnique::beginFrame(const FrameContext& frame) {
+  if (!finished_ || finished_->size() != frame.view->viewport) {
+    finished_.reset();
+    finished_.emplace(frame.view->viewport, GL_RGBA32F);
+  }
+  finish_ = &finishProgram(frame, {"techniques/rightangle/rightangle.glsl"});
+  finish_->use();
+  finish_->set("rightAngleExponent", float(frame.options->number("ra-exponent")));
+  finish_->set("rightAngleThreshold", float(frame.options->number("ra-threshold")));
+  hits_.beginFrame(frame);
+}
+
+void RightAngleTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
+  hits_.drawSlice(frame, slice);
+}
+
+void RightAngleTechnique::endFrame(const FrameContext& frame) {
+  finishRecords(frame, *finish_, hits_.record(), *finished_);
+}
+
+FrameBuffers RightAngleTechnique::readBack(const FrameContext&) {
+  return frameFromStateImage(readTargetFlipped(*finished_, 4));
+}
+
+}  // namespace vsil

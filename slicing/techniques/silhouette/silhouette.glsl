@@ -1,0 +1,72 @@
+// silhouette.glsl: Nagy–Klein's decision table and what the silhouette passes share. After
+// shaders/common.glsl and shaders/hit_records.glsl in every silhouette program.
+// The record t (hit_records.glsl) here: (state, depth, first-hit eye distance, depth of the
+// latest CONTOUR sample). depth: for FILLED the first hit's normalized depth; for SILHOUETTE the
+// middle of the run of CONTOUR samples that ended in the detection, where the view ray grazes
+// the surface.
+
+// Nagy–Klein Table 2: the record's state t (rows) combined with this slice's contour value c
+// (columns EMPTY, FILLED, CONTOUR, and SILHOUETTE, which c never is). The only copy in GLSL.
+const uint decisionTable[16] = uint[16](
+    STATE_EMPTY, STATE_FILLED, STATE_CONTOUR, STATE_EMPTY,                    // t = EMPTY
+    STATE_FILLED, STATE_FILLED, STATE_FILLED, STATE_FILLED,                   // t = FILLED
+    STATE_SILHOUETTE, STATE_FILLED, STATE_CONTOUR, STATE_CONTOUR,             // t = CONTOUR
+    STATE_SILHOUETTE, STATE_SILHOUETTE, STATE_SILHOUETTE, STATE_SILHOUETTE);  // t = SILHOUETTE
+
+uint decide(uint t, uint c) { return decisionTable[t * 4u + c]; }
+
+// Footprints: the footprint pass writes footprintTag() where this slice is FILLED; any other
+// value is EMPTY. The fast pipeline tags each slice differently (its index + 1), so the
+// footprint never needs clearing between slices; the paper pipeline (PAPER_PIPELINE) clears
+// and tags with 1.
+uint footprintTag() {
+#ifdef PAPER_PIPELINE
+  return 1u;
+#else
+  return sliceIndex + 1u;
+#endif
+}
+
+// The contour value of a pixel from a footprint: STATE_CONTOUR for a FILLED pixel whose
+// 8-neighbourhood is not all FILLED; pixels beyond the image count as EMPTY.
+uint contourAt(usampler2D footprint, ivec2 pixel) {
+  uint tag = footprintTag();
+  ivec2 size = textureSize(footprint, 0);
+  if (texelFetch(footprint, pixel, 0).r != tag) return STATE_EMPTY;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 neighbour = pixel + ivec2(dx, dy);
+      if (any(lessThan(neighbour, ivec2(0))) || any(greaterThanEqual(neighbour, size)) ||
+          texelFetch(footprint, neighbour, 0).r != tag) {
+        return STATE_CONTOUR;
+      }
+    }
+  }
+  return STATE_FILLED;
+}
+
+float silhouetteDepth(vec4 t) { return 0.5 * (t.g + t.a); }
+
+// Applies one slice's contour value c to the record t (the decision table, with the depths).
+vec4 decideRecord(vec4 t, uint c) {
+  uint state = uint(t.r);
+  uint next = decide(state, c);
+  vec4 result = vec4(float(next), t.g, t.b, t.a);
+  if (state == STATE_EMPTY && next != STATE_EMPTY) {
+    result.g = sliceDepth;
+    result.b = sliceEyeDistance;
+  }
+  if (next == STATE_CONTOUR) result.a = sliceDepth;
+  if (state == STATE_CONTOUR && next == STATE_SILHOUETTE) result.g = silhouetteDepth(t);
+  return result;
+}
+
+// For finish_hits.frag: a CONTOUR record left after the last slice met the extra empty slice
+// behind the volume and becomes SILHOUETTE (the fast pipeline applies detection lazily,
+// decision_inplace.frag).
+uint finishState(vec4 record, float shade, inout float depth) {
+  uint state = uint(record.r);
+  if (state != STATE_CONTOUR) return state;
+  depth = silhouetteDepth(record);
+  return STATE_SILHOUETTE;
+}

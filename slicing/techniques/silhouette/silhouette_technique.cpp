@@ -1,0 +1,182 @@
+#include "slicing/techniques/silhouette/silhouette_technique.h"
+
+#include "slicing/gl_state.h"
+#include "slicing/hit_records.h"
+#include "slicing/texture_units.h"
+
+namespace vsil {
+namespace {
+
+// PixelRect (top-down pixels) to a GL scissor box (bottom-up).
+void scissorTo(const PixelRect& rect, glm::ivec2 viewport) {
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(rect.x0, viewport.y - rect.y1, rect.x1 - rect.x0, rect.y1 - rect.y0);
+}
+
+constexpr GLuint kZeroU[4] = {0, 0, 0, 0};
+constexpr GLfloat kZeroF[4] = {0, 0, 0, 0};
+
+std::vector<std::string> sources() {
+  return {"shaders/hit_records.glsl", "techniques/silhouette/silhouette.glsl"};
+}
+
+}  // namespace
+
+TechniqueInfo silhouetteTechniqueInfo() {
+  return {"silhouette",
+          "Nagy–Klein one-pixel iso-surface silhouettes (OPS), broadened to --width",
+          {isoOption(),
+           OptionSpec::choice("pipeline", "fast", {"fast", "paper"},
+                              "fast (fused in-place passes, empty-space skipping) or paper (the "
+                              "paper's three passes); the same pixels")},
+          FrameOutputs{.state = true, .color = false, .depth = true},
+          [] { return std::make_unique<SilhouetteTechnique>(); }};
+}
+
+BrickOccupancy SilhouetteTechnique::occupancy(const FrameContext& frame) const {
+  return reachesIso(float(frame.options->number("iso")));
+}
+
+void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
+  const glm::ivec2 size = frame.view->viewport;
+  if (!targets_ || targets_->footprint.size() != size) {
+    targets_.reset();
+    gl::RenderTarget footprint(size, GL_R32UI, /*withDepthStencil=*/true);
+    const GLuint depth = footprint.depthStencil();
+    targets_.emplace(
+        Targets{std::move(footprint),
+                gl::RenderTarget(size, GL_R8UI),
+                {gl::RenderTarget(size, GL_RGBA32F), gl::RenderTarget(size, GL_RGBA32F)},
+                gl::EmptyFramebuffer(size, depth)});
+  }
+  pipeline_ = frame.options->text("pipeline") == "paper" ? Pipeline::Paper : Pipeline::Fast;
+  const std::vector<std::string> variant =
+      pipeline_ == Pipeline::Paper ? std::vector<std::string>{"PAPER_PIPELINE"}
+                                   : std::vector<std::string>{};
+  gl::ProgramCache& cache = *frame.programs;
+  programs_.footprint =
+      &cache.get(gl::slicePassProgram(sources(), "techniques/silhouette/footprint.frag", variant));
+  programs_.contour =
+      &cache.get(gl::screenPassProgram(sources(), "techniques/silhouette/contour.frag", variant));
+  programs_.decision =
+      &cache.get(gl::screenPassProgram(sources(), "techniques/silhouette/decision.frag", variant));
+  programs_.emptySliceDecision = &cache.get(gl::screenPassProgram(
+      sources(), "techniques/silhouette/decision.frag", {"PAPER_PIPELINE", "EMPTY_SLICE"}));
+  programs_.decisionInPlace = &cache.get(
+      gl::slicePassProgram(sources(), "techniques/silhouette/decision_inplace.frag", variant));
+  programs_.finish = &finishProgram(frame, {"techniques/silhouette/silhouette.glsl"});
+  const float iso = float(frame.options->number("iso"));
+  programs_.footprint->use();
+  programs_.footprint->set("isoValue", iso);
+
+  glDisable(GL_SCISSOR_TEST);
+  for (const gl::RenderTarget* target : {&targets_->footprint, &targets_->contour}) {
+    target->bindForDrawing();
+    VSIL_GL(glClearBufferuiv(GL_COLOR, 0, kZeroU));
+  }
+  // The fast pipeline's footprint pass tests GREATER against this depth: pixels in front of
+  // the first occupied brick, and dead pixels later, are skipped.
+  targets_->footprint.bindForDrawing();
+  frame.emptySpace->writeEntryDepth(glm::mat4(frame.view->clipFromVoxel()));
+  for (const auto& target : targets_->records) {
+    target.bindForDrawing();
+    VSIL_GL(glClearBufferfv(GL_COLOR, 0, kZeroF));
+  }
+  current_ = 0;
+}
+
+void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
+  const glm::ivec2 viewport = frame.view->viewport;
+  if (pipeline_ == Pipeline::Fast) {
+    if (slice.vertexCount == 0) return;
+    // Tagged with this slice, the footprint needs no clearing (silhouette.glsl footprintTag).
+    drawFootprint(frame, slice);
+    // The decision reads the records the previous slice's decision stored. The barrier
+    // comes after this footprint pass so that llvmpipe, which waits for all queued work at a
+    // barrier, waits once per slice: the decision's read of the footprint then finds it done.
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    decideInPlace(frame, slice);
+    if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
+      glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // marking reads this slice's records
+      markDeadPixels(frame, slice, targets_->depthOnly, targets_->records[0],
+                     /*neighboursFinal=*/true);
+    }
+    return;
+  }
+  // Pixels whose record may change here: this polygon (c != EMPTY) and the previous one
+  // (contours there meet c = EMPTY); the ping-pong targets must also agree outside the pass,
+  // which needs the slice before that too. One pixel more for the contour's neighbourhood.
+  const PixelRect bounds = slice.recentUnion(3, 1, viewport);
+  if (bounds.empty()) return;
+  // Everything the next passes read outside this polygon must be EMPTY.
+  scissorTo(bounds, viewport);
+  targets_->footprint.bindForDrawing();
+  VSIL_GL(glClearBufferuiv(GL_COLOR, 0, kZeroU));
+  if (slice.vertexCount > 0) drawFootprint(frame, slice);
+  contourPaper(frame, bounds);
+  decidePaper(frame, /*emptySlice=*/false, bounds);
+}
+
+void SilhouetteTechnique::drawFootprint(const FrameContext& frame, const SliceContext& slice) {
+  gl::Capability noScissor(GL_SCISSOR_TEST, false);
+  targets_->footprint.bindForDrawing();
+  programs_.footprint->use();
+  if (pipeline_ == Pipeline::Fast) {
+    // Slices come in depth order: GREATER passes every pixel but dead ones (depth 1), early;
+    // FILLED fragments (not discarded) leave this slice's depth for the decision pass.
+    gl::DepthTest depthTest(GL_GREATER, /*write=*/true);
+    drawSlicePolygon(frame, slice);
+  } else {
+    drawSlicePolygon(frame, slice);
+  }
+}
+
+void SilhouetteTechnique::contourPaper(const FrameContext& frame, const PixelRect& bounds) {
+  scissorTo(bounds, frame.view->viewport);
+  targets_->contour.bindForDrawing();
+  programs_.contour->use();
+  gl::bindTexture(gl::TextureUnit::Footprint, GL_TEXTURE_2D, targets_->footprint.texture());
+  drawScreen(frame);
+}
+
+void SilhouetteTechnique::decidePaper(const FrameContext& frame, bool emptySlice,
+                                      const PixelRect& bounds) {
+  scissorTo(bounds, frame.view->viewport);
+  const int next = 1 - current_;
+  targets_->records[std::size_t(next)].bindForDrawing();
+  (emptySlice ? programs_.emptySliceDecision : programs_.decision)->use();
+  gl::bindTexture(gl::TextureUnit::Contour, GL_TEXTURE_2D, targets_->contour.texture());
+  gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D,
+                  targets_->records[std::size_t(current_)].texture());
+  drawScreen(frame);
+  current_ = next;
+}
+
+void SilhouetteTechnique::decideInPlace(const FrameContext& frame, const SliceContext& slice) {
+  targets_->depthOnly.bindForDrawing();
+  gl::DepthTest onlyFilled(GL_EQUAL, /*write=*/false);
+  programs_.decisionInPlace->use();
+  gl::bindImage(gl::ImageUnit::Record, targets_->records[0]);
+  gl::bindTexture(gl::TextureUnit::Footprint, GL_TEXTURE_2D, targets_->footprint.texture());
+  gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, targets_->records[0].texture());
+  drawSlicePolygon(frame, slice);
+}
+
+void SilhouetteTechnique::endFrame(const FrameContext& frame) {
+  if (pipeline_ == Pipeline::Paper) {
+    // The extra empty slice, over the whole image: contours at the back become silhouettes.
+    decidePaper(frame, /*emptySlice=*/true, {0, 0, frame.view->viewport.x, frame.view->viewport.y});
+  }
+  // (The fast pipeline's finishing pass turns remaining contours into silhouettes itself; it
+  // reads the records the last decision stored.)
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  finishRecords(frame, *programs_.finish, targets_->records[std::size_t(current_)],
+                targets_->records[std::size_t(1 - current_)]);
+  current_ = 1 - current_;
+}
+
+FrameBuffers SilhouetteTechnique::readBack(const FrameContext&) {
+  return frameFromStateImage(readTargetFlipped(targets_->records[std::size_t(current_)], 4));
+}
+
+}  // namespace vsil

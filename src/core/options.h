@@ -1,0 +1,107 @@
+#pragma once
+// Declared options, in the spirit of pbrt-v4's ParameterDictionary: each technique declares its
+// options once (name, kind, default, range, help; slicing/technique_table.h), and every caller —
+// the CLI's flags and help, the metadata, the benchmark, the Python keywords — reads those
+// declarations. A technique reads its values by name through OptionReader; values given for an
+// option it does not declare are reported (checkOptions), never silently ignored.
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace vsil {
+
+enum class OptionKind {
+  Number,   // a finite real within [min, max] (ends open where said)
+  Integer,  // a whole number within [min, max]
+  Choice,   // one of `choices`
+  Text,     // any text (a file name, a list the technique parses itself)
+  Switch,   // on or off; given on the command line without a value
+  List,     // text given any number of times (e.g. --light AZ,EL twice)
+};
+
+using OptionValue = std::variant<bool, double, std::string, std::vector<std::string>>;
+
+struct OptionSpec {
+  std::string name;  // the flag without "--" ("ra-exponent"); key() for JSON and Python
+  OptionKind kind = OptionKind::Number;
+  std::string help;
+  // The value when none is given. Unset: derived (see `derived`; defaultNote says how for the
+  // help), or empty for Text and List.
+  std::optional<OptionValue> defaultValue;
+  enum class Derived { None, VolumeIso };
+  Derived derived = Derived::None;
+  std::string defaultNote;
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool minExclusive = false;
+  bool maxExclusive = false;
+  std::vector<std::string> choices;
+
+  // Declaring an option in one expression:
+  //   OptionSpec::number("ra-exponent", 8.0, "exponent k of the line test").above(0)
+  static OptionSpec number(std::string name, double defaultValue, std::string help);
+  static OptionSpec integer(std::string name, int defaultValue, std::string help);
+  static OptionSpec choice(std::string name, std::string defaultValue,
+                           std::vector<std::string> choices, std::string help);
+  static OptionSpec text(std::string name, std::string help);  // default: empty
+  static OptionSpec list(std::string name, std::string help);  // default: none given
+  static OptionSpec flag(std::string name, std::string help);  // default: off
+  OptionSpec& above(double bound);    // > bound
+  OptionSpec& atLeast(double bound);  // >= bound
+  OptionSpec& atMost(double bound);   // <= bound
+
+  // "ra-exponent" → "ra_exponent": the metadata key and the Python keyword.
+  std::string key() const;
+  std::string flag() const { return "--" + name; }
+  // Parses one value as given on the command line and checks it; InputError naming the flag.
+  OptionValue parse(const std::string& text) const;
+  // Checks a value of any origin (parsed, Python, a style file): its type and range.
+  void check(const OptionValue& value) const;
+  // "default 8, > 0" — for help texts.
+  std::string describe() const;
+};
+
+// Option values by name, as given (defaults are not stored here).
+using OptionValues = std::map<std::string, OptionValue, std::less<>>;
+
+// Throws InputError for a value whose name `specs` do not declare ("--ra-exponent: not an option
+// of technique 'silhouette' (its options: --iso, --pipeline)") or whose value does not check.
+void checkOptions(const std::vector<OptionSpec>& specs, const OptionValues& values,
+                  const std::string& owner);
+
+// What a technique reads: its declared options, the given values, and the facts derived
+// defaults come from.
+struct DerivedDefaults {
+  double iso = 0.5;  // the volume's default iso value (core/volume.h defaultIso)
+};
+
+// A technique's options resolved: the given values, else the declared or derived defaults.
+class OptionReader {
+ public:
+  OptionReader() = default;
+  OptionReader(const std::vector<OptionSpec>& specs, const OptionValues& values,
+               DerivedDefaults derived = {});
+  double number(std::string_view name) const;
+  int integer(std::string_view name) const;
+  bool enabled(std::string_view name) const;  // a Switch
+  const std::string& text(std::string_view name) const;  // Choice or Text
+  const std::vector<std::string>& list(std::string_view name) const;
+  bool given(std::string_view name) const;
+  // Every declared option with the value used, by key(); for the metadata.
+  nlohmann::json toJson() const;
+
+ private:
+  const OptionValue& value(std::string_view name) const;
+
+  std::vector<OptionSpec> specs_;
+  OptionValues resolved_;
+  std::vector<std::string> given_;
+};
+
+}  // namespace vsil

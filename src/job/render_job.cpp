@@ -1,0 +1,242 @@
+#include "job/render_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <variant>
+
+#include "core/depth_image.h"
+#include "core/error.h"
+#include "core/limits.h"
+#include "core/version.h"
+#include "postfx/broaden.h"
+#include "slicing/gl_context.h"
+#include "slicing/technique_table.h"
+
+namespace vsil {
+
+namespace {
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+nlohmann::json matrixRowMajor(const glm::dmat4& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int row = 0; row < 4; ++row) {
+    rows.push_back({m[0][row], m[1][row], m[2][row], m[3][row]});  // glm is column-major
+  }
+  return rows;
+}
+
+const char* fillName(FillMode fill) {
+  return fill == FillMode::None ? "none" : fill == FillMode::Flat ? "flat" : "shaded";
+}
+
+double maxLineWidth(const PostfxOptions& postfx) {
+  return std::max(postfx.width.near, postfx.width.far);
+}
+
+// Pixel counts by what the technique returns: states, or colour coverage.
+nlohmann::json pixelCounts(const FrameBuffers& frame) {
+  if (!frame.state.empty()) {
+    int counts[4] = {0, 0, 0, 0};
+    for (auto it = frame.state.begin(); it != frame.state.end(); ++it) {
+      ++counts[std::min<int>(*it, 3)];
+    }
+    return {{"empty", counts[0]}, {"filled", counts[1]}, {"silhouette", counts[3]}};
+  }
+  int covered = 0, opaque = 0;
+  for (auto it = frame.color.begin(); it != frame.color.end(); ++it) {
+    covered += (*it)[3] > 0.0f;
+    opaque += (*it)[3] >= 1.0f - 1.0f / 255.0f;
+  }
+  return {{"covered", covered}, {"opaque", opaque}, {"total", frame.color.total()}};
+}
+
+nlohmann::json metadata(const RenderRequest& request, const std::string& input,
+                        const Volume& volume, const RenderResult& result,
+                        const gl::ContextInfo& glContext, double postfxMs) {
+  const RenderSettings& settings = request.settings;
+  const TechniqueInfo& technique = findTechnique(settings.technique);
+  const ValueRange range = valueRange(volume);
+  nlohmann::json parameters = {{"input", input},
+                               {"technique", settings.technique},
+                               {"empty_space_skipping", settings.emptySpaceSkipping},
+                               {"size", {settings.size.x, settings.size.y}},
+                               {"view", {settings.camera.azimuthDeg, settings.camera.elevationDeg}},
+                               {"orthographic", settings.camera.orthographic},
+                               {"zoom", settings.camera.zoom},
+                               {"fov_y_deg", settings.camera.fovYDeg},
+                               {"sampling", settings.samplesPerVoxel}};
+  parameters.update(result.options);
+  if (technique.outputs.state) {
+    parameters["width_near"] = request.postfx.width.near;
+    parameters["width_far"] = request.postfx.width.far;
+    parameters["fill"] = fillName(request.postfx.fill);
+  }
+  nlohmann::json meta;
+  meta["vsil_version"] = kVsilVersion;
+  meta["gl_renderer"] = glContext.renderer;
+  meta["gl"] = gl::contextInfoJson(glContext);
+  meta["parameters"] = parameters;
+  meta["dataset"] = {{"name", volume.name},
+                     {"source", volume.source},
+                     {"type", sampleTypeName(volume.type())},
+                     {"dims", {volume.dims.x, volume.dims.y, volume.dims.z}},
+                     {"spacing", {volume.spacing.x, volume.spacing.y, volume.spacing.z}},
+                     {"value_range", {range.min, range.max}}};
+  meta["slices"] = result.sliceCount;
+  meta["slice_step_eye"] = result.sliceStepEye;
+  meta["camera"] = {{"eye_from_voxel", matrixRowMajor(result.view.eyeFromVoxel)},
+                    {"clip_from_eye", matrixRowMajor(result.view.clipFromEye)},
+                    {"viewport", {result.view.viewport.x, result.view.viewport.y}},
+                    {"depth_range_eye", {result.view.nearEye, result.view.farEye}},
+                    {"orthographic", result.view.orthographic}};
+  meta["pixels"] = pixelCounts(result.frame);
+  meta["timings_ms"] = {{"render", result.timings.renderMs},
+                        {"readback", result.timings.readbackMs},
+                        {"postfx", postfxMs}};
+  return meta;
+}
+
+// Once the volume is known: slices per frame and the whole render's memory.
+void checkVolumeWork(const Volume& volume, const RenderRequest& request,
+                     const VolumeLimits& limits) {
+  const RenderSettings& settings = request.settings;
+  const std::int64_t slices = limits::sliceCountBound(volume.dims, settings.samplesPerVoxel);
+  if (slices > limits::kMaxSlices) {
+    throw InputError("--sampling " + std::to_string(settings.samplesPerVoxel) + ": " +
+                     volume.source + " would need up to " + std::to_string(slices) +
+                     " slices per frame, over the limit of " + std::to_string(limits::kMaxSlices));
+  }
+  const std::uint64_t bytes =
+      limits::renderVolumeBytes(volume.dims, sampleTypeSize(volume.type())) +
+      limits::renderImageBytes(settings.size, maxLineWidth(request.postfx));
+  limits::checkMemory("rendering " + volume.source + " at --size " +
+                          std::to_string(settings.size.x) + "x" + std::to_string(settings.size.y),
+                      bytes, limits.maxBytes);
+}
+
+// An iso value outside the data's range finds no surface: the frame is empty, which is what
+// was asked, but rarely what was meant.
+std::vector<std::string> warnings(const RenderRequest& request, const Volume& volume) {
+  std::vector<std::string> found;
+  const auto given = request.settings.options.find("iso");
+  if (given == request.settings.options.end()) return found;
+  const double iso = std::get<double>(given->second);
+  const ValueRange range = valueRange(volume);
+  if (iso > range.max || iso < range.min) {
+    std::ostringstream line;
+    line << "--iso " << iso << " is outside the data's range " << range.min << " .. " << range.max
+         << " of " << volume.source << ": " << (iso > range.max ? "no" : "every")
+         << " sample reaches it";
+    found.push_back(line.str());
+  }
+  return found;
+}
+
+}  // namespace
+
+struct RenderJob::Impl {
+  explicit Impl(const gl::ContextOptions& gl) : context(gl) {}
+  gl::GlContext context;
+  std::optional<Renderer> renderer;
+  std::optional<Volume> volume;
+  std::string input;  // the spec the volume was loaded from
+  FftGaussianBlur blur;
+};
+
+RenderJob::RenderJob(const gl::ContextOptions& gl) : impl_(std::make_unique<Impl>(gl)) {
+  impl_->renderer.emplace(impl_->context);
+}
+
+RenderJob::~RenderJob() = default;
+
+const Volume& RenderJob::load(const std::string& spec, const LoadOptions& options) {
+  return setVolume(loadVolume(spec, options), spec);
+}
+
+const Volume& RenderJob::setVolume(Volume volume, const std::string& input) {
+  impl_->context.makeCurrent();
+  impl_->volume.reset();
+  impl_->volume.emplace(std::move(volume));
+  impl_->input = input.empty() ? impl_->volume->source : input;
+  impl_->renderer->setVolume(*impl_->volume);
+  return *impl_->volume;
+}
+
+const Volume& RenderJob::volume() const {
+  if (!impl_->volume) throw std::logic_error("RenderJob: no volume loaded");
+  return *impl_->volume;
+}
+
+gl::GlContext& RenderJob::context() {
+  return impl_->context;
+}
+
+Renderer& RenderJob::renderer() {
+  return *impl_->renderer;
+}
+
+void RenderJob::checkRequest(const RenderRequest& request, const VolumeLimits& limits) {
+  Renderer::validateSettings(request.settings);
+  const double width = maxLineWidth(request.postfx);
+  if (width > limits::kMaxLineWidth) {
+    throw InputError("--width: " + std::to_string(int(std::min(width, 1e9))) +
+                     " pixels is over the limit of " + std::to_string(int(limits::kMaxLineWidth)));
+  }
+  const glm::ivec2 size = request.settings.size;
+  limits::checkMemory("--size " + std::to_string(size.x) + "x" + std::to_string(size.y),
+                      limits::renderImageBytes(size, width), limits.maxBytes);
+}
+
+LoadOptions RenderJob::loadOptionsFor(const RenderRequest& request, LoadOptions load) {
+  const glm::ivec2 size = request.settings.size;
+  const std::uint64_t imageBytes = limits::renderImageBytes(size, maxLineWidth(request.postfx));
+  load.limits.taskBytes = [imageBytes](glm::ivec3 dims, SampleType type) {
+    return limits::renderVolumeBytes(dims, sampleTypeSize(type)) + imageBytes;
+  };
+  load.limits.maxTextureBytes = limits::kMaxTextureBytes;
+  load.limits.task = "rendering";
+  load.limits.taskDetail = " at --size " + std::to_string(size.x) + "x" + std::to_string(size.y);
+  return load;
+}
+
+RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits& limits) {
+  checkRequest(request, limits);
+  const Volume& volume = this->volume();
+  checkVolumeWork(volume, request, limits);
+  impl_->context.makeCurrent();
+
+  RenderOutput output;
+  output.result = impl_->renderer->render(request.settings);
+  const auto postStart = std::chrono::steady_clock::now();
+  output.image = composeIllustration(output.result.frame, request.postfx, impl_->blur);
+  output.postfxMs = millisecondsSince(postStart);
+  output.metadata = metadata(request, impl_->input, volume, output.result,
+                             impl_->context.info(), output.postfxMs);
+  output.warnings = warnings(request, volume);
+  return output;
+}
+
+cv::Mat1b stateImage(const FrameBuffers& frame) {
+  cv::Mat1b image(frame.state.size());
+  for (int y = 0; y < image.rows; ++y) {
+    for (int x = 0; x < image.cols; ++x) image(y, x) = stateGrey(PixelState(frame.state(y, x)));
+  }
+  return image;
+}
+
+cv::Mat1w depthImage(const FrameBuffers& frame) {
+  if (frame.state.empty()) return encodeDepthImage(frame.depth);
+  cv::Mat1f lineDepth(frame.depth.size(), std::numeric_limits<float>::quiet_NaN());
+  frame.depth.copyTo(lineDepth, frame.state == std::uint8_t(PixelState::Silhouette));
+  return encodeDepthImage(lineDepth);
+}
+
+}  // namespace vsil

@@ -1,0 +1,19 @@
+#pragma once
+// Comparing frames of any technique by what it returns (states, depth, shade, colour).
+#include "core/frame.h"
+#include "core/options.h"
+#include "slicing/technique_table.h"
+
+namespace vsil::test {
+
+// Pixels where any buffer the frames hold differs (NaN equals NaN; every byte and float exact).
+int differingPixels(const FrameBuffers& a, const FrameBuffers& b);
+
+// Pixels that show something: a state other than Empty, or a colour with alpha > 0.
+int shownPixels(const FrameBuffers& frame);
+
+// Options that make `technique` show the iso-surface at `iso` where it has an iso value; none
+// otherwise (its defaults).
+OptionValues isoOptions(const TechniqueInfo& technique, double iso);
+
+}  // namespace vsil::test
