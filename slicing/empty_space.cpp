@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
+
+#include "core/limits.h"
 
 namespace vsil {
 
@@ -31,48 +34,58 @@ BrickRanges::BrickRanges(const Volume& volume)
     r.min = std::min(r.min, other.min);
     r.max = std::max(r.max, other.max);
   };
-  // Separable: ranges along x per row, then over y, then over z.
   auto voxelRange = [](int brick, int dim) {
     return std::pair{std::max(0, firstVoxel(brick)), std::min(dim - 1, lastVoxel(brick))};
   };
   const glm::ivec3 d = dims_, b = bricks_;
-  std::vector<ValueRange> alongX(std::size_t(b.x) * d.y * d.z, none);
-  volume.visit([&](auto samples) {
-    for (int z = 0; z < d.z; ++z) {
-      for (int y = 0; y < d.y; ++y) {
-        const auto* row = &samples[volume.index(0, y, z)];
-        for (int bx = 0; bx < b.x; ++bx) {
-          const auto [x0, x1] = voxelRange(bx, d.x);
-          const auto [lo, hi] = std::minmax_element(row + x0, row + x1 + 1);
-          alongX[(std::size_t(z) * d.y + y) * b.x + bx] = {float(*lo), float(*hi)};
-        }
-      }
-    }
-  });
-  std::vector<ValueRange> alongY(std::size_t(b.x) * b.y * d.z, none);
-  for (int z = 0; z < d.z; ++z) {
-    for (int by = 0; by < b.y; ++by) {
-      const auto [y0, y1] = voxelRange(by, d.y);
-      for (int y = y0; y <= y1; ++y) {
-        for (int bx = 0; bx < b.x; ++bx) {
-          unite(alongY[(std::size_t(z) * b.y + by) * b.x + bx],
-                alongX[(std::size_t(z) * d.y + y) * b.x + bx]);
-        }
-      }
-    }
-  }
   ranges_.assign(std::size_t(b.x) * b.y * b.z, none);
-  for (int bz = 0; bz < b.z; ++bz) {
-    const auto [z0, z1] = voxelRange(bz, d.z);
-    for (int z = z0; z <= z1; ++z) {
-      for (int by = 0; by < b.y; ++by) {
-        for (int bx = 0; bx < b.x; ++bx) {
-          unite(ranges_[(std::size_t(bz) * b.y + by) * b.x + bx],
-                alongY[(std::size_t(z) * b.y + by) * b.x + bx]);
+  // Separable, one z plane at a time, so that the working memory is two planes of ranges
+  // (limits::renderVolumeBytes counts them), not a range per 8 voxels of the whole volume:
+  // a plane's ranges along x per row, then over y, then united into the bricks that read it.
+  // Each thread owns a run of brick layers and reads the planes they read (a few planes at
+  // the seams twice), so the threads never write the same brick.
+  const int threads = std::min(limits::workerThreads(), b.z);
+  struct Planes {  // allocated here: a thread that fails to allocate would end the process
+    std::vector<ValueRange> alongX, alongY;
+  };
+  std::vector<Planes> planes(std::size_t(threads),
+                             {std::vector<ValueRange>(std::size_t(b.x) * d.y),
+                              std::vector<ValueRange>(std::size_t(b.x) * b.y)});
+  auto layers = [&](int thread) {
+    const int bz0 = b.z * thread / threads, bz1 = b.z * (thread + 1) / threads;
+    auto& [alongX, alongY] = planes[std::size_t(thread)];
+    volume.visit([&](auto samples) {
+      for (int z = voxelRange(bz0, d.z).first; z <= voxelRange(bz1 - 1, d.z).second; ++z) {
+        for (int y = 0; y < d.y; ++y) {
+          const auto* row = &samples[volume.index(0, y, z)];
+          for (int bx = 0; bx < b.x; ++bx) {
+            const auto [x0, x1] = voxelRange(bx, d.x);
+            const auto [lo, hi] = std::minmax_element(row + x0, row + x1 + 1);
+            alongX[std::size_t(y) * b.x + bx] = {float(*lo), float(*hi)};
+          }
+        }
+        std::fill(alongY.begin(), alongY.end(), none);
+        for (int by = 0; by < b.y; ++by) {
+          const auto [y0, y1] = voxelRange(by, d.y);
+          for (int y = y0; y <= y1; ++y) {
+            for (int bx = 0; bx < b.x; ++bx) {
+              unite(alongY[std::size_t(by) * b.x + bx], alongX[std::size_t(y) * b.x + bx]);
+            }
+          }
+        }
+        for (int bz = bz0; bz < bz1; ++bz) {
+          const auto [z0, z1] = voxelRange(bz, d.z);
+          if (z < z0 || z > z1) continue;
+          for (int i = 0; i < b.x * b.y; ++i) {
+            unite(ranges_[std::size_t(bz) * b.x * b.y + std::size_t(i)], alongY[std::size_t(i)]);
+          }
         }
       }
-    }
-  }
+    });
+  };
+  std::vector<std::jthread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(layers, t);
+  layers(0);
 }
 
 ValueRange BrickRanges::range(glm::ivec3 brick) const {

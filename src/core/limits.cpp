@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "core/error.h"
 
@@ -18,6 +19,10 @@ std::size_t defaultMemoryBytes() {
     return std::size_t(std::max<std::uint64_t>(physical / 2, std::uint64_t(256) << 20));
   }();
   return bytes;
+}
+
+int workerThreads() {
+  return std::clamp(int(std::thread::hardware_concurrency()), 1, kMaxWorkerThreads);
 }
 
 std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth) {
@@ -35,9 +40,11 @@ std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample) {
   const std::uint64_t voxels = d.x * d.y * d.z;
   const std::uint64_t textureBytes = bytesPerSample == 1 ? 2 : 4;
   const glm::u64vec3 b = (d + std::uint64_t(7)) / std::uint64_t(8);  // 8³ bricks
-  const std::uint64_t maximaBytes = 4 * (b.x * d.y * d.z + b.x * b.y * d.z + b.x * b.y * b.z);
+  const std::uint64_t rangeBytes = 8;                                // ValueRange
+  const std::uint64_t rangesBytes =
+      rangeBytes * (b.x * b.y * b.z + kMaxWorkerThreads * (b.x * d.y + b.x * b.y));
   const std::uint64_t slabBytes = std::max<std::uint64_t>(kUploadSlabBytes, d.x * d.y * 4);
-  return voxels * (bytesPerSample + textureBytes) + maximaBytes + 2 * slabBytes;
+  return voxels * (bytesPerSample + textureBytes) + rangesBytes + 2 * slabBytes;
 }
 
 std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel) {

@@ -33,6 +33,11 @@ inline constexpr int kMaxStride = 1 << 16;
 // --max-memory accepts 1 MiB .. 1 TiB.
 inline constexpr std::int64_t kMaxMemoryMiBFlag = std::int64_t(1) << 20;
 
+// Threads that loading and upload work uses (VTI zlib blocks, brick ranges): the machine's
+// hardware threads, 1 .. kMaxWorkerThreads.
+inline constexpr int kMaxWorkerThreads = 16;
+int workerThreads();
+
 // The default memory ceiling: half of the machine's physical memory (sysconf), at least
 // 256 MiB; 4 GiB when the machine does not say.
 std::size_t defaultMemoryBytes();
@@ -41,9 +46,10 @@ std::size_t defaultMemoryBytes();
 //   volume: per voxel, the samples in their own type (1, 2 or 4 bytes), the 3D texture, which
 //           llvmpipe keeps in host memory (R16F, 2 bytes, for 8-bit samples; 4 bytes for the
 //           others, which are R16F only when every sample turns out to be a small integer:
-//           the check runs before reading, so it assumes R32F), and the empty-space brick
-//           maxima while they are built (a float per 8 voxels along x, then per 8² and 8³);
-//           plus the upload's staging slabs (slicing/volume_texture.cpp, two in flight);
+//           the check runs before reading, so it assumes R32F); the empty-space brick
+//           ranges (a min and max per 8³ voxels) and, while they are built, two z planes of
+//           ranges per worker thread (slicing/empty_space.cpp); the upload's staging slabs
+//           (slicing/volume_texture.cpp, two in flight);
 //   image:  render targets (ping-pong RGBA32F + two R8UI), readback copies, frame buffers,
 //           the FFT broadening's padded float/complex buffers and the composed image,
 //           bounded by kRenderBytesPerPixel per pixel of the padded image.

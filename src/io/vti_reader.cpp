@@ -15,6 +15,7 @@
 #include <tinyxml2.h>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "io/base64.h"
 #include "io/file_access.h"
 #include "io/inflate.h"
@@ -192,7 +193,7 @@ class BlockReader {
     const std::size_t sampleSize = sink.sampleSize();
     // Blocks that start within a sample cannot be placed on their own: one thread, in order.
     const bool aligned = blockSize % sampleSize == 0;
-    const int threads = aligned ? std::clamp(int(std::thread::hardware_concurrency()), 1, 16) : 1;
+    const int threads = aligned ? limits::workerThreads() : 1;
     SampleSink::Appender inOrder(sink, 0);
     const std::uint64_t compressedTotal = block_.size() - dataStart;
     std::vector<std::uint8_t> batchBytes;
