@@ -21,6 +21,9 @@ struct VtiCase {
   bool compressed;
   bool header64;
   bool bigEndian;
+  // zlib block size in bytes: 32 so the arrays here span several blocks and end in a partial
+  // one; 7 makes blocks start within a sample (read in order on one thread, not in parallel).
+  std::size_t blockSize = 32;
 };
 
 const char* vtkTypeName(SampleType type) {
@@ -48,8 +51,7 @@ std::pair<Bytes, Bytes> binaryBlock(const Bytes& data, const VtiCase& c) {
     test::appendWord(header, data.size(), word, c.bigEndian);
     return {header, data};
   }
-  // Blocks of 32 bytes so the arrays here span several blocks and end in a partial one.
-  const std::size_t blockSize = 32;
+  const std::size_t blockSize = c.blockSize;
   const std::size_t blocks = (data.size() + blockSize - 1) / blockSize;
   Bytes body;
   std::vector<std::size_t> sizes;
@@ -113,7 +115,8 @@ std::string caseName(const VtiCase& c) {
   const char* formats[] = {"ascii", "inline", "appendedraw", "appendedbase64"};
   return std::string(sampleTypeName(c.type)) + "_" + formats[int(c.format)] +
          (c.compressed ? "_zlib" : "") + (c.header64 ? "_h64" : "_h32") +
-         (c.bigEndian ? "_big" : "");
+         (c.bigEndian ? "_big" : "") +
+         (c.blockSize != 32 ? "_block" + std::to_string(c.blockSize) : "");
 }
 
 class VtiRoundTrip : public ::testing::TestWithParam<VtiCase> {};
@@ -150,6 +153,7 @@ std::vector<VtiCase> allCases() {
     }
     cases.push_back({type, Format::AppendedRaw, true, true, true});
     cases.push_back({type, Format::Inline, false, false, true});
+    cases.push_back({type, Format::AppendedRaw, true, false, false, 7});
   }
   return cases;
 }
