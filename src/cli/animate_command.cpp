@@ -120,9 +120,10 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
   RenderJob::checkRequest(base, loadOptions.limits);
   const AnimationPlan plan(base, animationSpec(flags), loadOptions.limits);
   checkOutputs(flags, base.settings.size);
+  const gl::ContextOptions glOptions = toContextOptions(renderFlags.gl);
   if (validateOnly()) return;
 
-  RenderJob job;
+  RenderJob job(glOptions);
   job.load(renderFlags.input, loadOptions);
   const fs::path outDir = flags.outDir;
   if (!flags.outDir.empty()) prepareOutDir(outDir);

@@ -22,6 +22,7 @@ void addRenderOptions(CLI::App& command, RenderFlags& flags) {
       ->capture_default_str();
   addVolumeOptions(command, flags.volume);
   addPostfxOptions(command, flags.postfx);
+  addGlOptions(command, flags.gl);
 }
 
 RenderRequest toRenderRequest(const RenderFlags& flags) {

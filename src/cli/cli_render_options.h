@@ -2,7 +2,8 @@
 // The flags every command that renders takes, by the same names (vsil render, vsil animate):
 // INPUT, --technique and the technique options (cli_technique_options.h), --size, --view,
 // --ortho, --zoom, --sampling, --no-empty-space-skipping, the volume flags
-// (cli_volume_options.h) and the postfx flags (cli_postfx_options.h). One registration and one
+// (cli_volume_options.h), the postfx flags (cli_postfx_options.h) and --gl, --gl-device
+// (cli_gl_options.h; RenderJob job(toContextOptions(flags.gl))). One registration and one
 // conversion into a RenderRequest, so the commands cannot drift apart.
 //
 //   auto flags = std::make_shared<RenderFlags>();
@@ -12,6 +13,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/cli_gl_options.h"
 #include "cli/cli_volume_options.h"
 #include "core/options.h"
 #include "job/render_job.h"
@@ -34,6 +36,7 @@ struct RenderFlags {
   bool noEmptySpaceSkipping = false;
   VolumeOptions volume;
   PostfxOptions postfx;
+  GlOptions gl;
 };
 
 // Adds the positional INPUT and every flag above to `command`; `flags` must outlive the parse.

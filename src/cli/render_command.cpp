@@ -40,9 +40,10 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   const RenderRequest request = toRenderRequest(flags);
   RenderJob::checkRequest(request, loadOptions.limits);
   checkOutputs(flags, outputs);
+  const gl::ContextOptions glOptions = toContextOptions(flags.gl);
   if (validateOnly()) return;
 
-  RenderJob job;
+  RenderJob job(glOptions);
   job.load(flags.input, loadOptions);
   RenderOutput output = job.render(request, loadOptions.limits);
   for (const auto& warning : output.warnings) std::cerr << "vsil: warning: " << warning << "\n";

@@ -60,7 +60,7 @@ nlohmann::json pixelCounts(const FrameBuffers& frame) {
 
 nlohmann::json metadata(const RenderRequest& request, const std::string& input,
                         const Volume& volume, const RenderResult& result,
-                        const std::string& glRenderer, double postfxMs) {
+                        const gl::ContextInfo& glContext, double postfxMs) {
   const RenderSettings& settings = request.settings;
   const TechniqueInfo& technique = findTechnique(settings.technique);
   const ValueRange range = valueRange(volume);
@@ -81,7 +81,8 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
   }
   nlohmann::json meta;
   meta["vsil_version"] = kVsilVersion;
-  meta["gl_renderer"] = glRenderer;
+  meta["gl_renderer"] = glContext.renderer;
+  meta["gl"] = gl::contextInfoJson(glContext);
   meta["parameters"] = parameters;
   meta["dataset"] = {{"name", volume.name},
                      {"source", volume.source},
@@ -141,6 +142,7 @@ std::vector<std::string> warnings(const RenderRequest& request, const Volume& vo
 }  // namespace
 
 struct RenderJob::Impl {
+  explicit Impl(const gl::ContextOptions& gl) : context(gl) {}
   gl::GlContext context;
   std::optional<Renderer> renderer;
   std::optional<Volume> volume;
@@ -148,7 +150,7 @@ struct RenderJob::Impl {
   FftGaussianBlur blur;
 };
 
-RenderJob::RenderJob() : impl_(std::make_unique<Impl>()) {
+RenderJob::RenderJob(const gl::ContextOptions& gl) : impl_(std::make_unique<Impl>(gl)) {
   impl_->renderer.emplace(impl_->context);
 }
 
@@ -212,7 +214,7 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
   output.image = composeIllustration(output.result.frame, request.postfx, impl_->blur);
   output.postfxMs = millisecondsSince(postStart);
   output.metadata = metadata(request, impl_->input, volume, output.result,
-                             impl_->context.renderer(), output.postfxMs);
+                             impl_->context.info(), output.postfxMs);
   output.warnings = warnings(request, volume);
   return output;
 }

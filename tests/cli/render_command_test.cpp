@@ -1,4 +1,5 @@
 // `vsil render` end to end, through the built binary: outputs, metadata, determinism, errors.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -50,6 +51,13 @@ TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
     EXPECT_TRUE(meta["timings_ms"][key].is_number()) << key;
   }
   EXPECT_GT(meta["slices"].get<int>(), 40);
+  // The back end the render ran on: $VSIL_GL reaches the binary (ctest runs this once per back
+  // end), and the context is 4.5 core.
+  if (const char* backend = std::getenv("VSIL_GL")) {
+    EXPECT_EQ(meta["gl"]["backend"], backend);
+  }
+  EXPECT_EQ(meta["gl"]["version"].get<std::string>().rfind("4.5", 0), 0u) << meta["gl"];
+  EXPECT_FALSE(meta["gl"]["renderer"].get<std::string>().empty());
 
   // The camera in the metadata projects the sphere's centre to the middle of its outline.
   glm::dmat4 eyeFromVoxel, clipFromEye;

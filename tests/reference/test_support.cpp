@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -37,6 +38,9 @@ std::filesystem::path vsilBinary() {
 std::filesystem::path scratchDir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "vsil";
+  // ctest runs a GL suite once per back end, maybe at the same time: one folder each.
+  if (const char* backend = std::getenv("VSIL_GL"); backend && *backend)
+    name += "@" + std::string(backend);
   for (char& c : name) {
     if (c == '/') c = '_';
   }

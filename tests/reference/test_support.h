@@ -25,7 +25,8 @@ bool datasetsRequired();
   } while (0)
 // The built `vsil` binary.
 std::filesystem::path vsilBinary();
-// A fresh, empty folder under the build's temporary area, unique to the calling test.
+// A fresh, empty folder under the build's temporary area, unique to the calling test (and to the
+// back end in $VSIL_GL).
 std::filesystem::path scratchDir();
 
 // The whole file as bytes ("" when it cannot be read).
