@@ -20,6 +20,7 @@
 
 #include "core/image_file.h"
 #include "harness/text_table.h"
+#include "slicing/gl_context.h"
 #include "tables/nk3_table.h"
 
 extern char** environ;
@@ -145,8 +146,15 @@ void compareFrames(const fs::path& animated, const fs::path& rendered, AnimateCa
   }
 }
 
+// The back end the bench was given, for every child process (both paths on the same one).
+std::vector<std::string> glArgs(const gl::ContextOptions& gl) {
+  std::vector<std::string> args = {"--gl", gl::backendName(gl.backend)};
+  if (gl.eglDevice) args.insert(args.end(), {"--gl-device", std::to_string(*gl.eglDevice)});
+  return args;
+}
+
 AnimateCase measureCase(const std::string& dataset, const fs::path& file, double iso, int size,
-                        Progress& progress) {
+                        const gl::ContextOptions& gl, Progress& progress) {
   AnimateCase result;
   result.dataset = dataset;
   result.size = size;
@@ -158,10 +166,13 @@ AnimateCase measureCase(const std::string& dataset, const fs::path& file, double
   fs::create_directory(rendered);
   const fs::path errFile = scratch.path() / "stderr";
 
-  const ProcessRun animate = runVsil(
-      {"animate", file.string(), "--iso", isoText, "--size", sizeText, "--view", kView, "--frames",
-       std::to_string(kFrames), "--orbit", "360", "--quiet", "--out-dir", animated.string()},
-      errFile);
+  const std::vector<std::string> glChoice = glArgs(gl);
+  std::vector<std::string> animateArgs = {"animate", file.string(), "--iso", isoText, "--size",
+                                          sizeText, "--view", kView, "--frames",
+                                          std::to_string(kFrames), "--orbit", "360", "--quiet",
+                                          "--out-dir", animated.string()};
+  animateArgs.insert(animateArgs.end(), glChoice.begin(), glChoice.end());
+  const ProcessRun animate = runVsil(animateArgs, errFile);
   result.animateSeconds = animate.seconds;
   if (animate.exitCode != 0) {
     result.problems.push_back("vsil animate: " + animate.error);
@@ -187,10 +198,11 @@ AnimateCase measureCase(const std::string& dataset, const fs::path& file, double
   for (int i = 0; i < kFrames; ++i) {
     progress.step("render " + std::to_string(i + 1) + "/" + std::to_string(kFrames));
     const nlohmann::json& view = frames[i]["parameters"]["view"];
-    const ProcessRun render = runVsil(
-        {"render", file.string(), "--iso", isoText, "--size", sizeText, "--view",
-         view[0].dump() + "," + view[1].dump(), "--out", (rendered / frameName(i)).string()},
-        errFile);
+    std::vector<std::string> renderArgs = {
+        "render", file.string(), "--iso", isoText, "--size", sizeText, "--view",
+        view[0].dump() + "," + view[1].dump(), "--out", (rendered / frameName(i)).string()};
+    renderArgs.insert(renderArgs.end(), glChoice.begin(), glChoice.end());
+    const ProcessRun render = runVsil(renderArgs, errFile);
     if (render.exitCode != 0) {
       result.problems.push_back("vsil render (frame " + std::to_string(i) + "): " + render.error);
       return result;
@@ -281,7 +293,7 @@ TableResult runAnimateTable(const BenchOptions& options, Progress& progress) {
     }
     table.notes.push_back(datasets[d] + ": " + entry.isoReason + " (as nk3)");
     for (int size : sizes)
-      cases.push_back(measureCase(datasets[d], path, entry.iso, size, progress));
+      cases.push_back(measureCase(datasets[d], path, entry.iso, size, options.gl, progress));
   }
   progress.finish();
 
