@@ -135,7 +135,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
   ProgressLine progress(std::cerr, isatty(STDERR_FILENO) == 1);
   std::set<std::string> warned;
   nlohmann::ordered_json frameList = nlohmann::ordered_json::array();
-  nlohmann::json dataset;
+  nlohmann::json dataset, glInfo;
   std::string glRenderer;
   double renderMs = 0, readbackMs = 0, postfxMs = 0, writeMs = 0;
   const auto loopStart = Clock::now();
@@ -164,6 +164,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
     if (i == 0) {
       dataset = meta["dataset"];
       glRenderer = meta["gl_renderer"];
+      glInfo = meta["gl"];
     }
     nlohmann::ordered_json entry = {{"index", i}, {"t", plan.t(i)}};
     if (!file.empty()) entry["file"] = file;
@@ -196,6 +197,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
     nlohmann::ordered_json document;
     document["vsil_version"] = kVsilVersion;
     document["gl_renderer"] = glRenderer;
+    document["gl"] = glInfo;
     document["input"] = renderFlags.input;
     document["technique"] = base.settings.technique;
     document["animation"] = plan.describe();

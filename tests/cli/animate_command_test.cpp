@@ -3,6 +3,7 @@
 // `vsil render` with that frame's parameters, the video (read back), progress and --quiet.
 // Small on purpose (64² frames of a 48³ volume, a handful of frames).
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -58,6 +59,10 @@ TEST(AnimateCommand, WritesNumberedFramesAndTheirJson) {
   EXPECT_EQ(json["animation"]["frames"], 4);
   EXPECT_EQ(json["animation"]["orbit_deg"], 360.0);
   EXPECT_EQ(json["dataset"]["dims"], nlohmann::json({48, 48, 48}));
+  // The suite runs once per back end with $VSIL_GL set; animate renders on the one chosen.
+  if (const char* backend = std::getenv("VSIL_GL"); backend && *backend) {
+    EXPECT_EQ(json["gl"]["backend"], backend) << json["gl"].dump();
+  }
   EXPECT_GT(json["fps"].get<double>(), 0);
   for (const char* key : {"setup", "frames", "render", "readback", "postfx", "write", "total"}) {
     EXPECT_TRUE(json["timings_ms"][key].is_number()) << key;
