@@ -21,6 +21,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "core/limits.h"
 #include "core/progress_line.h"
 #include "core/version.h"
 #include "job/animation.h"
@@ -232,7 +233,9 @@ const CommandRegistration registration(20, [](CLI::App& app) {
       "animate", "Render a sequence of frames (orbit, moving view, parameter sweeps) in one job");
   addRenderOptions(*command, *renderFlags);
   const std::string group = "Animation";
-  command->add_option("--frames", flags->frames, "Number of frames (1..100000)")
+  command
+      ->add_option("--frames", flags->frames,
+                   "Number of frames (1.." + std::to_string(limits::kMaxFrames) + ")")
       ->required()
       ->group(group);
   command
