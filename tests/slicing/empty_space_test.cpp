@@ -215,9 +215,13 @@ TEST_P(EntryAndExitDepth, MatchRaysThroughTheOccupiedBricks) {
   target.bindForDrawing();
   skipping.writeEntryDepth(glm::mat4(view.clipFromVoxel()));
   std::vector<float> entry(std::size_t(size.x * size.y)), exit(entry.size());
+  std::vector<float> entryImage(entry.size());
   glReadPixels(0, 0, size.x, size.y, GL_DEPTH_COMPONENT, GL_FLOAT, entry.data());
+  skipping.drawEntryDepthImage(glm::mat4(view.clipFromVoxel()));
   glBindTexture(GL_TEXTURE_2D, skipping.exitDepthTexture());
   glGetTexImage(GL_TEXTURE_2D, 0, GL_RED, GL_FLOAT, exit.data());
+  glBindTexture(GL_TEXTURE_2D, skipping.entryDepthTexture());
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_RED, GL_FLOAT, entryImage.data());
   glBindTexture(GL_TEXTURE_2D, 0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
@@ -246,14 +250,18 @@ TEST_P(EntryAndExitDepth, MatchRaysThroughTheOccupiedBricks) {
       if (surelyMiss) {
         ++misses;
         EXPECT_EQ(entry[i], 1.0f);
+        EXPECT_EQ(entryImage[i], 1.0f);
         EXPECT_EQ(exit[i], 0.0f);
         continue;
       }
       ++hits;
-      // Where the nearest grazing box decides, the depth lies between the two estimates.
+      // Where the nearest grazing box decides, the depth lies between the two estimates; the
+      // entry image (for the tile march) holds the depth buffer's depth, unquantized.
       constexpr double kDepthTolerance = 1e-5;
-      EXPECT_GE(entry[i], windowDepth(view, nearGrown) - kDepthTolerance);
-      EXPECT_LE(entry[i], windowDepth(view, nearShrunk) + kDepthTolerance);
+      for (const float entryDepth : {entry[i], entryImage[i]}) {
+        EXPECT_GE(entryDepth, windowDepth(view, nearGrown) - kDepthTolerance);
+        EXPECT_LE(entryDepth, windowDepth(view, nearShrunk) + kDepthTolerance);
+      }
       EXPECT_GE(exit[i], windowDepth(view, farShrunk) - kDepthTolerance);
       EXPECT_LE(exit[i], windowDepth(view, farGrown) + kDepthTolerance);
     }
