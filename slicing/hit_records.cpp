@@ -4,6 +4,7 @@
 
 #include "slicing/gl_state.h"
 #include "slicing/texture_units.h"
+#include "slicing/tile_march.h"
 
 namespace vsil {
 
@@ -23,7 +24,13 @@ void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
   drawSlicePolygon(frame, slice);
 }
 
-void FirstHitRecorder::beginFrame(const FrameContext& frame) {
+namespace {
+// The tiles walk's workgroup (first_hit_march.comp): no apron, since no pixel reads another's
+// samples.
+constexpr MarchShape kFirstHitMarchShape{{16, 16}, {16, 16}};
+}  // namespace
+
+void FirstHitRecorder::beginFrame(const FrameContext& frame, SlicingPipeline pipeline) {
   const glm::ivec2 size = frame.view->viewport;
   if (!targets_ || targets_->record.size() != size) {
     targets_.reset();
@@ -31,31 +38,50 @@ void FirstHitRecorder::beginFrame(const FrameContext& frame) {
     const GLuint depth = record.depthStencil();
     targets_.emplace(Targets{std::move(record), gl::EmptyFramebuffer(size, depth)});
   }
+  pipeline_ = pipeline;
+  const float iso = float(frame.options->number("iso"));
+  if (pipeline_ == SlicingPipeline::Tiles) {
+    // The march writes every pixel's record once: nothing to clear, no depth buffer.
+    march_ = &marchProgram(frame, hitRecordSources(), "shaders/first_hit_march.comp",
+                           kFirstHitMarchShape);
+    march_->use();
+    march_->set("isoValue", iso);
+    return;
+  }
   slicePass_ = &frame.programs->get(
       gl::slicePassProgram(hitRecordSources(), "shaders/first_hit.frag"));
   slicePass_->use();
-  slicePass_->set("isoValue", float(frame.options->number("iso")));
+  slicePass_->set("isoValue", iso);
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   const GLfloat zero[4] = {0, 0, 0, 0};
   targets_->record.bindForDrawing();
   VSIL_GL(glClearBufferfv(GL_COLOR, 0, zero));
-  frame.emptySpace->writeEntryDepth(glm::mat4(frame.view->clipFromVoxel()));
+  if (pipeline_ == SlicingPipeline::Fast) {
+    frame.emptySpace->writeEntryDepth(glm::mat4(frame.view->clipFromVoxel()));
+  }
 }
 
 void FirstHitRecorder::drawSlice(const FrameContext& frame, const SliceContext& slice) {
-  if (slice.vertexCount == 0) return;
+  if (pipeline_ == SlicingPipeline::Tiles || slice.vertexCount == 0) return;
+  const bool skipping = pipeline_ == SlicingPipeline::Fast;
   targets_->record.bindForDrawing();
   {
     // GREATER, no depth writes: skips empty space in front (empty_space.h) and dead pixels,
-    // early. The blending keeps each pixel's first hit (first_hit.frag).
-    gl::DepthTest skipEmptyAndDead(GL_GREATER, /*write=*/false);
+    // early. The paper pipeline samples every pixel of the polygon. The blending keeps each
+    // pixel's first hit (first_hit.frag).
+    std::optional<gl::DepthTest> skipEmptyAndDead;
+    if (skipping) skipEmptyAndDead.emplace(GL_GREATER, /*write=*/false);
     gl::Blending keepFirstHit(GL_FUNC_ADD, GL_ONE_MINUS_DST_ALPHA, GL_DST_ALPHA);
     slicePass_->use();
     drawSlicePolygon(frame, slice);
   }
-  if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
+  if (skipping && slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
     markDeadPixels(frame, slice, targets_->depthOnly, targets_->record, /*neighboursFinal=*/false);
   }
+}
+
+void FirstHitRecorder::endSlices(const FrameContext& frame) {
+  if (pipeline_ == SlicingPipeline::Tiles) runMarch(frame, *march_, kFirstHitMarchShape, targets_->record);
 }
 
 gl::Program& finishProgram(const FrameContext& frame, const std::vector<std::string>& shared) {

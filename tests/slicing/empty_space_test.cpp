@@ -335,12 +335,19 @@ std::vector<SceneCase> sceneCases() {
       {"Behind", camera(200, -35, false, 1.5)},
       {"Orthographic", camera(95, 60, true, 1)},
       {"ZoomedIn", camera(-20, 10, false, 2.5)}};
-  // Every technique of the table: each decides for itself what is occupied.
+  // Every technique of the table (each decides for itself what is occupied), with each of its
+  // pipelines (each skips its own way).
   std::vector<SceneCase> cases;
   for (const auto& [viewName, spec] : views) {
     for (const auto& technique : techniqueTable()) {
-      cases.push_back({technique.name + viewName, technique.name,
-                       test::isoOptions(technique, 0.2), spec});
+      const OptionSpec* pipeline = technique.option("pipeline");
+      for (const std::string& choice :
+           pipeline ? pipeline->choices : std::vector<std::string>{""}) {
+        OptionValues options = test::isoOptions(technique, 0.2);
+        if (!choice.empty()) options["pipeline"] = choice;
+        cases.push_back({technique.name + viewName + (choice.empty() ? "" : "_" + choice),
+                         technique.name, options, spec});
+      }
     }
   }
   return cases;
