@@ -27,7 +27,8 @@ void runMarch(const FrameContext& frame, gl::Program& program, const MarchShape&
     gl::Capability noDepthTest(GL_DEPTH_TEST, false);
     frame.emptySpace->drawEntryDepthImage(glm::mat4(frame.view->clipFromVoxel()));
   }
-  gl::bindTexture(gl::TextureUnit::EntryDepth, GL_TEXTURE_2D, frame.emptySpace->entryDepthTexture());
+  gl::bindTexture(gl::TextureUnit::EntryDepth, GL_TEXTURE_2D,
+                  frame.emptySpace->entryDepthTexture());
   gl::bindTexture(gl::TextureUnit::ExitDepth, GL_TEXTURE_2D, frame.emptySpace->exitDepthTexture());
   gl::bindImage(gl::ImageUnit::Record, record);
   program.use();

@@ -22,6 +22,7 @@ struct MarchShape {
   glm::ivec2 group{16, 16};  // invocations per workgroup (the shader lays them over its tile)
   glm::ivec2 tile{16, 16};   // the pixels whose records a workgroup writes
   // Slices per dispatch; at most FrameUniforms::slicesPerRange() (what one uniform block holds).
+  // Fewer would only add dispatch boundaries (a barrier, the records stored and reloaded).
   int slicesPerDispatch = 1 << 30;
 };
 

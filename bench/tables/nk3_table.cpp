@@ -162,8 +162,8 @@ const std::vector<Nk3Column>& nk3Columns() {
                      &PaperFps::ra});
       all.push_back({"ops" + suffix, "OPS", pipeline, findTechnique("silhouette"), false, true,
                      &PaperFps::ops});
-      all.push_back({"bs" + suffix, "BS", pipeline, findTechnique("silhouette"), true, true,
-                     &PaperFps::bs});
+      all.push_back(
+          {"bs" + suffix, "BS", pipeline, findTechnique("silhouette"), true, true, &PaperFps::bs});
     }
     return all;
   }();
@@ -415,9 +415,9 @@ void checkPipelinesAgree(const CaseResult& reference, CaseResult& other) {
   for (std::size_t i = 0; i < std::min(reference.frames.size(), other.frames.size()); ++i) {
     const double a = reference.frames[i].silhouettes, b = other.frames[i].silhouettes;
     if (std::abs(a - b) > std::max(2.0, kPipelineSlack * a)) {
-      other.problems.push_back("frame " + std::to_string(i + 1) + " has " +
-                               std::to_string(int(b)) + " silhouette pixels, " +
-                               reference.column->key + " had " + std::to_string(int(a)));
+      other.problems.push_back("frame " + std::to_string(i + 1) + " has " + std::to_string(int(b)) +
+                               " silhouette pixels, " + reference.column->key + " had " +
+                               std::to_string(int(a)));
       return;
     }
   }
@@ -671,7 +671,8 @@ TextTable textTable(const std::vector<Nk3Line>& lines) {
   std::vector<std::string> header{"dataset", "size", "window", "pipeline"};
   for (std::size_t i = 0; i < kColumnsPerPipeline; ++i) header.push_back(columns[i].label + " fps");
   header.push_back("RA/OPS");
-  for (std::size_t i = 0; i < kColumnsPerPipeline; ++i) header.push_back("paper " + columns[i].label);
+  for (std::size_t i = 0; i < kColumnsPerPipeline; ++i)
+    header.push_back("paper " + columns[i].label);
   header.insert(header.end(), {"paper RA/OPS", "check"});
   TextTable text(header);
   for (const Nk3Line& l : lines) {
@@ -714,7 +715,8 @@ PlotSpec plotSpec(const std::vector<Nk3Line>& lines) {
 
 std::string methodNote(const BenchOptions& options) {
   std::string pipelines;
-  for (const auto& pipeline : nk3Pipelines()) pipelines += (pipelines.empty() ? "" : ", ") + pipeline;
+  for (const auto& pipeline : nk3Pipelines())
+    pipelines += (pipelines.empty() ? "" : ", ") + pipeline;
   char method[640];
   std::snprintf(method, sizeof method,
                 "method: %d warm-up + %d timed frames per technique and pipeline (%s; RA and OPS "

@@ -22,7 +22,13 @@ std::vector<std::string> sources() {
 }
 
 // The tiles pipeline's workgroup (march.comp): a column of the tile per invocation, one apron
-// column on each side; as many slices per dispatch as one uniform block holds.
+// column on each side; 30 rows and their two apron rows fill a column's 32-bit mask. As many
+// slices per dispatch as one uniform block holds (1024 on llvmpipe, so one dispatch per frame
+// for the nk3 datasets): a dispatch boundary costs a barrier and a reload of the records.
+// Measured (nk3 on bonsai and neghip, 256² and 512², on a loaded 2-core machine; the table is
+// in the commit message that wrote this): tiles of 14x30, 62x30 and 30x14 were within the
+// noise of this shape, none consistently ahead; 64 slices per dispatch (7 dispatches for
+// bonsai's 427 slices) was slower on bonsai for this march and the first-hit one.
 constexpr MarchShape kMarchShape{{32, 1}, {30, 30}};
 
 }  // namespace
@@ -30,8 +36,7 @@ constexpr MarchShape kMarchShape{{32, 1}, {30, 30}};
 TechniqueInfo silhouetteTechniqueInfo() {
   return {"silhouette",
           "Nagy–Klein one-pixel iso-surface silhouettes (OPS), broadened to --width",
-          {isoOption(),
-           pipelineOption()},
+          {isoOption(), pipelineOption()},
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<SilhouetteTechnique>(); }};
 }
@@ -64,9 +69,9 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
     current_ = 0;
     return;
   }
-  const std::vector<std::string> variant =
-      pipeline_ == SlicingPipeline::Paper ? std::vector<std::string>{"PAPER_PIPELINE"}
-                                   : std::vector<std::string>{};
+  const std::vector<std::string> variant = pipeline_ == SlicingPipeline::Paper
+                                               ? std::vector<std::string>{"PAPER_PIPELINE"}
+                                               : std::vector<std::string>{};
   gl::ProgramCache& cache = *frame.programs;
   programs_.footprint =
       &cache.get(gl::slicePassProgram(sources(), "techniques/silhouette/footprint.frag", variant));
