@@ -134,6 +134,11 @@ OptionSpec& OptionSpec::atMost(double bound) {
   return *this;
 }
 
+OptionSpec& OptionSpec::validatedBy(std::function<void(const OptionValue&)> check) {
+  validate = std::move(check);
+  return *this;
+}
+
 std::string OptionSpec::key() const {
   std::string k = name;
   std::replace(k.begin(), k.end(), '-', '_');
@@ -199,6 +204,7 @@ void OptionSpec::check(const OptionValue& value) const {
       throwInputError(flag(), "unknown value '" + name + "' (known: " + joined(choices, ", ") + ")");
     }
   }
+  if (validate) validate(value);
 }
 
 std::string OptionSpec::describe() const {

@@ -4,6 +4,7 @@
 // the CLI's flags and help, the metadata, the benchmark, the Python keywords — reads those
 // declarations. A technique reads its values by name through OptionReader; values given for an
 // option it does not declare are reported (checkOptions), never silently ignored.
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -42,6 +43,9 @@ struct OptionSpec {
   bool minExclusive = false;
   bool maxExclusive = false;
   std::vector<std::string> choices;
+  // Checks the value further (a Text or List the technique parses itself: effect names,
+  // NAME=VALUE lists, colours); throws InputError naming the flag. Empty: no further check.
+  std::function<void(const OptionValue&)> validate;
 
   // Declaring an option in one expression:
   //   OptionSpec::number("ra-exponent", 8.0, "exponent k of the line test").above(0)
@@ -55,6 +59,7 @@ struct OptionSpec {
   OptionSpec& above(double bound);    // > bound
   OptionSpec& atLeast(double bound);  // >= bound
   OptionSpec& atMost(double bound);   // <= bound
+  OptionSpec& validatedBy(std::function<void(const OptionValue&)> check);
 
   // "ra-exponent" → "ra_exponent": the metadata key and the Python keyword.
   std::string key() const;
