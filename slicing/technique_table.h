@@ -20,6 +20,9 @@ struct FrameOutputs {
   bool state = false;  // pixel states (Nagy–Klein) and the shade of FILLED pixels
   bool color = false;  // premultiplied RGBA
   bool depth = false;  // normalized depth of what each pixel shows
+  // State techniques: with RenderSettings::toneFill (--fill tone), `color` holds the tone-shaded
+  // first hit of every Filled pixel (slicing/tone_fill.h).
+  bool toneFill = false;
 };
 
 struct TechniqueInfo {
@@ -28,6 +31,9 @@ struct TechniqueInfo {
   std::vector<OptionSpec> options;
   FrameOutputs outputs;
   std::function<std::unique_ptr<Technique>()> create;  // needs a current GL context
+  // Samples the volume's gradient texture (slicing/gradient_texture.h): the render's memory
+  // bound counts it.
+  bool usesGradients = false;
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }

@@ -8,7 +8,8 @@ vsil::FillMode parseFillMode(const std::string& text, const std::string& flagNam
   if (text == "none") return vsil::FillMode::None;
   if (text == "flat") return vsil::FillMode::Flat;
   if (text == "shaded") return vsil::FillMode::Shaded;
-  throwInputError(flagName, "'" + text + "' is not a fill mode (none, flat or shaded)");
+  if (text == "tone") return vsil::FillMode::Tone;
+  throwInputError(flagName, "'" + text + "' is not a fill mode (none, flat, shaded or tone)");
 }
 
 void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options) {
@@ -60,7 +61,9 @@ void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options) {
   command.add_option_function<std::string>(
       "--fill",
       [&options](const std::string& text) { options.fill = parseFillMode(text, "--fill"); },
-      "what filled (inside) pixels show: none, flat or shaded");
+      "what filled (inside) pixels show: none, flat, shaded (|n.v|) or tone (the Ebert-Rheingans "
+      "tone shading and distance blending of --fill-color; --param k_ta,k_td,k_ty,k_tb,k_ds,k_de,"
+      "k_a,k_d and --light)");
   command.add_option_function<std::string>(
       "--fill-color",
       [&options](const std::string& text) {

@@ -32,7 +32,8 @@ nlohmann::json matrixRowMajor(const glm::dmat4& m) {
 }
 
 const char* fillName(FillMode fill) {
-  return fill == FillMode::None ? "none" : fill == FillMode::Flat ? "flat" : "shaded";
+  static const char* const names[] = {"none", "flat", "shaded", "tone"};
+  return names[int(fill)];
 }
 
 double maxLineWidth(const PostfxOptions& postfx) {
@@ -70,12 +71,18 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
                                {"orthographic", settings.camera.orthographic},
                                {"zoom", settings.camera.zoom},
                                {"fov_y_deg", settings.camera.fovYDeg},
-                               {"sampling", settings.samplesPerVoxel}};
+                               {"sampling", settings.samplesPerVoxel},
+                               {"early_ray_termination", settings.earlyRayTermination},
+                               {"background", result.background.hex()}};
   parameters.update(result.options);
   if (technique.outputs.state) {
     parameters["width_near"] = request.postfx.width.near;
     parameters["width_far"] = request.postfx.width.far;
     parameters["fill"] = fillName(request.postfx.fill);
+    if (request.postfx.fill != FillMode::None) {
+      parameters["fill_color"] = request.postfx.fillColor.hex();
+    }
+    parameters["line_color"] = request.postfx.lineColor.hex();
   }
   nlohmann::json meta;
   meta["vsil_version"] = kVsilVersion;
@@ -111,7 +118,8 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
                      volume.source + " would need up to " + std::to_string(slices) +
                      " slices per frame, over the limit of " + std::to_string(limits::kMaxSlices));
   }
-  const std::uint64_t bytes = limits::renderVolumeBytes(volume.dims) +
+  const bool gradients = findTechnique(settings.technique).usesGradients;
+  const std::uint64_t bytes = limits::renderVolumeBytes(volume.dims, gradients) +
                               limits::renderImageBytes(settings.size, maxLineWidth(request.postfx));
   limits::checkMemory("rendering " + volume.source + " at --size " +
                           std::to_string(settings.size.x) + "x" + std::to_string(settings.size.y),
@@ -161,8 +169,26 @@ Renderer& RenderJob::renderer() {
   return *impl_->renderer;
 }
 
+namespace {
+
+// The render settings as the renderer needs them: the composition flags that decide what the
+// technique computes (the background distance blending blends towards; --fill tone).
+RenderSettings settingsFor(const RenderRequest& request) {
+  RenderSettings settings = request.settings;
+  if (request.postfx.background) settings.background = request.postfx.background;
+  if (request.postfx.fill == FillMode::Tone) settings.toneFill = request.postfx.fillColor;
+  return settings;
+}
+
+}  // namespace
+
 void RenderJob::checkRequest(const RenderRequest& request, const VolumeLimits& limits) {
   Renderer::validateSettings(request.settings);
+  const TechniqueInfo& technique = findTechnique(request.settings.technique);
+  if (request.postfx.fill == FillMode::Tone && technique.outputs.state &&
+      !technique.outputs.toneFill) {
+    throw InputError("--fill tone: technique '" + technique.name + "' cannot tone-shade its fill");
+  }
   const double width = maxLineWidth(request.postfx);
   if (width > limits::kMaxLineWidth) {
     throw InputError("--width: " + std::to_string(int(std::min(width, 1e9))) +
@@ -180,9 +206,11 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
   impl_->context.makeCurrent();
 
   RenderOutput output;
-  output.result = impl_->renderer->render(request.settings);
+  output.result = impl_->renderer->render(settingsFor(request));
   const auto postStart = std::chrono::steady_clock::now();
-  output.image = composeIllustration(output.result.frame, request.postfx, impl_->blur);
+  PostfxOptions postfx = request.postfx;
+  postfx.background = output.result.background;
+  output.image = composeIllustration(output.result.frame, postfx, impl_->blur);
   output.postfxMs = millisecondsSince(postStart);
   output.metadata = metadata(request, impl_->input, volume, output.result,
                              impl_->context.renderer(), output.postfxMs);

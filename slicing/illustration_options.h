@@ -1,0 +1,37 @@
+#pragma once
+// The options that carry an illustration (src/core/illustration.h) into a technique: declared
+// once here so that `illustrate` and the tone fill of the first-hit techniques
+// (slicing/tone_fill.h) share the flags --param and --light, and resolved here from an
+// OptionReader into what a frame uses.
+#include <string>
+#include <vector>
+
+#include "core/illustration.h"
+#include "core/options.h"
+
+namespace vsil {
+
+// --param NAME=VALUE,... (repeatable). `allowed` limits the names (empty: every parameter);
+// `owner` names the technique in the message for others.
+OptionSpec parameterOption(std::vector<std::string> allowed = {}, std::string owner = "");
+// --light AZ,EL (repeatable).
+OptionSpec lightOption();
+// --effects LIST, --style NAME|FILE, --tf FILE, --color C, --sketch-color C.
+OptionSpec effectsOption();
+OptionSpec styleOption();
+OptionSpec transferFunctionOption();
+OptionSpec colorOption();
+OptionSpec sketchColorOption();
+
+// The parameters the tone fill reads: tone shading, distance blending, lighting.
+const std::vector<std::string>& toneFillParameters();
+
+// What the options given set (files read here: --style, --tf). Options a technique does not
+// declare are left alone.
+IllustrationStyle styleFromOptions(const std::vector<OptionSpec>& declared,
+                                   const OptionReader& options);
+// The style (--style) resolved with the other options over it.
+Illustration illustrationFromOptions(const std::vector<OptionSpec>& declared,
+                                     const OptionReader& options);
+
+}  // namespace vsil
