@@ -9,14 +9,44 @@ endfunction()
 
 find_package(PkgConfig QUIET)
 
-# OSMesa: the offscreen OpenGL context (slicing/gl_context.cpp is the only user).
-find_path(OSMESA_INCLUDE_DIR GL/osmesa.h)
-find_library(OSMESA_LIBRARY OSMesa)
-vsil_require(OSMESA_LIBRARY "OSMesa" libosmesa6-dev)
-vsil_require(OSMESA_INCLUDE_DIR "OSMesa headers" libosmesa6-dev)
-add_library(vsil::osmesa INTERFACE IMPORTED)
-target_include_directories(vsil::osmesa INTERFACE ${OSMESA_INCLUDE_DIR})
-target_link_libraries(vsil::osmesa INTERFACE ${OSMESA_LIBRARY})
+# OpenGL back ends (slicing/gl_context.h): OSMesa and headless EGL. Each is built when its
+# headers are installed (VSIL_OSMESA / VSIL_EGL: AUTO builds it if present, ON requires it, OFF
+# leaves it out); at least one is needed. Neither library is linked: slicing/gl_backends/ opens
+# libOSMesa.so.8 or libEGL.so.1 with dlopen when a context is asked for, so one binary runs
+# where either is installed (Mesa dropped OSMesa in 25.1) and says which is missing otherwise.
+set(VSIL_OSMESA AUTO CACHE STRING "Build the OSMesa back end: AUTO (if libosmesa6-dev is there), ON, OFF")
+set(VSIL_EGL AUTO CACHE STRING "Build the EGL back end: AUTO (if libegl-dev is there), ON, OFF")
+set_property(CACHE VSIL_OSMESA PROPERTY STRINGS AUTO ON OFF)
+set_property(CACHE VSIL_EGL PROPERTY STRINGS AUTO ON OFF)
+
+find_path(GL_COREARB_INCLUDE_DIR GL/glcorearb.h)
+vsil_require(GL_COREARB_INCLUDE_DIR "the OpenGL core-profile header GL/glcorearb.h" libgl-dev)
+add_library(vsil::gl INTERFACE IMPORTED)
+target_include_directories(vsil::gl INTERFACE ${GL_COREARB_INCLUDE_DIR})
+target_link_libraries(vsil::gl INTERFACE ${CMAKE_DL_LIBS})
+
+# Sets <option>_BUILT and adds the headers' folder to vsil::gl.
+function(vsil_gl_backend option what package)
+  set(built OFF)
+  string(TOUPPER "${${option}}" mode)
+  if(mode STREQUAL "AUTO" OR ${option})
+    find_path(${option}_INCLUDE_DIR ${ARGN})
+    if(${option}_INCLUDE_DIR)
+      set(built ON)
+      target_include_directories(vsil::gl INTERFACE ${${option}_INCLUDE_DIR})
+    elseif(NOT mode STREQUAL "AUTO")
+      vsil_require(${option}_INCLUDE_DIR "${what} (${option}=ON)" ${package})
+    endif()
+  endif()
+  set(${option}_BUILT ${built} PARENT_SCOPE)
+endfunction()
+vsil_gl_backend(VSIL_OSMESA "the OSMesa headers" libosmesa6-dev GL/osmesa.h)
+vsil_gl_backend(VSIL_EGL "the EGL headers" libegl-dev EGL/egl.h EGL/eglext.h)
+if(NOT VSIL_OSMESA_BUILT AND NOT VSIL_EGL_BUILT)
+  message(FATAL_ERROR "vsil needs an OpenGL back end: install the Debian package 'libegl-dev' "
+                      "(EGL) or 'libosmesa6-dev' (OSMesa), or run scripts/bootstrap.sh")
+endif()
+message(STATUS "vsil GL back ends: osmesa ${VSIL_OSMESA_BUILT}, egl ${VSIL_EGL_BUILT}")
 
 # FFTW (single precision, with its threads library): Gaussian broadening in postfx.
 find_path(FFTW_INCLUDE_DIR fftw3.h)

@@ -10,7 +10,8 @@ cd "$(dirname "$0")/.."
 
 packages=(
   cmake g++ make pkg-config      # the build
-  libosmesa6-dev                 # offscreen OpenGL (Mesa llvmpipe)
+  libegl-dev libegl-mesa0 libgl1-mesa-dri  # headless EGL: headers, Mesa's EGL driver, llvmpipe
+  libosmesa6-dev                 # OSMesa (Mesa llvmpipe; Mesa 25.1 dropped it: optional below)
   libfftw3-dev                   # FFT Gaussian broadening
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev  # images, distance transforms
   libglm-dev                     # vector and matrix math
@@ -20,15 +21,28 @@ packages=(
   libgtest-dev libbenchmark-dev  # tests and micro-benchmarks
   ${VSIL_EXTRA_PACKAGES:-}
 )
+# vsil needs one GL back end (EGL or OSMesa) and builds each one that is there; where Debian no
+# longer has OSMesa, the build goes on with EGL alone.
+optional=(libosmesa6-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if ((${#missing[@]})); then
-  echo "bootstrap: installing ${missing[*]}" >&2
   sudo_cmd=(); [[ $(id -u) -ne 0 ]] && sudo_cmd=(sudo)
   "${sudo_cmd[@]}" apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+  installable=()
+  for p in "${missing[@]}"; do
+    if [[ " ${optional[*]} " == *" $p "* ]] && ! apt-cache show "$p" >/dev/null 2>&1; then
+      echo "bootstrap: $p is not in this Debian release: building without it" >&2
+      continue
+    fi
+    installable+=("$p")
+  done
+  if ((${#installable[@]})); then
+    echo "bootstrap: installing ${installable[*]}" >&2
+    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${installable[@]}" >&2
+  fi
 fi
 
 build_dir=${VSIL_BUILD_DIR:-build}

@@ -1,11 +1,30 @@
 #pragma once
-// OpenGL entry points (core profile 4.5 prototypes, linked from the context's library) and the
-// error check used after every GL call that can fail. Checks are on in every build.
-#define GL_GLEXT_PROTOTYPES 1
+// OpenGL for vsil: the core profile's types and constants from <GL/glcorearb.h>, one function
+// pointer per entry point vsil uses (slicing/gl_functions.h), and the error check used after
+// every GL call that can fail. Checks are on in every build.
+//
+// Call sites look like plain GL (`glDrawArrays(...)`): each name is a pointer, filled from the
+// context made current last (GlContext::makeCurrent, through slicing/gl_loader.h). Neither back
+// end is linked: OSMesa does not export 169 of the 4.5 core functions, and EGL hands out every
+// function through eglGetProcAddress, so both go through the same loader.
+#ifdef GL_GLEXT_PROTOTYPES
+#error "vsil: GL functions come from slicing/gl_functions.h through the loader, not prototypes"
+#endif
 #include <GL/glcorearb.h>
 
 #include <stdexcept>
 #include <string>
+
+#include "slicing/gl_functions.h"
+
+// The pointers live in their own namespace (no clash with the symbols of a GL library in the
+// same process), made visible everywhere by the using-directive below: it names GL functions only.
+namespace vsil::gl::entry_points {
+#define VSIL_GL_DECLARE_POINTER(name, type) extern type name;
+VSIL_GL_FUNCTIONS(VSIL_GL_DECLARE_POINTER)
+#undef VSIL_GL_DECLARE_POINTER
+}  // namespace vsil::gl::entry_points
+using namespace vsil::gl::entry_points;
 
 namespace vsil::gl {
 

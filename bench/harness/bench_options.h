@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "slicing/gl_context.h"
+
 namespace vsil::bench {
 
 struct BenchOptions {
@@ -14,6 +16,7 @@ struct BenchOptions {
   int frames = 10;                    // timed frames per case
   int warmup = 2;                     // untimed frames before them
   std::filesystem::path json, markdown, plot;  // optional outputs
+  gl::ContextOptions gl;                       // --gl, --gl-device: the back end every table uses
 };
 
 }  // namespace vsil::bench

@@ -42,14 +42,16 @@ std::string utcNow() {
 
 }  // namespace
 
-MachineInfo collectMachineInfo() {
+MachineInfo collectMachineInfo(const gl::ContextOptions& glOptions) {
   MachineInfo machine;
   machine.cpuModel = cpuModel();
   machine.hardwareThreads = std::thread::hardware_concurrency();
   {
-    gl::GlContext context;
-    machine.glRenderer = context.renderer();
-    machine.glVersion = context.version();
+    const gl::ContextInfo info = gl::GlContext(glOptions).info();
+    machine.glBackend = std::string(gl::backendName(info.backend)) + " (" + info.platform + ")";
+    machine.glVendor = info.vendor;
+    machine.glRenderer = info.renderer;
+    machine.glVersion = info.version;
   }
   const char* threads = std::getenv("LP_NUM_THREADS");
   machine.lpNumThreads = threads && *threads ? threads : "default";
@@ -63,8 +65,8 @@ std::string formatMachineInfo(const MachineInfo& machine) {
   return "machine: " + machine.cpuModel + ", " + std::to_string(machine.hardwareThreads) +
          " hardware threads\n"
          "GL: " +
-         machine.glRenderer + ", " + machine.glVersion +
-         ", LP_NUM_THREADS=" + machine.lpNumThreads +
+         machine.glBackend + ", " + machine.glVendor + ", " + machine.glRenderer + ", " +
+         machine.glVersion + ", LP_NUM_THREADS=" + machine.lpNumThreads +
          "\n"
          "vsil " +
          machine.vsilVersion + " (" + machine.buildType + "), " + machine.dateUtc + "\n";
@@ -73,6 +75,8 @@ std::string formatMachineInfo(const MachineInfo& machine) {
 nlohmann::json machineInfoJson(const MachineInfo& machine) {
   return {{"cpu", machine.cpuModel},
           {"hardware_threads", machine.hardwareThreads},
+          {"gl_backend", machine.glBackend},
+          {"gl_vendor", machine.glVendor},
           {"gl_renderer", machine.glRenderer},
           {"gl_version", machine.glVersion},
           {"lp_num_threads", machine.lpNumThreads},

@@ -33,7 +33,8 @@ std::string markdownReport(const MachineInfo& machine, const std::vector<TableRe
   std::string out = "# vsil bench\n\n";
   out += "- CPU: " + machine.cpuModel + ", " + std::to_string(machine.hardwareThreads) +
          " hardware threads\n";
-  out += "- GL: " + machine.glRenderer + ", " + machine.glVersion + "\n";
+  out += "- GL: " + machine.glBackend + ", " + machine.glVendor + ", " + machine.glRenderer + ", " +
+         machine.glVersion + "\n";
   out += "- LP_NUM_THREADS: " + machine.lpNumThreads + "\n";
   out +=
       "- vsil " + machine.vsilVersion + " (" + machine.buildType + "), " + machine.dateUtc + "\n";
@@ -108,7 +109,7 @@ BenchOptions validateOptions(BenchOptions options) {
 
 BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostream& progressOut,
                      bool progressIsTerminal) {
-  const MachineInfo machine = collectMachineInfo();
+  const MachineInfo machine = collectMachineInfo(options.gl);
   out << "vsil bench: " << joined(options.tables, ", ") << "\n"
       << formatMachineInfo(machine) << std::flush;
 

@@ -445,7 +445,7 @@ Nk3Measured measureDataset(const Nk3Choice& chosen, const std::vector<int>& size
     return measured;
   }
   measured.dims = volume.dims;
-  gl::GlContext context;
+  gl::GlContext context(options.gl);
   Renderer renderer(context);
   renderer.setVolume(volume);
   for (auto& window : measured.windows) {

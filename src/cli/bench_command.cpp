@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "cli/cli_gl_options.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "harness/run_bench.h"
@@ -15,6 +16,7 @@ namespace {
 struct BenchFlags {
   bench::BenchOptions options;
   std::string datasets;
+  GlOptions gl;
 };
 
 // A failed self-check: the numbers of that row are not to be trusted. main() reports it as an
@@ -26,6 +28,7 @@ class SelfCheckFailed : public std::runtime_error {
 
 void run(BenchFlags flags) {
   if (!flags.datasets.empty()) flags.options.datasetsDir = flags.datasets;
+  flags.options.gl = toContextOptions(flags.gl);
   // Every flag: tables, --only names, sizes, frame counts, the datasets folder, output folders.
   const bench::BenchOptions options = bench::validateOptions(flags.options);
   if (validateOnly()) return;
@@ -60,6 +63,7 @@ const CommandRegistration registration(40, [](CLI::App& app) {
   command->add_option("--json", o.json, "Write the rows and the machine as JSON");
   command->add_option("--markdown", o.markdown, "Write the tables as Markdown");
   command->add_option("--plot", o.plot, "Write a bar chart (PNG)");
+  addGlOptions(*command, flags->gl);
   command->callback([flags] { run(*flags); });
 });
 

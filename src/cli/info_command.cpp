@@ -1,16 +1,21 @@
 // `vsil info VOLUME`: what a volume holds (size, type, spacing, value statistics), as text or
 // JSON. Reads the volume like `render` does, so it is also the quick check of a file.
+// `vsil info --gl [auto|osmesa|egl]`: the OpenGL context that back end makes (what `render`
+// would run on), the back ends built in and the EGL devices --gl-device can pick.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_gl_options.h"
 #include "cli/cli_volume_options.h"
 #include "cli/commands.h"
+#include "core/error.h"
 #include "io/volume_loader.h"
 
 namespace vsil::cli {
@@ -109,28 +114,87 @@ struct InfoOptions {
   std::string volume;
   bool json = false;
   VolumeOptions load;
+  GlOptions gl;
 };
+
+struct GlReport {
+  gl::ContextInfo context;
+  std::vector<std::string> built;       // back ends in this binary
+  std::vector<std::string> eglDevices;  // "0: software"
+  std::string noEglDevices;             // why there are none
+};
+
+GlReport glReport(const gl::ContextOptions& options) {
+  GlReport report;
+  report.context = gl::GlContext(options).info();
+  for (gl::Backend backend : gl::builtBackends()) report.built.push_back(gl::backendName(backend));
+  report.eglDevices = gl::describeEglDevices(&report.noEglDevices);
+  return report;
+}
+
+nlohmann::ordered_json toJson(const GlReport& report) {
+  nlohmann::ordered_json json = gl::contextInfoJson(report.context);
+  json["built"] = report.built;
+  json["egl_devices"] = report.eglDevices;
+  if (report.eglDevices.empty()) json["egl_devices_none"] = report.noEglDevices;
+  return json;
+}
+
+std::string toText(const GlReport& report) {
+  const gl::ContextInfo& c = report.context;
+  std::ostringstream out;
+  out << "gl        " << gl::backendName(c.backend) << " (" << c.platform << ")\n"
+      << "vendor    " << c.vendor << "\n"
+      << "renderer  " << c.renderer << "\n"
+      << "version   " << c.version << "\n"
+      << "glsl      " << c.glslVersion << "\n"
+      << "built     ";
+  for (std::size_t i = 0; i < report.built.size(); ++i) out << (i ? ", " : "") << report.built[i];
+  out << "\negl devices";
+  if (report.eglDevices.empty()) out << "  none (" << report.noEglDevices << ")";
+  for (const auto& device : report.eglDevices) out << "  " << device;
+  out << "\n";
+  return out.str();
+}
 
 void runInfo(const InfoOptions& options) {
   const LoadOptions load = toLoadOptions(options.load);
+  const std::optional<gl::ContextOptions> glOptions =
+      options.gl.given ? std::optional(toContextOptions(options.gl)) : std::nullopt;
+  if (options.volume.empty() && !glOptions) {
+    throw InputError("info: give a VOLUME, or --gl for the OpenGL back end");
+  }
   if (validateOnly()) return;
-  const Volume volume = loadVolume(options.volume, load);
-  const Summary summary = summarize(volume);
+  const std::optional<GlReport> gl = glOptions ? std::optional(glReport(*glOptions)) : std::nullopt;
+  std::optional<Volume> volume;
+  std::optional<Summary> summary;
+  if (!options.volume.empty()) {
+    volume = loadVolume(options.volume, load);
+    summary = summarize(*volume);
+  }
   // Printed only once everything succeeded: an error leaves stdout empty.
-  std::cout << (options.json ? toJson(volume, summary).dump(2) + "\n" : toText(volume, summary));
+  if (options.json) {
+    nlohmann::ordered_json json =
+        volume ? toJson(*volume, *summary) : nlohmann::ordered_json::object();
+    if (gl) json["gl"] = toJson(*gl);
+    std::cout << json.dump(2) << "\n";
+  } else {
+    std::cout << (gl ? toText(*gl) : "") << (gl && volume ? "\n" : "")
+              << (volume ? toText(*volume, *summary) : "");
+  }
 }
 
 const CommandRegistration registration(20, [](CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
-  CLI::App* command =
-      app.add_subcommand("info", "Print a volume's size, type, spacing and value statistics");
-  command
-      ->add_option("volume", options->volume,
-                   "volume file (.nrrd .nhdr .vti .vtk, raw with "
-                   "--dims/--type) or gen:NAME[:N]")
-      ->required();
+  CLI::App* command = app.add_subcommand(
+      "info",
+      "Print a volume's size, type, spacing and value statistics; with --gl, the OpenGL context");
+  command->add_option("volume", options->volume,
+                      "volume file (.nrrd .nhdr .vti .vtk, raw with "
+                      "--dims/--type) or gen:NAME[:N]");
   command->add_flag("--json", options->json, "machine-readable output");
   addVolumeOptions(*command, options->load);
+  addGlOptions(*command, options->gl, /*valueOptional=*/true);
   command->callback([options] { runInfo(*options); });
 });
 

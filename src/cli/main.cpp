@@ -1,5 +1,6 @@
 // vsil: volume silhouette illustration. Only this file turns errors into exit statuses:
-// 2 for bad input (files, flags, parameters), 1 for internal failures.
+// 2 for bad input (files, flags, parameters), 1 for internal failures and for what this machine
+// lacks (UnavailableError: no usable OpenGL back end, a driver without a needed feature).
 #include <exception>
 #include <iostream>
 #include <new>
@@ -29,6 +30,9 @@ int main(int argc, char** argv) {
   } catch (const vsil::InputError& e) {
     std::cerr << "vsil: " << e.what() << "\n";
     return 2;
+  } catch (const vsil::UnavailableError& e) {
+    std::cerr << "vsil: " << e.what() << "\n";
+    return 1;
   } catch (const std::bad_alloc&) {
     std::cerr << "vsil: internal error: out of memory (lower --size or --max-memory)\n";
     return 1;

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_gl_options.h"
 #include "cli/cli_parse.h"
 #include "cli/cli_postfx_options.h"
 #include "cli/cli_technique_options.h"
@@ -65,16 +66,18 @@ void checkOutputs(const RenderFlags& flags) {
   }
 }
 
-void run(const RenderFlags& flags, const LoadOptions& loadOptions, const PostfxOptions& postfx) {
+void run(const RenderFlags& flags, const LoadOptions& loadOptions, const PostfxOptions& postfx,
+         const gl::ContextOptions& glOptions) {
   const auto start = std::chrono::steady_clock::now();
   const RenderRequest request = requestFrom(flags, postfx);
   RenderJob::checkRequest(request, loadOptions.limits);
   checkOutputs(flags);
   if (validateOnly()) return;
 
-  RenderJob job;
+  RenderJob job(glOptions);
   job.load(flags.input, loadOptions);
   RenderOutput output = job.render(request, loadOptions.limits);
+  for (const auto& warning : output.warnings) std::cerr << "vsil: warning: " << warning << "\n";
 
   writePng(flags.out, output.image);
   if (!flags.stateOut.empty()) writePng(flags.stateOut, stateImage(output.result.frame));
@@ -94,6 +97,7 @@ const CommandRegistration registration(10, [](CLI::App& app) {
   auto flags = std::make_shared<RenderFlags>();
   auto load = std::make_shared<VolumeOptions>();
   auto postfx = std::make_shared<PostfxOptions>();
+  auto glFlags = std::make_shared<GlOptions>();
   CLI::App* command = app.add_subcommand("render", "Render one frame of a technique to PNG");
   command->add_option("input", flags->input,
                       "Volume file (.nrrd .nhdr .vti .vtk, raw with --dims/--type) or "
@@ -118,7 +122,10 @@ const CommandRegistration registration(10, [](CLI::App& app) {
   command->add_option("--meta-out", flags->metaOut, "JSON with parameters, camera, timings");
   addVolumeOptions(*command, *load);
   addPostfxOptions(*command, *postfx);
-  command->callback([flags, load, postfx] { run(*flags, toLoadOptions(*load), *postfx); });
+  addGlOptions(*command, *glFlags);
+  command->callback([flags, load, postfx, glFlags] {
+    run(*flags, toLoadOptions(*load), *postfx, toContextOptions(*glFlags));
+  });
 });
 
 }  // namespace

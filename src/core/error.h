@@ -13,6 +13,14 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// This machine lacks something the work needs (an OpenGL back end, a driver feature). The message
+// names what is missing and what to try instead, on one line, e.g. "--gl egl: no EGL device or
+// surfaceless platform (libEGL.so.1 not found); try --gl osmesa". Exits 1, printed as it is.
+class UnavailableError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // Shorthand for the common "<where>: <what>" form.
 [[noreturn]] inline void throwInputError(const std::string& where, const std::string& what) {
   throw InputError(where + ": " + what);

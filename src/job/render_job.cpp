@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
+#include <variant>
 
 #include "core/depth_image.h"
 #include "core/error.h"
@@ -59,7 +61,7 @@ nlohmann::json pixelCounts(const FrameBuffers& frame) {
 
 nlohmann::json metadata(const RenderRequest& request, const std::string& input,
                         const Volume& volume, const RenderResult& result,
-                        const std::string& glRenderer, double postfxMs) {
+                        const gl::ContextInfo& glContext, double postfxMs) {
   const RenderSettings& settings = request.settings;
   const TechniqueInfo& technique = findTechnique(settings.technique);
   const ValueRange range = valueRange(volume);
@@ -86,7 +88,8 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
   }
   nlohmann::json meta;
   meta["vsil_version"] = kVsilVersion;
-  meta["gl_renderer"] = glRenderer;
+  meta["gl_renderer"] = glContext.renderer;
+  meta["gl"] = gl::contextInfoJson(glContext);
   meta["parameters"] = parameters;
   meta["dataset"] = {{"name", volume.name},
                      {"source", volume.source},
@@ -126,9 +129,28 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
                       bytes, limits.maxBytes);
 }
 
+// An iso value outside the data's range finds no surface: the frame is empty, which is what
+// was asked, but rarely what was meant.
+std::vector<std::string> warnings(const RenderRequest& request, const Volume& volume) {
+  std::vector<std::string> found;
+  const auto given = request.settings.options.find("iso");
+  if (given == request.settings.options.end()) return found;
+  const double iso = std::get<double>(given->second);
+  const ValueRange range = valueRange(volume);
+  if (iso > range.max || iso < range.min) {
+    std::ostringstream line;
+    line << "--iso " << iso << " is outside the data's range " << range.min << " .. " << range.max
+         << " of " << volume.source << ": " << (iso > range.max ? "no" : "every")
+         << " sample reaches it";
+    found.push_back(line.str());
+  }
+  return found;
+}
+
 }  // namespace
 
 struct RenderJob::Impl {
+  explicit Impl(const gl::ContextOptions& gl) : context(gl) {}
   gl::GlContext context;
   std::optional<Renderer> renderer;
   std::optional<Volume> volume;
@@ -136,7 +158,7 @@ struct RenderJob::Impl {
   FftGaussianBlur blur;
 };
 
-RenderJob::RenderJob() : impl_(std::make_unique<Impl>()) {
+RenderJob::RenderJob(const gl::ContextOptions& gl) : impl_(std::make_unique<Impl>(gl)) {
   impl_->renderer.emplace(impl_->context);
 }
 
@@ -213,7 +235,8 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
   output.image = composeIllustration(output.result.frame, postfx, impl_->blur);
   output.postfxMs = millisecondsSince(postStart);
   output.metadata = metadata(request, impl_->input, volume, output.result,
-                             impl_->context.renderer(), output.postfxMs);
+                             impl_->context.info(), output.postfxMs);
+  output.warnings = warnings(request, volume);
   return output;
 }
 

@@ -11,6 +11,7 @@
 //   vsil::RenderOutput out = job.render(request);    // out.image, out.result.frame, out.metadata
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -18,13 +19,11 @@
 #include "core/volume.h"
 #include "io/volume_loader.h"
 #include "postfx/compose.h"
+#include "slicing/gl_context.h"
 #include "slicing/renderer.h"
 
 namespace vsil {
 
-namespace gl {
-class GlContext;
-}
 
 struct RenderRequest {
   RenderSettings settings;
@@ -36,15 +35,19 @@ struct RenderOutput {
   cv::Mat image;  // the illustration, 8-bit BGR or BGRA (compose.h)
   double postfxMs = 0;
   // What `--meta-out` writes: parameters (the shared ones, the technique's options, postfx),
-  // dataset, slices, camera, pixel counts, timings. The caller adds its own (output paths,
+  // dataset, slices, camera, pixel counts, timings, the GL context (back end, renderer). The caller adds its own (output paths,
   // total time).
   nlohmann::json metadata;
+  // What the user should hear about although the frame was made (e.g. an iso value outside the
+  // data's range): one line each, for stderr or Python warnings.
+  std::vector<std::string> warnings;
 };
 
 class RenderJob {
  public:
-  // Creates the GL context (current on the calling thread) and the renderer.
-  RenderJob();
+  // Creates the GL context (current on the calling thread; gl_context.h says how `gl` chooses
+  // the back end) and the renderer.
+  explicit RenderJob(const gl::ContextOptions& gl = {});
   ~RenderJob();
   RenderJob(const RenderJob&) = delete;
   RenderJob& operator=(const RenderJob&) = delete;

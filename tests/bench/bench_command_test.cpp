@@ -3,6 +3,7 @@
 // depend on the machine and its load (performance is measured, never asserted).
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -31,6 +32,7 @@ int lineCount(const std::string& text) {
 class Nk3Run : public ::testing::Test {
  protected:
   void SetUp() override {
+  VSIL_REQUIRE_DATASETS();
     dir_ = test::scratchDir();
     result_ =
         test::runVsil("bench --table nk3 --datasets " + datasetsDir() +
@@ -46,8 +48,19 @@ TEST_F(Nk3Run, SucceedsAndPrintsTheMachineAndTheTable) {
   ASSERT_EQ(result_.exitCode, 0) << result_.err;
   const std::string& out = result_.out;
   EXPECT_NE(out.find("machine: "), std::string::npos) << out;
-  EXPECT_NE(out.find("llvmpipe"), std::string::npos) << "GL renderer in the header\n" << out;
   EXPECT_NE(out.find("LP_NUM_THREADS="), std::string::npos) << out;
+  // The back end, vendor and renderer of the context the tables ran on: the one `vsil info --gl`
+  // reports for the same choice ($VSIL_GL: ctest runs this once per back end).
+  const auto info = test::runVsil("info --gl --json");
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  const auto gl = nlohmann::json::parse(info.out)["gl"];
+  const std::string header =
+      "GL: " + gl["backend"].get<std::string>() + " (" + gl["platform"].get<std::string>() + "), " +
+      gl["vendor"].get<std::string>() + ", " + gl["renderer"].get<std::string>() + ", ";
+  EXPECT_NE(out.find(header), std::string::npos) << header << " in\n" << out;
+  if (const char* backend = std::getenv("VSIL_GL")) {
+    EXPECT_EQ(gl["backend"], backend);
+  }
   EXPECT_NE(out.find("neghip"), std::string::npos) << out;
   EXPECT_NE(out.find("hydrogen_atom"), std::string::npos) << out;
   EXPECT_EQ(out.find("bonsai"), std::string::npos) << "--only leaves bonsai out\n" << out;
@@ -57,8 +70,9 @@ TEST_F(Nk3Run, SucceedsAndPrintsTheMachineAndTheTable) {
 TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
   ASSERT_EQ(result_.exitCode, 0) << result_.err;
   const auto document = nlohmann::json::parse(test::readFileBytes(dir_ / "nk3.json"));
-  for (const char* key : {"cpu", "hardware_threads", "gl_renderer", "gl_version", "lp_num_threads",
-                          "vsil_version", "build_type", "date_utc"}) {
+  for (const char* key :
+       {"cpu", "hardware_threads", "gl_backend", "gl_vendor", "gl_renderer", "gl_version",
+        "lp_num_threads", "vsil_version", "build_type", "date_utc"}) {
     EXPECT_TRUE(document["machine"].contains(key)) << key;
   }
   const auto& rows = document["rows"];
@@ -103,6 +117,7 @@ TEST_F(Nk3Run, WritesMarkdownAndPlot) {
 }
 
 TEST(BenchCommand, SkullIsReportedMissingWithThePaperNumbers) {
+  VSIL_REQUIRE_DATASETS();
   const auto dir = test::scratchDir();
   const auto result = test::runVsil("bench --table nk3 --datasets " + datasetsDir() +
                                     " --only skull --json " + (dir / "skull.json").string());

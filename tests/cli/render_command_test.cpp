@@ -1,4 +1,5 @@
 // `vsil render` end to end, through the built binary: outputs, metadata, determinism, errors.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -50,6 +51,13 @@ TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
     EXPECT_TRUE(meta["timings_ms"][key].is_number()) << key;
   }
   EXPECT_GT(meta["slices"].get<int>(), 40);
+  // The back end the render ran on: $VSIL_GL reaches the binary (ctest runs this once per back
+  // end), and the context is 4.5 core.
+  if (const char* backend = std::getenv("VSIL_GL")) {
+    EXPECT_EQ(meta["gl"]["backend"], backend);
+  }
+  EXPECT_EQ(meta["gl"]["version"].get<std::string>().rfind("4.5", 0), 0u) << meta["gl"];
+  EXPECT_FALSE(meta["gl"]["renderer"].get<std::string>().empty());
 
   // The camera in the metadata projects the sphere's centre to the middle of its outline.
   glm::dmat4 eyeFromVoxel, clipFromEye;
@@ -84,6 +92,19 @@ TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
     }
   }
   EXPECT_NEAR(depthSum / silhouettes, centreDepth, 0.02);
+}
+
+TEST(RenderCommand, WarnsWhenTheIsoValueLiesOutsideTheData) {
+  const auto dir = test::scratchDir();
+  const auto out = (dir / "empty.png").string();
+  const auto result = test::runVsil("render gen:sphere:16 --size 32x32 --iso 1000 --out " + out);
+  EXPECT_EQ(result.exitCode, 0) << "the empty frame is what was asked for";
+  EXPECT_TRUE(std::filesystem::exists(out));
+  EXPECT_EQ(result.err,
+            "vsil: warning: --iso 1000 is outside the data's range 0 .. 0.891747 of "
+            "gen:sphere:16: no sample reaches it\n");
+  const auto inside = test::runVsil("render gen:sphere:16 --size 32x32 --iso 0.5 --out " + out);
+  EXPECT_EQ(inside.err, "") << "no warning inside the range";
 }
 
 TEST(RenderCommand, PaperAndFastPipelinesGiveIdenticalImages) {

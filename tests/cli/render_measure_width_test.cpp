@@ -67,6 +67,7 @@ TEST(RenderThenMeasureWidth, SphereAtWidthNineMeasuresNine) {
 // the Engine rendered with a depth law, its depth image into measure-width. Every depth bin
 // that holds samples must lie where silhouettes lie, and its median width on the law.
 TEST(RenderThenMeasureWidth, DepthLawStudyOnTheEngine) {
+  VSIL_REQUIRE_DATASETS();
   const auto dir = test::scratchDir();
   const auto out = (dir / "engine.png").string(), depth = (dir / "depth.png").string(),
              json = (dir / "report.json").string(), plot = (dir / "plot.png").string();

@@ -42,6 +42,7 @@ std::uint64_t fnv1a64(const std::vector<float>& samples) {
 class ClassicDataset : public ::testing::TestWithParam<Dataset> {};
 
 TEST_P(ClassicDataset, LoadsWithKnownSizeSpacingAndChecksum) {
+  VSIL_REQUIRE_DATASETS();
   const Dataset& expected = GetParam();
   const auto path = test::datasetPath(expected.file);
   ASSERT_TRUE(std::filesystem::exists(path)) << path << " is missing (VSIL_SHARED_DIR?)";
@@ -109,6 +110,7 @@ INSTANTIATE_TEST_SUITE_P(Datasets, ClassicDataset, ::testing::ValuesIn(kDatasets
                          });
 
 TEST(ClassicDatasets, RawFileWithExplicitLayoutMatchesItsNrrdHeader) {
+  VSIL_REQUIRE_DATASETS();
   const auto raw = test::datasetPath("nucleon_41x41x41_uint8.raw").string();
   LoadOptions options;
   options.raw = RawLayout{{41, 41, 41}, SampleType::UInt8, {1, 1, 1}, false};

@@ -8,6 +8,7 @@ namespace vsil {
 namespace {
 
 TEST(InfoCommand, DescribesADataset) {
+  VSIL_REQUIRE_DATASETS();
   const auto path = test::datasetPath("bucky_32x32x32_uint8.nhdr").string();
   const auto result = test::runVsil("info '" + path + "'");
   EXPECT_EQ(result.exitCode, 0) << result.err;
@@ -18,6 +19,7 @@ TEST(InfoCommand, DescribesADataset) {
 }
 
 TEST(InfoCommand, JsonAgreesWithTheDatasetChecksum) {
+  VSIL_REQUIRE_DATASETS();
   const auto path = test::datasetPath("bucky_32x32x32_uint8.nhdr").string();
   const auto result = test::runVsil("info --json '" + path + "'");
   ASSERT_EQ(result.exitCode, 0) << result.err;
@@ -34,6 +36,7 @@ TEST(InfoCommand, JsonAgreesWithTheDatasetChecksum) {
 }
 
 TEST(InfoCommand, RawLayoutFlagsAndGenerators) {
+  VSIL_REQUIRE_DATASETS();
   const auto raw = test::datasetPath("nucleon_41x41x41_uint8.raw").string();
   const auto result = test::runVsil("info '" + raw + "' --dims 41x41x41 --type uint8 --json");
   ASSERT_EQ(result.exitCode, 0) << result.err;
@@ -52,6 +55,7 @@ TEST(InfoCommand, BadInputExitsTwoWithOneLineNamingTheFile) {
 }
 
 TEST(InfoCommand, MaxMemoryRefusesLargeVolumes) {
+  VSIL_REQUIRE_DATASETS();
   // bonsai: 256³ floats = 64 MiB in memory, over a 16 MiB limit.
   const auto path = test::datasetPath("bonsai.vti").string();
   const auto result = test::runVsil("info --max-memory 16 '" + path + "'");

@@ -3,7 +3,9 @@
 namespace vsil::test {
 
 gl::GlContext& sharedGlContext() {
-  static gl::GlContext context;
+  // The back end comes from $VSIL_GL: ctest runs every GL suite once per back end built
+  // (tests/CMakeLists.txt), and a suite run by hand takes auto.
+  static gl::GlContext context(gl::contextOptionsFromEnvironment());
   return context;
 }
 

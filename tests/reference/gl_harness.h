@@ -1,6 +1,7 @@
 #pragma once
-// One GL context for a whole test program (Magnum's OpenGLTester habit): made on first use,
-// current on the main thread; each test makes its own targets and must leave no GL error.
+// One GL context for a whole test program (Magnum's OpenGLTester habit): made on first use with
+// the back end $VSIL_GL names (auto when unset), current on the main thread; each test makes its
+// own targets and must leave no GL error.
 #include <gtest/gtest.h>
 
 #include "slicing/gl.h"

@@ -1,10 +1,13 @@
 #include "test_support.h"
 
+#include <cstdlib>
+
 #include <sys/wait.h>
 
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -16,6 +19,18 @@ std::filesystem::path datasetPath(const std::string& name) {
   return std::filesystem::path(VSIL_SHARED_DIR) / "datasets" / name;
 }
 
+std::optional<std::string> datasetsMissing() {
+  const auto folder = std::filesystem::path(VSIL_SHARED_DIR) / "datasets";
+  if (std::filesystem::is_directory(folder)) return std::nullopt;
+  return "the classic datasets are not at " + folder.string() +
+         " (clone shared/ beside the checkout, or configure with -DVSIL_SHARED_DIR=...)";
+}
+
+bool datasetsRequired() {
+  const char* required = std::getenv("VSIL_REQUIRE_DATASETS");
+  return required && std::string(required) == "1";
+}
+
 std::filesystem::path vsilBinary() {
   return VSIL_BINARY;
 }
@@ -23,6 +38,9 @@ std::filesystem::path vsilBinary() {
 std::filesystem::path scratchDir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "vsil";
+  // ctest runs a GL suite once per back end, maybe at the same time: one folder each.
+  if (const char* backend = std::getenv("VSIL_GL"); backend && *backend)
+    name += "@" + std::string(backend);
   for (char& c : name) {
     if (c == '/') c = '_';
   }

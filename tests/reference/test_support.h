@@ -1,15 +1,32 @@
 #pragma once
 // Helpers shared by the test suites: where the datasets and the built tool are, scratch folders.
 #include <filesystem>
+#include <optional>
 #include <string>
 
 namespace vsil::test {
 
 // ../shared/datasets/<name> beside the checkout (VSIL_SHARED_DIR at configure time).
 std::filesystem::path datasetPath(const std::string& name);
+
+// Why the classic datasets cannot be used (the folder is absent), or nothing when they can.
+std::optional<std::string> datasetsMissing();
+// True under VSIL_REQUIRE_DATASETS=1 (CI sets it): a missing folder fails instead of skipping.
+bool datasetsRequired();
+
+// First in a test that reads the classic datasets: a checkout cloned alone skips the test with
+// a one-line reason; where the datasets are required (CI), it fails instead.
+#define VSIL_REQUIRE_DATASETS()                                            \
+  do {                                                                     \
+    if (const auto vsilMissing = ::vsil::test::datasetsMissing()) {        \
+      if (::vsil::test::datasetsRequired()) FAIL() << *vsilMissing;        \
+      GTEST_SKIP() << *vsilMissing;                                        \
+    }                                                                      \
+  } while (0)
 // The built `vsil` binary.
 std::filesystem::path vsilBinary();
-// A fresh, empty folder under the build's temporary area, unique to the calling test.
+// A fresh, empty folder under the build's temporary area, unique to the calling test (and to the
+// back end in $VSIL_GL).
 std::filesystem::path scratchDir();
 
 // The whole file as bytes ("" when it cannot be read).
