@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
 
@@ -45,16 +44,11 @@ cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& opti
                             FftGaussianBlur& blur, const cv::Mat1b& lines) {
   const Rgba background = options.background.value_or(kDefaultBackground);
   if (frame.state.empty()) return composeColorOverBackground(frame.color, background);
-  if (options.fill == FillMode::Tone && frame.color.size() != frame.state.size()) {
-    throw std::logic_error("composeIllustration: --fill tone needs the technique's tone colours");
-  }
   const cv::Mat1b band = lines.empty() ? broadenSilhouettes(frame, options.width, blur) : lines;
   const bool opaque = options.lineColor.a == 255 && background.a == 255 &&
-                      (options.fill == FillMode::None || options.fill == FillMode::Tone ||
-                       options.fillColor.a == 255);
+                      (options.fill == FillMode::None || options.fillColor.a == 255);
   const cv::Vec4b lineColor = options.lineColor.bgra(), fillColor = options.fillColor.bgra();
   const bool shaded = options.fill == FillMode::Shaded && !frame.shade.empty();
-  const bool toned = options.fill == FillMode::Tone;
   cv::Mat4b image(frame.state.size(), background.bgra());
   for (int y = 0; y < image.rows; ++y) {
     cv::Vec4b* out = image[y];
@@ -66,16 +60,6 @@ cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& opti
         continue;
       }
       if (options.fill == FillMode::None || state[x] == std::uint8_t(PixelState::Empty)) continue;
-      if (toned) {
-        // Opaque tone colours (the fill colour's alpha is not used: a surface hides what lies
-        // behind it).
-        const cv::Vec4f& c = frame.color(y, x);
-        for (int k = 0; k < 3; ++k) {
-          out[x][k] = cv::saturate_cast<std::uint8_t>(std::lround(std::clamp(c[2 - k], 0.0f, 1.0f) * 255.0f));
-        }
-        out[x][3] = 255;
-        continue;
-      }
       cv::Vec4b fill = fillColor;
       if (shaded) {
         const float shade = frame.shade(y, x);

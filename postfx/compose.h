@@ -1,8 +1,7 @@
 #pragma once
 // Composition of an illustration. For techniques that return pixel states (silhouette,
 // rightangle): broadened lines in the line colour over the fill of the Filled pixels (none, a
-// flat colour, that colour shaded by the diffuse shade, or tone-shaded: the colour the
-// technique returned for them, slicing/tone_fill.h) over the background. For techniques that
+// flat colour, or that colour shaded by the diffuse shade) over the background. For techniques that
 // return colour (FrameBuffers::color, premultiplied): that colour over the background.
 // The result is 8-bit BGRA (BGR when every colour is opaque), ready for writePng.
 #include <optional>
@@ -16,7 +15,7 @@
 
 namespace vsil {
 
-enum class FillMode { None, Flat, Shaded, Tone };
+enum class FillMode { None, Flat, Shaded };
 
 struct PostfxOptions {
   WidthLaw width = WidthLaw::fixed(3);

@@ -88,12 +88,6 @@ OptionSpec sketchColorOption() {
       });
 }
 
-const std::vector<std::string>& toneFillParameters() {
-  static const std::vector<std::string> names{"k_a",  "k_d",  "k_ta", "k_td",
-                                              "k_ty", "k_tb", "k_ds", "k_de"};
-  return names;
-}
-
 IllustrationStyle styleFromOptions(const std::vector<OptionSpec>& declared,
                                    const OptionReader& options) {
   IllustrationStyle style;

@@ -1,8 +1,7 @@
 #pragma once
 // The options that carry an illustration (src/core/illustration.h) into a technique: declared
-// once here so that `illustrate` and the tone fill of the first-hit techniques
-// (slicing/tone_fill.h) share the flags --param and --light, and resolved here from an
-// OptionReader into what a frame uses.
+// once here (any technique that applies the paper's formulas declares the same flags) and
+// resolved here from an OptionReader into what a frame uses.
 #include <string>
 #include <vector>
 
@@ -22,9 +21,6 @@ OptionSpec styleOption();
 OptionSpec transferFunctionOption();
 OptionSpec colorOption();
 OptionSpec sketchColorOption();
-
-// The parameters the tone fill reads: tone shading, distance blending, lighting.
-const std::vector<std::string>& toneFillParameters();
 
 // What the options given set (files read here: --style, --tf). Options a technique does not
 // declare are left alone.

@@ -42,9 +42,6 @@ struct RenderSettings {
   // techniques that blend towards it read FrameContext::background (illustrate's distance
   // colour blending, c_b). Unset: the technique's own choice (a style's), else white.
   std::optional<Rgba> background;
-  // With `--fill tone`: the colour state techniques tone-shade (slicing/tone_fill.h) at their
-  // first hits and return in FrameBuffers::color for the composition of Filled pixels.
-  std::optional<Rgba> toneFill;
   // The technique's options by name (its entry in technique_table.h declares them); options
   // not given take their declared defaults, the iso value the volume's default.
   OptionValues options;

@@ -20,9 +20,6 @@ struct FrameOutputs {
   bool state = false;  // pixel states (Nagy–Klein) and the shade of FILLED pixels
   bool color = false;  // premultiplied RGBA
   bool depth = false;  // normalized depth of what each pixel shows
-  // State techniques: with RenderSettings::toneFill (--fill tone), `color` holds the tone-shaded
-  // first hit of every Filled pixel (slicing/tone_fill.h).
-  bool toneFill = false;
 };
 
 struct TechniqueInfo {

@@ -1,11 +1,10 @@
 // illustration.glsl: the Ebert–Rheingans formulas (IEEE Vis 2000), once, for every pass that
-// applies them: illustrate's slice pass (techniques/illustrate/composite.frag) and the tone fill
-// of the first-hit techniques (shaders/tone_fill.frag). Parameters are uniforms named as in the
+// applies them: illustrate's slice pass (techniques/illustrate/composite.frag). Parameters are uniforms named as in the
 // paper (src/core/illustration.h lists them with defaults and ranges), so changing one never
 // recompiles; which effects run is decided by the caller's #defines. The CPU reference
-// (tests/reference/illustration_formulas.h) repeats every function operation for operation.
+// (tests/reference/illustrate_reference.cpp) writes every formula again.
 //
-// All vectors in one space (world for illustrate, eye for the tone fill): n the outward unit
+// All vectors in one space (world axes for illustrate): n the outward unit
 // normal, −∇f/|∇f| (the paper's "gradient" is the surface normal, which points out of the denser
 // side: data that is denser inside its features, as CT and most simulations are), 0 where the
 // gradient vanishes; v towards the viewer; the lights' directions towards the lights.

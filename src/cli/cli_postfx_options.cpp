@@ -8,8 +8,7 @@ vsil::FillMode parseFillMode(const std::string& text, const std::string& flagNam
   if (text == "none") return vsil::FillMode::None;
   if (text == "flat") return vsil::FillMode::Flat;
   if (text == "shaded") return vsil::FillMode::Shaded;
-  if (text == "tone") return vsil::FillMode::Tone;
-  throwInputError(flagName, "'" + text + "' is not a fill mode (none, flat, shaded or tone)");
+  throwInputError(flagName, "'" + text + "' is not a fill mode (none, flat or shaded)");
 }
 
 void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options) {
@@ -61,9 +60,7 @@ void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options) {
   command.add_option_function<std::string>(
       "--fill",
       [&options](const std::string& text) { options.fill = parseFillMode(text, "--fill"); },
-      "what filled (inside) pixels show: none, flat, shaded (|n.v|) or tone (the Ebert-Rheingans "
-      "tone shading and distance blending of --fill-color; --param k_ta,k_td,k_ty,k_tb,k_ds,k_de,"
-      "k_a,k_d and --light)");
+      "what filled (inside) pixels show: none, flat or shaded");
   command.add_option_function<std::string>(
       "--fill-color",
       [&options](const std::string& text) {

@@ -34,7 +34,7 @@ nlohmann::json matrixRowMajor(const glm::dmat4& m) {
 }
 
 const char* fillName(FillMode fill) {
-  static const char* const names[] = {"none", "flat", "shaded", "tone"};
+  static const char* const names[] = {"none", "flat", "shaded"};
   return names[int(fill)];
 }
 
@@ -193,12 +193,11 @@ Renderer& RenderJob::renderer() {
 
 namespace {
 
-// The render settings as the renderer needs them: the composition flags that decide what the
-// technique computes (the background distance blending blends towards; --fill tone).
+// The render settings as the renderer needs them: the background (what distance colour
+// blending blends towards) is a composition flag the technique reads.
 RenderSettings settingsFor(const RenderRequest& request) {
   RenderSettings settings = request.settings;
   if (request.postfx.background) settings.background = request.postfx.background;
-  if (request.postfx.fill == FillMode::Tone) settings.toneFill = request.postfx.fillColor;
   return settings;
 }
 
@@ -206,11 +205,6 @@ RenderSettings settingsFor(const RenderRequest& request) {
 
 void RenderJob::checkRequest(const RenderRequest& request, const VolumeLimits& limits) {
   Renderer::validateSettings(request.settings);
-  const TechniqueInfo& technique = findTechnique(request.settings.technique);
-  if (request.postfx.fill == FillMode::Tone && technique.outputs.state &&
-      !technique.outputs.toneFill) {
-    throw InputError("--fill tone: technique '" + technique.name + "' cannot tone-shade its fill");
-  }
   const double width = maxLineWidth(request.postfx);
   if (width > limits::kMaxLineWidth) {
     throw InputError("--width: " + std::to_string(int(std::min(width, 1e9))) +
