@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 
 #include "slicing/illustration_options.h"
@@ -48,7 +47,7 @@ std::vector<std::string> illustrateDefines(const Illustration& illustration) {
   std::vector<std::string> defines;
   for (const auto& name : illustration.effects.names()) defines.push_back(upper(name));
   if (illustration.effects.has(Effect::Halo)) {
-    defines.push_back("HALO_TAPS " + std::string(std::getenv("TAPS") ? std::getenv("TAPS") : "8"));
+    defines.push_back("HALO_TAPS " + std::to_string(kHaloTaps));
   }
   if (illustration.transferFunction) defines.emplace_back("TRANSFER_TABLE");
   return defines;
