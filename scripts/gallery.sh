@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Renders the README's gallery, docs/images/*.png, from the classic datasets: one small picture
+# per look, each beside the paper figure it can be compared with (README, "Gallery").
+#   scripts/gallery.sh [VSIL]     (default build/vsil; datasets from $VSIL_SHARED_DIR or ../shared)
+# Each entry is NAME|INPUT|OPTIONS. Add a technique's entries here when it lands; the README
+# table names the same files. Deterministic: the same binary renders the same bytes.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+vsil=$(readlink -f "${1:-build/vsil}")
+data=${VSIL_SHARED_DIR:-../shared}/datasets
+[[ -x $vsil ]] || { echo "gallery: no vsil binary at $vsil (build first)" >&2; exit 2; }
+[[ -d $data ]] || { echo "gallery: no datasets folder at $data" >&2; exit 2; }
+out=docs/images
+mkdir -p "$out"
+
+common="--size 256x256 --background white"
+entries=(
+  # Nagy & Klein, Fig. 5-7: the right-angle method, the one-pixel silhouettes, broadened lines.
+  "nk_engine_ra|$data/engine.vti|--technique rightangle --iso 80 --view 40,25 --width 2"
+  "nk_engine_1px|$data/engine.vti|--iso 80 --view 40,25 --width 1"
+  "nk_engine_w3|$data/engine.vti|--iso 80 --view 40,25 --width 3"
+  "nk_neghip_ra|$data/neghip_64x64x64_uint8.nhdr|--technique rightangle --iso 64 --view 30,20 --zoom 1.3 --width 2"
+  "nk_neghip_1px|$data/neghip_64x64x64_uint8.nhdr|--iso 64 --view 30,20 --zoom 1.3 --width 1"
+  "nk_neghip_w3|$data/neghip_64x64x64_uint8.nhdr|--iso 64 --view 30,20 --zoom 1.3 --width 3 --fill flat --fill-color #c8d8f0"
+  "nk_bonsai_ra|$data/bonsai.vti|--technique rightangle --iso 40 --view 30,10 --width 2"
+  "nk_bonsai_w2|$data/bonsai.vti|--iso 40 --view 30,10 --width 2 --fill shaded --fill-color #d9c7a0"
+  # Fig. 9: depth-dependent width on a close-up, lines thicker where the object comes nearer.
+  "nk_hydrogen_depthlaw|$data/hydrogen_atom_128x128x128_uint8.nhdr|--iso 20 --view 60,30 --zoom 2.2 --width-near 8 --width-far 1 --fill shaded --fill-color #f0d0c0"
+)
+
+for entry in "${entries[@]}"; do
+  IFS='|' read -r name input options <<<"$entry"
+  echo "gallery: $name" >&2
+  # shellcheck disable=SC2086  # options are a word list on purpose
+  "$vsil" render "$input" $common $options --out "$out/$name.png"
+done
+echo "gallery: ${#entries[@]} images in $(pwd)/$out" >&2
