@@ -201,7 +201,7 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
             view.orthographic ? glm::vec3(0, 0, 1)
                               : -glm::normalize(sampler.eyePoint(x, y, float(slice.eyeDistance)));
         const glm::vec3 v = worldFromEye * toViewer;
-        const float facing = std::abs(glm::dot(n, v));
+        const float facing = length2 > 0 ? std::abs(glm::dot(n, v)) : 1.0f;  // none: facing
 
         float opacity = material.a;
         glm::vec3 base(material);

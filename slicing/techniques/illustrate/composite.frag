@@ -92,7 +92,9 @@ void main() {
   vec3 toViewerEye = orthographic != 0 ? vec3(0.0, 0.0, 1.0)
                                        : -normalize(eyePointAt(sliceEyeDistance));
   vec3 v = worldFromEye * toViewerEye;
-  float facing = abs(dot(n, v));
+  // A vanishing gradient has no direction: it counts as facing the viewer (as in common.glsl),
+  // so flat regions get no silhouette, sketch or fading of their own.
+  float facing = length2 > 0.0 ? abs(dot(n, v)) : 1.0;
 
   float opacity = material.a;
   vec3 base = material.rgb;
