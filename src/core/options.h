@@ -46,6 +46,9 @@ struct OptionSpec {
   // Checks the value further (a Text or List the technique parses itself: effect names,
   // NAME=VALUE lists, colours); throws InputError naming the flag. Empty: no further check.
   std::function<void(const OptionValue&)> validate;
+  // Text holding this many numbers separated by commas ("X,Y,Z": a position, a colour); 0: any
+  // text. Checked like a value's range; `vsil animate --sweep` interpolates it componentwise.
+  int numberCount = 0;
 
   // Declaring an option in one expression:
   //   OptionSpec::number("ra-exponent", 8.0, "exponent k of the line test").above(0)
@@ -60,6 +63,8 @@ struct OptionSpec {
   OptionSpec& atLeast(double bound);  // >= bound
   OptionSpec& atMost(double bound);   // <= bound
   OptionSpec& validatedBy(std::function<void(const OptionValue&)> check);
+  // Text: `count` numbers separated by commas (numberCount).
+  OptionSpec& holdsNumbers(int count);
 
   // "ra-exponent" → "ra_exponent": the metadata key and the Python keyword.
   std::string key() const;
@@ -71,6 +76,12 @@ struct OptionSpec {
   // "default 8, > 0" — for help texts.
   std::string describe() const;
 };
+
+// "X,Y,Z" with finite numbers, exactly `count` of them (any count ≥ 1 when `count` is 0); nothing
+// when the text is not such a list. formatNumberList writes the shortest text that reads back
+// to the same doubles.
+std::optional<std::vector<double>> parseNumberList(std::string_view text, int count = 0);
+std::string formatNumberList(const std::vector<double>& numbers);
 
 // Option values by name, as given (defaults are not stored here).
 using OptionValues = std::map<std::string, OptionValue, std::less<>>;
