@@ -19,7 +19,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "postfx/color.h"
+#include "core/color.h"
 
 namespace vsil {
 

@@ -198,7 +198,10 @@ void Program::set(const char* name, const glm::mat4& value) {
   glUniformMatrix4fv(location(name), 1, GL_FALSE, glm::value_ptr(value));
 }
 void Program::set(const char* name, const glm::vec3* values, int count) {
-  glUniform3fv(location(name), count, glm::value_ptr(values[0]));
+  if (count > 0) glUniform3fv(location(name), count, glm::value_ptr(values[0]));
+}
+void Program::set(const char* name, const float* values, int count) {
+  if (count > 0) glUniform1fv(location(name), count, values);
 }
 
 Program& ProgramCache::get(const ProgramSpec& spec) {

@@ -163,6 +163,11 @@ OptionSpec& OptionSpec::atMost(double bound) {
   return *this;
 }
 
+OptionSpec& OptionSpec::validatedBy(std::function<void(const OptionValue&)> check) {
+  validate = std::move(check);
+  return *this;
+}
+
 OptionSpec& OptionSpec::holdsNumbers(int count) {
   numberCount = count;
   return *this;
@@ -240,6 +245,7 @@ void OptionSpec::check(const OptionValue& value) const {
       throwInputError(flag(), "unknown value '" + name + "' (known: " + joined(choices, ", ") + ")");
     }
   }
+  if (validate) validate(value);
 }
 
 std::string OptionSpec::describe() const {

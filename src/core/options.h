@@ -4,6 +4,7 @@
 // the CLI's flags and help, the metadata, the benchmark, the Python keywords — reads those
 // declarations. A technique reads its values by name through OptionReader; values given for an
 // option it does not declare are reported (checkOptions), never silently ignored.
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -42,6 +43,9 @@ struct OptionSpec {
   bool minExclusive = false;
   bool maxExclusive = false;
   std::vector<std::string> choices;
+  // Checks the value further (a Text or List the technique parses itself: effect names,
+  // NAME=VALUE lists, colours); throws InputError naming the flag. Empty: no further check.
+  std::function<void(const OptionValue&)> validate;
   // Text holding this many numbers separated by commas ("X,Y,Z": a position, a colour); 0: any
   // text. Checked like a value's range; `vsil animate --sweep` interpolates it componentwise.
   int numberCount = 0;
@@ -58,6 +62,7 @@ struct OptionSpec {
   OptionSpec& above(double bound);    // > bound
   OptionSpec& atLeast(double bound);  // >= bound
   OptionSpec& atMost(double bound);   // <= bound
+  OptionSpec& validatedBy(std::function<void(const OptionValue&)> check);
   // Text: `count` numbers separated by commas (numberCount).
   OptionSpec& holdsNumbers(int count);
 
