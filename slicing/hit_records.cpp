@@ -34,8 +34,8 @@ void FirstHitRecorder::beginFrame(const FrameContext& frame) {
     const GLuint depth = record.depthStencil();
     targets_.emplace(Targets{std::move(record), gl::EmptyFramebuffer(size, depth)});
   }
-  slicePass_ = &frame.programs->get(
-      gl::slicePassProgram(hitRecordSources(), "shaders/first_hit.frag"));
+  slicePass_ =
+      &frame.programs->get(gl::slicePassProgram(hitRecordSources(), "shaders/first_hit.frag"));
   slicePass_->use();
   slicePass_->set("isoValue", float(frame.options->number("iso")));
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
