@@ -26,6 +26,17 @@ entries=(
   "nk_bonsai_w2|$data/bonsai.vti|--iso 40 --view 30,10 --width 2 --fill shaded --fill-color #d9c7a0"
   # Fig. 9: depth-dependent width on a close-up, lines thicker where the object comes nearer.
   "nk_hydrogen_depthlaw|$data/hydrogen_atom_128x128x128_uint8.nhdr|--iso 20 --view 60,30 --zoom 2.2 --width-near 8 --width-far 1 --fill shaded --fill-color #f0d0c0"
+  # Ebert & Rheingans: the plain lit composite (gaseous illumination, Fig. 1-2) and one picture
+  # per style preset, named after the figure it mirrors (over white: the gallery's background
+  # wins over fig6's own dark blue, so its distance blending fades towards white).
+  "er_engine_plain|$data/engine.vti|--technique illustrate --view 40,25"
+  "er_engine_fig3|$data/engine.vti|--technique illustrate --style fig3-boundary --view 40,25"
+  "er_bonsai_fig4|$data/bonsai.vti|--technique illustrate --style fig4-boundary-silhouette --view 30,10"
+  "er_engine_fig5|$data/engine.vti|--technique illustrate --style fig5-sketch --view 40,25"
+  "er_bonsai_fig6|$data/bonsai.vti|--technique illustrate --style fig6-distance-halo --view 30,10"
+  "er_engine_fig7|$data/engine.vti|--technique illustrate --style fig7-tone --view 40,25"
+  "er_neghip_fig11|$data/neghip_64x64x64_uint8.nhdr|--technique illustrate --style fig11-gradient-silhouette --view 30,20 --zoom 1.3"
+  "er_ironprot_fig15|$data/ironProt.vtk|--technique illustrate --style fig15-tone --view 30,20 --zoom 1.3"
 )
 
 for entry in "${entries[@]}"; do

@@ -62,8 +62,10 @@ struct OccupiedFaces {
   std::vector<glm::vec3> entry;
   std::vector<glm::vec3> exit;
 };
+// `margin` > 0 grows the occupied bricks by that many bricks in every direction first
+// (Technique::occupancyMargin).
 OccupiedFaces occupiedFaces(const BrickRanges& ranges, const BrickOccupancy& occupied,
-                            const View& view);
+                            const View& view, int margin = 0);
 constexpr double kEntryMargin = 0.5;
 
 // The GL side: per frame, the occupied bricks' entry faces (drawn into a technique's depth
@@ -74,7 +76,7 @@ class EmptySpaceSkipping {
   // Uploads this frame's faces and draws the exit depth image; `enabled` false turns skipping
   // off (entry depth 0, exit depth 1 everywhere).
   void prepare(const BrickRanges& ranges, const BrickOccupancy& occupied, const View& view,
-               bool enabled);
+               bool enabled, int margin = 0);
   // Into the bound framebuffer's depth-stencil buffer: stencil 0 and, per pixel, a depth no
   // greater than that of the first slice whose sample there may reach the iso value (1 where
   // none can). Colour buffers are left untouched.

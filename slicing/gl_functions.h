@@ -83,10 +83,14 @@
   X(glScissor, PFNGLSCISSORPROC)                                 \
   X(glShaderSource, PFNGLSHADERSOURCEPROC)                       \
   X(glStencilMask, PFNGLSTENCILMASKPROC)                         \
+  X(glTexImage1D, PFNGLTEXIMAGE1DPROC)                           \
   X(glTexImage2D, PFNGLTEXIMAGE2DPROC)                           \
   X(glTexImage3D, PFNGLTEXIMAGE3DPROC)                           \
   X(glTexParameteri, PFNGLTEXPARAMETERIPROC)                     \
+  X(glTexSubImage1D, PFNGLTEXSUBIMAGE1DPROC)                     \
+  X(glTexSubImage3D, PFNGLTEXSUBIMAGE3DPROC)                     \
   X(glUniform1f, PFNGLUNIFORM1FPROC)                             \
+  X(glUniform1fv, PFNGLUNIFORM1FVPROC)                           \
   X(glUniform1i, PFNGLUNIFORM1IPROC)                             \
   X(glUniform1ui, PFNGLUNIFORM1UIPROC)                           \
   X(glUniform2fv, PFNGLUNIFORM2FVPROC)                           \

@@ -10,15 +10,18 @@ namespace vsil {
 
 void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
                     const gl::EmptyFramebuffer& depthOnly, const gl::RenderTarget& record,
-                    bool neighboursFinal) {
-  gl::Program& markDead = frame.programs->get(gl::slicePassProgram(
-      hitRecordSources(), "shaders/mark_dead.frag",
-      neighboursFinal ? std::vector<std::string>{"NEIGHBOURS_FINAL"} : std::vector<std::string>{}));
+                    DeadRule rule, float deadOpacity) {
+  std::vector<std::string> defines;
+  if (rule == DeadRule::NeighbourRecords) defines.emplace_back("NEIGHBOURS_FINAL");
+  if (rule == DeadRule::Opacity) defines.emplace_back("OPACITY_DEAD");
+  gl::Program& markDead = frame.programs->get(
+      gl::slicePassProgram(hitRecordSources(), "shaders/mark_dead.frag", defines));
   depthOnly.bindForDrawing();
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   gl::DepthTest depthTest(GL_GREATER, /*write=*/true);  // pixels already dead (depth 1) skipped
   gl::DepthRange everyFragmentAtOne(1.0, 1.0);
   markDead.use();
+  if (rule == DeadRule::Opacity) markDead.set("deadOpacity", deadOpacity);
   gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, record.texture());
   gl::bindTexture(gl::TextureUnit::ExitDepth, GL_TEXTURE_2D, frame.emptySpace->exitDepthTexture());
   drawSlicePolygon(frame, slice);
@@ -77,7 +80,7 @@ void FirstHitRecorder::drawSlice(const FrameContext& frame, const SliceContext& 
     drawSlicePolygon(frame, slice);
   }
   if (skipping && slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
-    markDeadPixels(frame, slice, targets_->depthOnly, targets_->record, /*neighboursFinal=*/false);
+    markDeadPixels(frame, slice, targets_->depthOnly, targets_->record, DeadRule::OwnRecord);
   }
 }
 

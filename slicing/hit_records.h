@@ -22,13 +22,22 @@ inline const std::vector<std::string>& hitRecordSources() {
 // enough that the marking pass costs little.
 constexpr int kMarkDeadInterval = 8;
 
+// When a pixel is dead (mark_dead.frag), besides the slices being past its ray's exit from
+// occupied space.
+enum class DeadRule {
+  OwnRecord,         // its record is final (rightangle, firsthit)
+  NeighbourRecords,  // its record and its 8 neighbours' are final (silhouette's contour test
+                     // reads them)
+  Opacity,           // its accumulated opacity (the record's alpha) reached `deadOpacity`
+                     // (compositing.h: early ray termination)
+};
+
 // Writes depth 1 through `depthOnly` (a framebuffer with only the technique's depth buffer)
 // at the pixels of this slice's polygon that mark_dead.frag keeps, reading the records in
-// `record`; slice passes testing GREATER then skip them. `neighboursFinal`: a pixel is dead only
-// when its 8 neighbours' records are final too (silhouette's contour test reads them).
+// `record`; slice passes testing GREATER then skip them.
 void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
                     const gl::EmptyFramebuffer& depthOnly, const gl::RenderTarget& record,
-                    bool neighboursFinal);
+                    DeadRule rule, float deadOpacity = 1.0f);
 
 // Records each pixel's first iso-surface hit, for the techniques that need no more of a ray
 // (rightangle, firsthit), in one of three pipelines (technique_table.h SlicingPipeline) that

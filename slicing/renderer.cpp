@@ -11,6 +11,7 @@
 #include "slicing/frame_uniforms.h"
 #include "slicing/gl_context.h"
 #include "slicing/gl_state.h"
+#include "slicing/gradient_texture.h"
 #include "slicing/technique.h"
 #include "slicing/technique_table.h"
 #include "slicing/texture_units.h"
@@ -60,6 +61,8 @@ struct Renderer::Impl {
   std::optional<BrickRanges> brickRanges;
   std::optional<EmptySpaceSkipping> emptySpace;
   std::optional<FrameUniforms> uniforms;
+  GradientTextureCache gradients;
+  int volumeGeneration = 0;
   gl::ProgramCache programs;
   glm::ivec3 dims{0};
   glm::dvec3 spacing{1.0};
@@ -99,6 +102,8 @@ const gl::ProgramCache& Renderer::programs() const {
 void Renderer::setVolume(const Volume& volume) {
   impl_->volumeTexture.reset();
   impl_->volumeTexture.emplace(volume);
+  impl_->gradients.reset(impl_->volumeTexture->id(), volume.dims, volume.spacing);
+  ++impl_->volumeGeneration;
   impl_->brickRanges.emplace(volume);
   impl_->dims = volume.dims;
   impl_->spacing = volume.spacing;
@@ -163,9 +168,16 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   frame.screenVertexArray = impl_->screenVertexArray.id();
   frame.programs = &impl_->programs;
   frame.uniforms = &*impl_->uniforms;
+  frame.gradients = &impl_->gradients;
+  frame.volumeGeneration = impl_->volumeGeneration;
+  const ResolvedOptions resolved = technique.resolve(frame);
+  result.background =
+      settings.background.value_or(resolved.background.value_or(kDefaultBackground));
+  frame.background = result.background;
+  result.options.update(resolved.details);
   if (!impl_->emptySpace) impl_->emptySpace.emplace();
   impl_->emptySpace->prepare(*impl_->brickRanges, technique.occupancy(frame), result.view,
-                             settings.emptySpaceSkipping);
+                             settings.emptySpaceSkipping, technique.occupancyMargin(frame));
   frame.emptySpace = &*impl_->emptySpace;
 
   technique.beginFrame(frame);

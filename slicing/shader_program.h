@@ -80,6 +80,7 @@ class Program {
   void set(const char* name, const glm::mat4& value);
   // Arrays (e.g. light directions), `count` elements from `values`.
   void set(const char* name, const glm::vec3* values, int count);
+  void set(const char* name, const float* values, int count);
 
  private:
   GLint location(const char* name);

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "slicing/techniques/firsthit/firsthit_technique.h"
+#include "slicing/techniques/illustrate/illustrate_technique.h"
 #include "slicing/techniques/rightangle/rightangle_technique.h"
 #include "slicing/techniques/silhouette/silhouette_technique.h"
 
@@ -14,6 +15,7 @@ const std::vector<TechniqueInfo>& techniqueTable() {
       silhouetteTechniqueInfo(),
       rightAngleTechniqueInfo(),
       firstHitTechniqueInfo(),
+      illustrateTechniqueInfo(),
   };
   return table;
 }

@@ -28,6 +28,9 @@ struct TechniqueInfo {
   std::vector<OptionSpec> options;
   FrameOutputs outputs;
   std::function<std::unique_ptr<Technique>()> create;  // needs a current GL context
+  // Samples the volume's gradient texture (slicing/gradient_texture.h): the render's memory
+  // bound counts it.
+  bool usesGradients = false;
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "tables/animate_table.h"
 #include "tables/fft_table.h"
+#include "tables/illustrate_table.h"
 #include "tables/nk3_table.h"
 
 namespace vsil::bench {
@@ -21,10 +22,8 @@ std::vector<TableDefinition> makeRegistry() {
        {},
        "the mip and demip techniques and DVR compositing do not exist yet"},
       {"illustrate",
-       "Ebert–Rheingans volume illustration frame rates",
-       {},
-       {},
-       "the illustrate technique does not exist yet"},
+       "Ebert–Rheingans volume illustration: plain composite, each effect, all, and RA",
+       illustrateDatasetNames(), runIllustrateTable, ""},
       {"semantic",
        "Rautek et al. semantic rendering frame rates",
        {},

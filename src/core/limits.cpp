@@ -30,9 +30,10 @@ std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth) {
   return bytes >= 1.8e19 ? std::uint64_t(1.8e19) : std::uint64_t(bytes);
 }
 
-std::uint64_t renderVolumeBytes(glm::ivec3 dims) {
+std::uint64_t renderVolumeBytes(glm::ivec3 dims, bool gradients) {
   return std::uint64_t(std::max(dims.x, 0)) * std::uint64_t(std::max(dims.y, 0)) *
-         std::uint64_t(std::max(dims.z, 0)) * kVolumeBytesPerVoxel;
+         std::uint64_t(std::max(dims.z, 0)) *
+         (kVolumeBytesPerVoxel + (gradients ? kGradientBytesPerVoxel : 0));
 }
 
 std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel) {

@@ -37,9 +37,12 @@ std::size_t defaultMemoryBytes();
 //           the FFT broadening's padded float/complex buffers and the composed image,
 //           bounded by kRenderBytesPerPixel per pixel of the padded image.
 inline constexpr std::size_t kVolumeBytesPerVoxel = 8;
+//   gradients (techniques that shade by them): the RGBA16F gradient texture and, while it is
+//   built, the volume's samples read back, 12 bytes per voxel more.
+inline constexpr std::size_t kGradientBytesPerVoxel = 12;
 inline constexpr std::size_t kRenderBytesPerPixel = 128;
 std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth);
-std::uint64_t renderVolumeBytes(glm::ivec3 dims);
+std::uint64_t renderVolumeBytes(glm::ivec3 dims, bool gradients = false);
 // An upper bound of the slices a frame draws: ceil(|dims| * samplesPerVoxel) + 1.
 std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel);
 

@@ -32,7 +32,7 @@ int lineCount(const std::string& text) {
 class Nk3Run : public ::testing::Test {
  protected:
   void SetUp() override {
-  VSIL_REQUIRE_DATASETS();
+    VSIL_REQUIRE_DATASETS();
     dir_ = test::scratchDir();
     result_ =
         test::runVsil("bench --table nk3 --datasets " + datasetsDir() +
@@ -152,6 +152,34 @@ TEST(BenchCommand, MissingDatasetFolderContentsAreReportedNotFatal) {
   EXPECT_NE(result.out.find("not found"), std::string::npos) << result.out;
 }
 
+// The illustrate table on the smallest dataset: RA, the plain composite, each effect, all of
+// them, every row checked by the bench itself and its ratio to the right reference.
+TEST(BenchCommand, IllustrateTableHasEveryCaseCheckedWithItsRatio) {
+  VSIL_REQUIRE_DATASETS();
+  const auto dir = test::scratchDir();
+  const auto result = test::runVsil("bench --table illustrate --datasets " + datasetsDir() +
+                                    " --only neghip --sizes 64 --frames 1 --warmup 1 --json " +
+                                    (dir / "illustrate.json").string());
+  ASSERT_EQ(result.exitCode, 0) << result.err << result.out;
+  const auto document = nlohmann::json::parse(test::readFileBytes(dir / "illustrate.json"));
+  std::vector<std::string> cases;
+  for (const auto& row : document["rows"]) {
+    SCOPED_TRACE(row.dump());
+    EXPECT_EQ(row["table"], "illustrate");
+    EXPECT_EQ(row["dataset"], "neghip");
+    EXPECT_EQ(row["check"], "ok");
+    EXPECT_GT(row["fps"].get<double>(), 0.0);
+    const std::string name = row["case"];
+    cases.push_back(name);
+    if (name != "ra") {
+      EXPECT_EQ(row["ratio_to"], name == "plain" ? "ra" : "plain");
+      EXPECT_GT(row["ratio"].get<double>(), 0.0);
+    }
+  }
+  EXPECT_EQ(cases, (std::vector<std::string>{"ra", "plain", "boundary", "silhouette", "fading",
+                                             "sketch", "distance", "halo", "tone", "all"}));
+}
+
 struct BadFlags {
   const char* name;
   const char* arguments;
@@ -170,19 +198,19 @@ TEST_P(BenchBadFlags, ExitTwoWithOneLine) {
 
 INSTANTIATE_TEST_SUITE_P(
     Flags, BenchBadFlags,
-    ::testing::Values(
-        BadFlags{"UnknownTable", "--table nk9", "nk9"},
-        BadFlags{"Dv1NotImplemented", "--table dv1", "not implemented yet"},
-        BadFlags{"IllustrateNotImplemented", "--table illustrate", "not implemented yet"},
-        BadFlags{"UnknownDataset", "--table nk3 --only bonsia", "bonsia"},
-        BadFlags{"OnlyWithoutDatasets", "--table fft --only bonsai", "--only"},
-        BadFlags{"ZeroFrames", "--frames 0", "--frames"},
-        BadFlags{"NegativeWarmup", "--warmup -1", "--warmup"},
-        BadFlags{"TinySize", "--sizes 4", "--sizes"},
-        BadFlags{"SizeNotANumber", "--sizes 256,big", "--sizes"},
-        BadFlags{"MissingDatasetsFolder", "--datasets /nonexistent/vsil", "/nonexistent/vsil"},
-        BadFlags{"JsonInMissingFolder", "--json /nonexistent/vsil/x.json", "--json"},
-        BadFlags{"PlotNotPng", "--plot /tmp/x.jpg", "--plot"}),
+    ::testing::Values(BadFlags{"UnknownTable", "--table nk9", "nk9"},
+                      BadFlags{"Dv1NotImplemented", "--table dv1", "not implemented yet"},
+                      BadFlags{"SemanticNotImplemented", "--table semantic", "not implemented yet"},
+                      BadFlags{"UnknownDataset", "--table nk3 --only bonsia", "bonsia"},
+                      BadFlags{"OnlyWithoutDatasets", "--table fft --only bonsai", "--only"},
+                      BadFlags{"ZeroFrames", "--frames 0", "--frames"},
+                      BadFlags{"NegativeWarmup", "--warmup -1", "--warmup"},
+                      BadFlags{"TinySize", "--sizes 4", "--sizes"},
+                      BadFlags{"SizeNotANumber", "--sizes 256,big", "--sizes"},
+                      BadFlags{"MissingDatasetsFolder", "--datasets /nonexistent/vsil",
+                               "/nonexistent/vsil"},
+                      BadFlags{"JsonInMissingFolder", "--json /nonexistent/vsil/x.json", "--json"},
+                      BadFlags{"PlotNotPng", "--plot /tmp/x.jpg", "--plot"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

@@ -10,11 +10,11 @@
 
 #include <gtest/gtest.h>
 
+#include "frame_compare.h"
 #include "gl_harness.h"
 #include "slice_sampler.h"
 #include "slicing/empty_space.h"
 #include "slicing/gl_objects.h"
-#include "frame_compare.h"
 #include "slicing/renderer.h"
 #include "slicing/technique.h"
 #include "slicing/technique_table.h"

@@ -117,7 +117,7 @@ void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContex
     if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // marking reads this slice's records
       markDeadPixels(frame, slice, targets_->depthOnly, targets_->records[0],
-                     /*neighboursFinal=*/true);
+                     DeadRule::NeighbourRecords);
     }
     return;
   }
