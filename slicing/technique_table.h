@@ -28,6 +28,9 @@ struct TechniqueInfo {
   std::vector<OptionSpec> options;
   FrameOutputs outputs;
   std::function<std::unique_ptr<Technique>()> create;  // needs a current GL context
+  // Checks what the option declarations cannot: text values the technique parses itself and
+  // rules between options. Throws InputError naming the flag; runs before any GL work.
+  std::function<void(const OptionValues& given)> checkValues;
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }

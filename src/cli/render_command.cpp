@@ -15,6 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "core/number_pair.h"
 #include "job/render_job.h"
 #include "slicing/technique_table.h"
 
@@ -44,7 +45,7 @@ RenderRequest requestFrom(const RenderFlags& flags, const PostfxOptions& postfx)
   settings.technique = flags.technique;
   settings.options = flags.techniqueOptions;
   settings.size = parseSize("--size", flags.size);
-  const glm::dvec2 view = parsePair("--view", flags.view);
+  const glm::dvec2 view = parseNumberPair("--view", flags.view);
   settings.camera.azimuthDeg = view.x;
   settings.camera.elevationDeg = view.y;
   settings.camera.orthographic = flags.orthographic;
