@@ -4,6 +4,8 @@
 
 #include "core/error.h"
 #include "slicing/techniques/firsthit/firsthit_technique.h"
+#include "slicing/techniques/mip/lmip_technique.h"
+#include "slicing/techniques/mip/mip_technique.h"
 #include "slicing/techniques/rightangle/rightangle_technique.h"
 #include "slicing/techniques/silhouette/silhouette_technique.h"
 
@@ -14,6 +16,9 @@ const std::vector<TechniqueInfo>& techniqueTable() {
       silhouetteTechniqueInfo(),
       rightAngleTechniqueInfo(),
       firstHitTechniqueInfo(),
+      mipTechniqueInfo(),
+      demipTechniqueInfo(),
+      lmipTechniqueInfo(),
   };
   return table;
 }
