@@ -71,6 +71,12 @@ foreach(module core imgproc imgcodecs)
   target_link_libraries(vsil::opencv INTERFACE ${OPENCV_${module}_LIBRARY})
 endforeach()
 
+# OpenCV videoio (with FFmpeg in Debian's build): `vsil animate --video`, and only there.
+find_library(OPENCV_videoio_LIBRARY opencv_videoio)
+vsil_require(OPENCV_videoio_LIBRARY "OpenCV videoio (vsil animate --video)" libopencv-videoio-dev)
+add_library(vsil::opencv_videoio INTERFACE IMPORTED)
+target_link_libraries(vsil::opencv_videoio INTERFACE vsil::opencv ${OPENCV_videoio_LIBRARY})
+
 find_package(glm QUIET)
 find_path(GLM_INCLUDE_DIR glm/glm.hpp)
 vsil_require(GLM_INCLUDE_DIR "GLM" libglm-dev)

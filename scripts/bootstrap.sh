@@ -14,6 +14,7 @@ packages=(
   libosmesa6-dev                 # OSMesa (Mesa llvmpipe; Mesa 25.1 dropped it: optional below)
   libfftw3-dev                   # FFT Gaussian broadening
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev  # images, distance transforms
+  libopencv-videoio-dev          # vsil animate --video (OpenCV's video writer, FFmpeg)
   libglm-dev                     # vector and matrix math
   nlohmann-json3-dev             # JSON (metadata, benchmark tables)
   libcli11-dev                   # command-line parsing

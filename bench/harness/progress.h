@@ -1,16 +1,17 @@
 #pragma once
-// One progress line on stderr while a table runs: "[3/20] bonsai 512² ops frame 4/10". On a
-// terminal the line is rewritten in place (\r) and erased at the end; otherwise each case gets
-// one line when it starts, so logs stay readable.
+// The progress of a table on stderr: "[3/20] bonsai 512² ops frame 4/10", through the shared
+// ProgressLine (core/progress_line.h): rewritten in place on a terminal and erased at the end;
+// otherwise each case gets one line when it starts.
 #include <ostream>
 #include <string>
+
+#include "core/progress_line.h"
 
 namespace vsil::bench {
 
 class Progress {
  public:
-  Progress(std::ostream& out, bool terminal) : out_(out), terminal_(terminal) {}
-  ~Progress() { finish(); }
+  Progress(std::ostream& out, bool terminal) : line_(out, terminal) {}
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
@@ -20,17 +21,15 @@ class Progress {
   // Within the current case, e.g. "warm-up 1/2" or "frame 4/10".
   void step(const std::string& what);
   // Erases the line (terminal) so that the table can be printed.
-  void finish();
+  void finish() { line_.finish(); }
 
  private:
-  void show(const std::string& text);
+  std::string counter() const;
 
-  std::ostream& out_;
-  bool terminal_;
+  ProgressLine line_;
   int total_ = 0;
   int current_ = 0;
   std::string label_;
-  std::size_t shownWidth_ = 0;
 };
 
 }  // namespace vsil::bench

@@ -1,6 +1,7 @@
 #include "harness/table_registry.h"
 
 #include "core/error.h"
+#include "tables/animate_table.h"
 #include "tables/dv1_table.h"
 #include "tables/fft_table.h"
 #include "tables/nk3_table.h"
@@ -13,6 +14,8 @@ std::vector<TableDefinition> makeRegistry() {
       {"nk3", "Nagy–Klein Table 3: RA, OPS and BS frame rates per dataset and window",
        nk3DatasetNames(), runNk3Table, ""},
       {"fft", "broadening cost against sigma: FFT vs OpenCV GaussianBlur", {}, runFftTable, ""},
+      {"animate", "one vsil animate against 36 vsil render processes (a 36-frame orbit)",
+       animateDatasetNames(), runAnimateTable, ""},
       {"dv1", "Díaz–Vázquez Table 1: MIP, DEMIP and DEMIP with colour sphere frame rates",
        dv1DatasetNames(), runDv1Table, ""},
       {"illustrate",

@@ -664,6 +664,13 @@ std::vector<std::string> nk3DatasetNames() {
   return names;
 }
 
+std::optional<Nk3DatasetFile> nk3DatasetFile(const std::string& name) {
+  for (const auto& d : kDatasets) {
+    if (d.name == name && d.file) return Nk3DatasetFile{d.file, d.iso, d.isoReason};
+  }
+  return std::nullopt;
+}
+
 TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
   const std::vector<int> sizes = windowSizes(options);
   const std::vector<Nk3Choice> chosen = chooseDatasets(options);

@@ -10,7 +10,6 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <optional>
 #include <string>
 
 #include "core/error.h"
@@ -92,40 +91,62 @@ void installOutputCleanupOnSignals() {
   }
 }
 
-void writeFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
-  const std::string target = path.string();
+struct AtomicOutputFile::Registration {
+  explicit Registration(const std::string& path) : slot(path) {}
+  TempRegistration slot;
+};
+
+AtomicOutputFile::AtomicOutputFile(const std::filesystem::path& target) : target_(target) {
   if (target.empty()) throw InputError("output path is empty");
-  std::filesystem::path dir = path.parent_path();
+  std::filesystem::path dir = target.parent_path();
   if (dir.empty()) dir = ".";
   // A hidden temporary beside the target: same file system, so rename() is atomic.
-  std::string temp = (dir / ("." + path.filename().string() + ".XXXXXX")).string();
-  int fd = -1;
-  std::optional<TempRegistration> registration;
+  // The extension kept at the end (a writer may choose its format by it), when it is short
+  // enough to be one: long names keep their room below the file system's limit.
+  std::string extension = target.extension().string();
+  if (extension.size() > 8) extension.clear();
+  std::string temp = (dir / ("." + target.filename().string() + ".XXXXXX" + extension)).string();
   {
     const SignalBlock block;
-    fd = mkstemp(temp.data());
-    if (fd >= 0) registration.emplace(temp);
+    fd_ = mkstemps(temp.data(), int(extension.size()));
+    if (fd_ >= 0) registration_ = std::make_unique<Registration>(temp);
   }
-  if (fd < 0)
-    throwInputError(target, std::string("cannot create the output file: ") + std::strerror(errno));
+  if (fd_ < 0) {
+    throwInputError(target.string(),
+                    std::string("cannot create the output file: ") + std::strerror(errno));
+  }
+  temporary_ = temp;
+}
+
+AtomicOutputFile::~AtomicOutputFile() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!committed_) ::unlink(temporary_.c_str());
+}
+
+void AtomicOutputFile::commit() {
+  fchmod(fd_, 0644);
+  const int closed = ::close(fd_);
+  fd_ = -1;
+  if (closed != 0 || std::rename(temporary_.c_str(), target_.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(temporary_.c_str());
+    throwInputError(target_.string(), std::string("cannot write: ") + std::strerror(err));
+  }
+  committed_ = true;
+}
+
+void writeFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+  AtomicOutputFile file(path);
   std::size_t written = 0;
   while (written < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+    const ssize_t n = ::write(file.descriptor(), bytes.data() + written, bytes.size() - written);
     if (n < 0) {
       if (errno == EINTR) continue;
-      const int err = errno;
-      ::close(fd);
-      ::unlink(temp.c_str());
-      throwInputError(target, std::string("cannot write: ") + std::strerror(err));
+      throwInputError(path.string(), std::string("cannot write: ") + std::strerror(errno));
     }
     written += std::size_t(n);
   }
-  fchmod(fd, 0644);
-  if (::close(fd) != 0 || std::rename(temp.c_str(), target.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(temp.c_str());
-    throwInputError(target, std::string("cannot write: ") + std::strerror(err));
-  }
+  file.commit();
 }
 
 void writeFileAtomically(const std::filesystem::path& path, std::string_view text) {

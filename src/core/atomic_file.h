@@ -3,10 +3,45 @@
 // directory, which is renamed over the target only once complete.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string_view>
 
 namespace vsil {
+
+// An output that a writer of its own makes (a video encoder that opens files by name), written
+// whole or not at all like writeFileAtomically's: a hidden temporary ".NAME.XXXXXX.EXT" beside
+// the target (it keeps the extension, which some writers choose their format by), registered
+// for removal on the cleanup signals (installOutputCleanupOnSignals), renamed over the target by
+// commit(), and removed when the object leaves scope uncommitted (an error, an early return).
+//
+//   AtomicOutputFile file("movie.avi");
+//   encoder.open(file.temporaryPath()); ...; encoder.close();
+//   file.commit();
+class AtomicOutputFile {
+ public:
+  // Creates the temporary (empty). Throws InputError naming the target when its folder is
+  // missing or not writable.
+  explicit AtomicOutputFile(const std::filesystem::path& target);
+  ~AtomicOutputFile();
+  AtomicOutputFile(const AtomicOutputFile&) = delete;
+  AtomicOutputFile& operator=(const AtomicOutputFile&) = delete;
+
+  const std::filesystem::path& target() const { return target_; }
+  const std::filesystem::path& temporaryPath() const { return temporary_; }
+  // The temporary's descriptor, open for writing until commit() (for writers that take one).
+  int descriptor() const { return fd_; }
+  // Closes the descriptor and renames the temporary over the target (mode 0644). Throws
+  // InputError naming the target when that fails; the temporary is then removed.
+  void commit();
+
+ private:
+  struct Registration;
+  std::filesystem::path target_, temporary_;
+  int fd_ = -1;
+  bool committed_ = false;
+  std::unique_ptr<Registration> registration_;
+};
 
 // Throws InputError (naming the path) when the directory is missing or not writable.
 void writeFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
@@ -16,7 +51,7 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view tex
 // temporary file of any write in progress and then let the signal end the process as usual.
 // Together with the rename, an interrupted run leaves neither a partial target nor a stray
 // temporary; a target that existed before stays untouched. (SIGKILL cannot be caught: it may
-// leave the hidden temporary ".NAME.XXXXXX", never a partial target.) Call once, from main().
+// leave the hidden temporary ".NAME.XXXXXX.EXT", never a partial target.) Call once, from main().
 void installOutputCleanupOnSignals();
 
 }  // namespace vsil

@@ -19,6 +19,8 @@ inline constexpr double kMaxSamplesPerVoxel = 64.0;
 inline constexpr double kMaxLineWidth = 1024.0;
 // Slices per frame: the box's diagonal in voxels times --sampling.
 inline constexpr std::int64_t kMaxSlices = std::int64_t(1) << 17;
+// Frames of one `vsil animate` (--frames): over an hour of video at 25 frames per second.
+inline constexpr int kMaxFrames = 100000;
 // Bytes of a header or text file read whole (NRRD headers, rule, style, transfer functions).
 inline constexpr std::size_t kMaxHeaderBytes = std::size_t(1) << 20;
 // --max-memory accepts 1 MiB .. 1 TiB.

@@ -71,6 +71,35 @@ std::string valueText(const OptionValue& value) {
 
 }  // namespace
 
+std::optional<std::vector<double>> parseNumberList(std::string_view text, int count) {
+  std::vector<double> numbers;
+  while (true) {
+    const std::size_t comma = text.find(',');
+    const std::string_view item = text.substr(0, comma);
+    double number = 0;
+    const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), number);
+    if (item.empty() || ec != std::errc() || ptr != item.data() + item.size() ||
+        !std::isfinite(number)) {
+      return std::nullopt;
+    }
+    numbers.push_back(number);
+    if (comma == std::string_view::npos) break;
+    text.remove_prefix(comma + 1);
+  }
+  if (count > 0 && int(numbers.size()) != count) return std::nullopt;
+  return numbers;
+}
+
+std::string formatNumberList(const std::vector<double>& numbers) {
+  std::string text;
+  for (double number : numbers) {
+    char buffer[32];
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, number);
+    text += (text.empty() ? "" : ",") + std::string(buffer, end);
+  }
+  return text;
+}
+
 OptionSpec OptionSpec::number(std::string name, double defaultValue, std::string help) {
   OptionSpec spec;
   spec.name = std::move(name);
@@ -134,6 +163,11 @@ OptionSpec& OptionSpec::atMost(double bound) {
   return *this;
 }
 
+OptionSpec& OptionSpec::holdsNumbers(int count) {
+  numberCount = count;
+  return *this;
+}
+
 std::string OptionSpec::key() const {
   std::string k = name;
   std::replace(k.begin(), k.end(), '-', '_');
@@ -191,6 +225,13 @@ void OptionSpec::check(const OptionValue& value) const {
     if (belowMin || aboveMax) {
       throwInputError(flag(), "must be " + describeRange(*this) + " (got " + formatNumber(number) +
                                   ")");
+    }
+  }
+  if (kind == OptionKind::Text && numberCount > 0) {
+    const std::string& text = std::get<std::string>(value);
+    if (!text.empty() && !parseNumberList(text, numberCount)) {
+      throwInputError(flag(), "'" + text + "' is not " + std::to_string(numberCount) +
+                                  " numbers separated by commas");
     }
   }
   if (kind == OptionKind::Choice) {

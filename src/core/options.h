@@ -45,6 +45,9 @@ struct OptionSpec {
   bool minExclusive = false;
   bool maxExclusive = false;
   std::vector<std::string> choices;
+  // Text holding this many numbers separated by commas ("X,Y,Z": a position, a colour); 0: any
+  // text. Checked like a value's range; `vsil animate --sweep` interpolates it componentwise.
+  int numberCount = 0;
 
   // Declaring an option in one expression:
   //   OptionSpec::number("ra-exponent", 8.0, "exponent k of the line test").above(0)
@@ -58,6 +61,8 @@ struct OptionSpec {
   OptionSpec& above(double bound);    // > bound
   OptionSpec& atLeast(double bound);  // >= bound
   OptionSpec& atMost(double bound);   // <= bound
+  // Text: `count` numbers separated by commas (numberCount).
+  OptionSpec& holdsNumbers(int count);
 
   // "ra-exponent" → "ra_exponent": the metadata key and the Python keyword.
   std::string key() const;
@@ -69,6 +74,12 @@ struct OptionSpec {
   // "default 8, > 0" — for help texts.
   std::string describe() const;
 };
+
+// "X,Y,Z" with finite numbers, exactly `count` of them (any count ≥ 1 when `count` is 0); nothing
+// when the text is not such a list. formatNumberList writes the shortest text that reads back
+// to the same doubles.
+std::optional<std::vector<double>> parseNumberList(std::string_view text, int count = 0);
+std::string formatNumberList(const std::vector<double>& numbers);
 
 // Option values by name, as given (defaults are not stored here).
 using OptionValues = std::map<std::string, OptionValue, std::less<>>;

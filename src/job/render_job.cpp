@@ -185,6 +185,13 @@ Renderer& RenderJob::renderer() {
 
 void RenderJob::checkRequest(const RenderRequest& request, const VolumeLimits& limits) {
   Renderer::validateSettings(request.settings);
+  const WidthLaw& law = request.postfx.width;
+  if (law.isFixed()) {
+    law.validate("--width");
+  } else {
+    WidthLaw::fixed(law.near).validate("--width-near");
+    WidthLaw::fixed(law.far).validate("--width-far");
+  }
   const double width = maxLineWidth(request.postfx);
   if (width > limits::kMaxLineWidth) {
     throw InputError("--width: " + std::to_string(int(std::min(width, 1e9))) +

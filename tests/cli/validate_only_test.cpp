@@ -96,6 +96,17 @@ const std::vector<WorkingCase>& workingCases() {
                  "--out",      (out / "r.png").string(),  "--state-out", (out / "s.png").string(),
                  "--meta-out", (out / "m.json").string(), "--depth-out", (out / "d.png").string()};
        }},
+      // The frames' folder does not exist: validate-only mode must not create it.
+      {"animate",
+       [](const fs::path& out) -> std::vector<std::string> {
+         return {"animate",   "gen:spheres:32",
+                 "--size",    "64x64",
+                 "--frames",  "3",
+                 "--orbit",   "90",
+                 "--sweep",   "iso=0.3:0.6",
+                 "--out-dir", (out / "frames").string(),
+                 "--video",   (out / "movie.avi").string()};
+       }},
       {"info",
        [](const fs::path&) -> std::vector<std::string> {
          return {"info", test::datasetPath("neghip_64x64x64_uint8.nhdr").string(), "--json"};
@@ -205,6 +216,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadFlags{"BenchPlotNotPng", {"bench", "--plot", "x.jpg"}, "--plot"},
         BadFlags{"RenderBadSize", {"render", "--size", "0x64"}, "--size"},
         BadFlags{"RenderUnknownTechnique", {"render", "--technique", "nope"}, "nope"},
+        BadFlags{"AnimateZeroFrames",
+                 {"animate", "--frames", "0", "--out-dir", "/nonexistent/vsil"},
+                 "--frames"},
+        BadFlags{"AnimateUnknownSweep",
+                 {"animate", "--frames", "2", "--sweep", "nope=1:2", "--out-dir", "x"},
+                 "nope"},
+        BadFlags{"AnimateOutDirInMissingFolder",
+                 {"animate", "--frames", "2", "--out-dir", "/nonexistent/vsil/frames"},
+                 "--out-dir"},
+        BadFlags{"AnimateVideoFormat", {"animate", "--frames", "2", "--video", "x.gif"}, "--video"},
         BadFlags{"InfoBadDims", {"info", "v.raw", "--dims", "4x4", "--type", "uint8"}, "--dims"},
         BadFlags{"MeasureWidthBadColour",
                  {"measure-width", "x.png", "--line-color", "nope"},

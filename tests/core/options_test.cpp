@@ -95,5 +95,26 @@ TEST(Options, DescribeSaysDefaultChoicesAndRange) {
   EXPECT_EQ(s[0].key(), "ra_exponent");
 }
 
+// Text options that hold numbers (a position "X,Y,Z"): checked like a range, and written back
+// exactly (animate's componentwise sweeps pass them as text).
+TEST(Options, NumberListsAreCheckedAndRoundTrip) {
+  const OptionSpec cursor = OptionSpec::text("cursor", "").holdsNumbers(3);
+  EXPECT_EQ(std::get<std::string>(cursor.parse("10,-2.5,3e2")), "10,-2.5,3e2");
+  EXPECT_EQ(errorOf([&] { cursor.parse("10,20"); }),
+            "--cursor: '10,20' is not 3 numbers separated by commas");
+  EXPECT_EQ(errorOf([&] { cursor.parse("1,x,3"); }),
+            "--cursor: '1,x,3' is not 3 numbers separated by commas");
+  EXPECT_NO_THROW(cursor.check(std::string())) << "empty: not given";
+
+  EXPECT_EQ(parseNumberList("1,2,3"), (std::vector<double>{1, 2, 3}));
+  EXPECT_FALSE(parseNumberList("1,,3"));
+  EXPECT_FALSE(parseNumberList(""));
+  EXPECT_FALSE(parseNumberList("1,inf"));
+  EXPECT_FALSE(parseNumberList("1,2", 3));
+  const std::vector<double> values{0.1 + 0.2, -1e-300, 12345.678901234567, 40};
+  EXPECT_EQ(parseNumberList(formatNumberList(values)), values);
+  EXPECT_EQ(formatNumberList({10, 20.5}), "10,20.5");
+}
+
 }  // namespace
 }  // namespace vsil

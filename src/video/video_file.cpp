@@ -1,0 +1,135 @@
+#include "video/video_file.h"
+
+#include <dlfcn.h>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "video/video_encoder.h"
+
+namespace vsil {
+
+namespace {
+
+struct VideoFormat {
+  const char* extension;
+  const char* name;  // for messages
+  char fourcc[4];
+};
+
+constexpr VideoFormat kFormats[] = {
+    {".mp4", "MPEG-4 (mp4v)", {'m', 'p', '4', 'v'}},
+    {".avi", "Motion JPEG (MJPG)", {'M', 'J', 'P', 'G'}},
+};
+
+const VideoFormat* formatOf(const std::filesystem::path& target) {
+  for (const VideoFormat& format : kFormats) {
+    if (target.extension() == format.extension) return &format;
+  }
+  return nullptr;
+}
+
+// The plugin (video_encoder.h), loaded once and kept: beside the executable (the build tree),
+// in ../lib/vsil beside it (installed), or where the build put it.
+video::CreateEncoder loadPlugin() {
+  static const video::CreateEncoder create = [] {
+    std::error_code ignored;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ignored);
+    std::vector<std::filesystem::path> candidates = {
+        exe.parent_path() / video::kPluginFile,
+        exe.parent_path() / ".." / "lib" / "vsil" / video::kPluginFile};
+#ifdef VSIL_VIDEO_PLUGIN_BUILT
+    candidates.push_back(VSIL_VIDEO_PLUGIN_BUILT);
+#endif
+    std::string tried;
+    for (const auto& path : candidates) {
+      if (!std::filesystem::exists(path)) continue;
+      if (void* plugin = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+        if (void* symbol = ::dlsym(plugin, video::kCreateEncoderSymbol)) {
+          return reinterpret_cast<video::CreateEncoder>(symbol);
+        }
+      }
+      tried += " " + path.string() + " (" + ::dlerror() + ")";
+    }
+    throw std::runtime_error(
+        std::string("cannot load the video plugin ") + video::kPluginFile +
+        (tried.empty() ? " (not found beside vsil nor in ../lib/vsil)" : ":" + tried));
+  }();
+  return create;
+}
+
+}  // namespace
+
+struct VideoFile::Writer {
+  std::unique_ptr<video::Encoder> encoder;
+};
+
+void VideoFile::checkTarget(const std::string& flag, const std::filesystem::path& target,
+                            glm::ivec2 size, double fps) {
+  const std::string where = flag + " " + target.string();
+  if (!formatOf(target)) {
+    std::string known;
+    for (const VideoFormat& format : kFormats) {
+      known += (known.empty() ? "" : ", ") + std::string(format.extension);
+    }
+    throwInputError(
+        where, "unknown video format '" + target.extension().string() + "' (known: " + known + ")");
+  }
+  const std::filesystem::path folder =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(folder)) {
+    throwInputError(where, "folder " + folder.string() + " does not exist");
+  }
+  if (size.x % 2 != 0 || size.y % 2 != 0) {
+    throwInputError(where, "video needs an even width and height (--size " +
+                               std::to_string(size.x) + "x" + std::to_string(size.y) + ")");
+  }
+  if (!(fps > 0) || fps > 1000) {
+    throwInputError(where, "--fps must be in (0, 1000]");
+  }
+}
+
+VideoFile::VideoFile(const std::filesystem::path& target, glm::ivec2 size, double fps)
+    : size_(size), writer_(std::make_unique<Writer>()) {
+  const VideoFormat* format = formatOf(target);
+  if (!format) throw std::logic_error("VideoFile: call checkTarget first");
+  const video::CreateEncoder create = loadPlugin();
+  file_ = std::make_unique<AtomicOutputFile>(target);
+  // As OpenCV's VideoWriter::fourcc: the four characters, little-endian.
+  const int fourcc = format->fourcc[0] | format->fourcc[1] << 8 | format->fourcc[2] << 16 |
+                     format->fourcc[3] << 24;
+  writer_->encoder.reset(create(file_->temporaryPath().c_str(), fourcc, fps, size.x, size.y));
+  if (!writer_->encoder) {
+    throwInputError(target.string(), std::string("OpenCV cannot write ") + format->name +
+                                         " video here (its videoio needs the FFmpeg backend)");
+  }
+}
+
+VideoFile::~VideoFile() = default;
+
+void VideoFile::write(const cv::Mat& image) {
+  if (image.cols != size_.x || image.rows != size_.y || image.depth() != CV_8U) {
+    throw std::logic_error("VideoFile: a frame of another size or depth");
+  }
+  if (image.channels() == 4) {
+    cv::Mat bgr;
+    cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+    writer_->encoder->write(bgr);
+  } else {
+    writer_->encoder->write(image);
+  }
+  ++frames_;
+}
+
+void VideoFile::finish() {
+  writer_->encoder->close();
+  file_->commit();
+}
+
+}  // namespace vsil
