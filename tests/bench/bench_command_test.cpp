@@ -191,7 +191,6 @@ INSTANTIATE_TEST_SUITE_P(
     Flags, BenchBadFlags,
     ::testing::Values(
         BadFlags{"UnknownTable", "--table nk9", "nk9"},
-        BadFlags{"Dv1NotImplemented", "--table dv1", "not implemented yet"},
         BadFlags{"SemanticNotImplemented", "--table semantic", "not implemented yet"},
         BadFlags{"UnknownDataset", "--table nk3 --only bonsia", "bonsia"},
         BadFlags{"OnlyWithoutDatasets", "--table fft --only bonsai", "--only"},
