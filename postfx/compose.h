@@ -8,8 +8,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "core/frame.h"
 #include "core/color.h"
+#include "core/frame.h"
 #include "postfx/gaussian_fft.h"
 #include "postfx/width_law.h"
 

@@ -101,7 +101,8 @@ void growOccupied(std::vector<bool>& occupied, glm::ivec3 bricks, int margin) {
           const int lo = std::max(0, b[axis] - margin);
           const int hi = std::min(bricks[axis] - 1, b[axis] + margin);
           for (int k = lo; k <= hi && !occupied[std::size_t(i)]; ++k) {
-            if (before[std::size_t(i + (k - b[axis]) * stride[axis])]) occupied[std::size_t(i)] = true;
+            if (before[std::size_t(i + (k - b[axis]) * stride[axis])])
+              occupied[std::size_t(i)] = true;
           }
         }
       }

@@ -6,7 +6,8 @@
 
 namespace vsil {
 
-FrameUniforms::FrameUniforms() : frameBuffer_(gl::createBuffer()), sliceBuffer_(gl::createBuffer()) {
+FrameUniforms::FrameUniforms()
+    : frameBuffer_(gl::createBuffer()), sliceBuffer_(gl::createBuffer()) {
   GLint alignment = 256;
   glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
   const GLsizeiptr size = sizeof(SliceBlock);
@@ -47,7 +48,8 @@ void FrameUniforms::upload(const View& view, glm::ivec3 dims, const SlicePlan& p
     std::memcpy(blocks.data() + std::size_t(k) * std::size_t(sliceStride_), &block, sizeof(block));
   }
   VSIL_GL(glBindBuffer(GL_UNIFORM_BUFFER, sliceBuffer_.id()));
-  VSIL_GL(glBufferData(GL_UNIFORM_BUFFER, GLsizeiptr(blocks.size()), blocks.data(), GL_STREAM_DRAW));
+  VSIL_GL(
+      glBufferData(GL_UNIFORM_BUFFER, GLsizeiptr(blocks.size()), blocks.data(), GL_STREAM_DRAW));
   glBindBuffer(GL_UNIFORM_BUFFER, 0);
   bindFrame();
 }

@@ -109,8 +109,8 @@ GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm:
 }
 
 GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm::dvec3 spacing) {
-  return computeGradientTexels(samples, dims, spacing,
-                               maxGradientMagnitude(samples, dims, spacing), 0, dims.z);
+  return computeGradientTexels(samples, dims, spacing, maxGradientMagnitude(samples, dims, spacing),
+                               0, dims.z);
 }
 
 GradientTexture::GradientTexture(GLuint volumeTexture, glm::ivec3 dims, glm::dvec3 spacing) {

@@ -23,12 +23,13 @@ OptionSpec parameterOption(std::vector<std::string> allowed, std::string owner) 
   return OptionSpec::list("param",
                           "illustration parameters NAME=VALUE,... by the paper's names (k_gc, "
                           "k_ss, k_ta, ...; README, volume illustration); repeatable")
-      .validatedBy([allowed = std::move(allowed), owner = std::move(owner)](const OptionValue& value) {
-        ParameterValues ignored;
-        for (const auto& text : std::get<std::vector<std::string>>(value)) {
-          parseParameterList(text, "--param", allowed, owner, ignored);
-        }
-      });
+      .validatedBy(
+          [allowed = std::move(allowed), owner = std::move(owner)](const OptionValue& value) {
+            ParameterValues ignored;
+            for (const auto& text : std::get<std::vector<std::string>>(value)) {
+              parseParameterList(text, "--param", allowed, owner, ignored);
+            }
+          });
 }
 
 OptionSpec lightOption() {
@@ -96,9 +97,8 @@ IllustrationStyle styleFromOptions(const std::vector<OptionSpec>& declared,
   };
   if (given("effects")) style.effects = parseEffects(options.text("effects"), "--effects");
   if (given("param")) {
-    const OptionSpec& spec =
-        *std::find_if(declared.begin(), declared.end(),
-                      [](const OptionSpec& s) { return s.name == "param"; });
+    const OptionSpec& spec = *std::find_if(declared.begin(), declared.end(),
+                                           [](const OptionSpec& s) { return s.name == "param"; });
     spec.check(options.list("param"));  // the declaring technique's names
     for (const auto& text : options.list("param")) {
       parseParameterList(text, "--param", {}, "", style.parameters);
@@ -123,8 +123,8 @@ IllustrationStyle styleFromOptions(const std::vector<OptionSpec>& declared,
 
 Illustration illustrationFromOptions(const std::vector<OptionSpec>& declared,
                                      const OptionReader& options) {
-  const bool styled = declares(declared, "style") && options.given("style") &&
-                      !options.text("style").empty();
+  const bool styled =
+      declares(declared, "style") && options.given("style") && !options.text("style").empty();
   const IllustrationStyle base = styled ? loadStyle(options.text("style")) : IllustrationStyle{};
   return resolveIllustration(base, styleFromOptions(declared, options),
                              styled ? options.text("style") : "");

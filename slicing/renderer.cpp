@@ -172,7 +172,8 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   frame.gradients = &impl_->gradients;
   frame.volumeGeneration = impl_->volumeGeneration;
   const ResolvedOptions resolved = technique.resolve(frame);
-  result.background = settings.background.value_or(resolved.background.value_or(kDefaultBackground));
+  result.background =
+      settings.background.value_or(resolved.background.value_or(kDefaultBackground));
   frame.background = result.background;
   result.options.update(resolved.details);
   if (!impl_->emptySpace) impl_->emptySpace.emplace();

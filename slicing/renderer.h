@@ -59,7 +59,7 @@ struct RenderResult {
   // to (e.g. illustrate's "illustration": effects, every parameter, lights).
   nlohmann::json options;
   Rgba background = kDefaultBackground;  // what the frame was made for and is composed over
-  int sliceCount = 0;  // slices drawn, not counting the extra empty one
+  int sliceCount = 0;                    // slices drawn, not counting the extra empty one
   double sliceStepEye = 0;
   RenderTimings timings;
 };

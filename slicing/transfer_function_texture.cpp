@@ -29,8 +29,8 @@ glm::vec2 TransferFunctionTexture::coordinateFromValue(ValueRange range) {
   return {float(perValue), float(0.5 / n - double(range.min) * perValue)};
 }
 
-bool TransferFunctionTexture::opaqueSomewhere(const std::vector<glm::vec4>& table,
-                                              ValueRange range, float low, float high) {
+bool TransferFunctionTexture::opaqueSomewhere(const std::vector<glm::vec4>& table, ValueRange range,
+                                              float low, float high) {
   const double span = double(range.max) - double(range.min);
   const int last = int(table.size()) - 1;
   const auto entry = [&](double value) {

@@ -105,8 +105,8 @@ struct Choice {
 std::vector<Choice> chooseDatasets(const BenchOptions& options) {
   std::vector<Choice> chosen;
   for (const IllustrateDataset& d : kDatasets) {
-    const bool asked = std::find(options.only.begin(), options.only.end(), d.name) !=
-                       options.only.end();
+    const bool asked =
+        std::find(options.only.begin(), options.only.end(), d.name) != options.only.end();
     if (options.only.empty() ? !d.byDefault : !asked) continue;
     const std::filesystem::path path = options.datasetsDir / d.file;
     chosen.push_back({d, path,
@@ -173,7 +173,8 @@ RenderSettings caseSettings(const IllustrateCase& c, const IllustrateDataset& d,
     settings.technique = "illustrate";
     settings.options["tf"] = tfPath;
     settings.options["effects"] = c.effects;
-    if (std::getenv("PARAM")) settings.options["param"] = std::vector<std::string>{std::getenv("PARAM")};
+    if (std::getenv("PARAM"))
+      settings.options["param"] = std::vector<std::string>{std::getenv("PARAM")};
   }
   return settings;
 }
@@ -191,8 +192,8 @@ std::string colorProblem(const cv::Mat4f& color) {
   for (int y = 0; y < color.rows; ++y) {
     for (int x = 0; x < color.cols; ++x) {
       const cv::Vec4f c = color(y, x);
-      const bool finite = std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]) &&
-                          std::isfinite(c[3]);
+      const bool finite =
+          std::isfinite(c[0]) && std::isfinite(c[1]) && std::isfinite(c[2]) && std::isfinite(c[3]);
       const float slack = 1e-5f;
       if (!finite || c[3] < 0 || c[3] > 1 + slack || c[0] < 0 || c[1] < 0 || c[2] < 0 ||
           c[0] > c[3] + slack || c[1] > c[3] + slack || c[2] > c[3] + slack) {
@@ -215,8 +216,8 @@ void renderFrame(Renderer& renderer, RenderSettings settings, int k, const Bench
   const double ms = msSince(start);
   const double cpuMs = processCpuMs() - cpuStart;
   result.sliceCount = frame.sliceCount;
-  const cv::Mat image = frame.frame.state.empty() ? cv::Mat(frame.frame.color)
-                                                  : cv::Mat(frame.frame.state);
+  const cv::Mat image =
+      frame.frame.state.empty() ? cv::Mat(frame.frame.color) : cv::Mat(frame.frame.state);
   if (image.cols != settings.size.x || image.rows != settings.size.y) {
     result.problems.push_back("the frame is " + std::to_string(image.cols) + "x" +
                               std::to_string(image.rows));
@@ -277,7 +278,8 @@ std::vector<CaseResult> measureWindow(Renderer& renderer, const IllustrateDatase
   // Every effect changes the picture: a case that renders the plain composite's bytes did not
   // apply its effect.
   for (std::size_t c = kPlain + 1; c < results.size(); ++c) {
-    if (!results[c].firstFrame.empty() && sameImage(results[c].firstFrame, results[kPlain].firstFrame)) {
+    if (!results[c].firstFrame.empty() &&
+        sameImage(results[c].firstFrame, results[kPlain].firstFrame)) {
       results[c].problems.push_back("renders exactly the plain composite");
     }
   }
@@ -406,10 +408,11 @@ nlohmann::json jsonRow(const Measured& m, int window, const std::vector<CaseResu
 }
 
 nlohmann::json missingRow(const Measured& m, int window, const IllustrateCase& c) {
-  return {{"table", "illustrate"}, {"dataset", m.dataset.name}, {"width", window},
-          {"height", window},      {"case", c.key},             {"frames", 0},
-          {"ms_median", nullptr},  {"fps", nullptr},            {"missing", m.missing},
-          {"check", nullptr}};
+  return {{"table", "illustrate"}, {"dataset", m.dataset.name},
+          {"width", window},       {"height", window},
+          {"case", c.key},         {"frames", 0},
+          {"ms_median", nullptr},  {"fps", nullptr},
+          {"missing", m.missing},  {"check", nullptr}};
 }
 
 }  // namespace
@@ -435,14 +438,15 @@ TableResult runIllustrateTable(const BenchOptions& options, Progress& progress) 
   table.title =
       "Ebert–Rheingans volume illustration: fps of the plain composite, each effect alone and "
       "all together, frame-time ratios, RA from the same run";
-  TextTable text({"dataset", "size", "window", "case", "fps", "ratio", "target", "RA fps",
-                  "cpu ms", "cpu ratio", "check"});
+  TextTable text({"dataset", "size", "window", "case", "fps", "ratio", "target", "RA fps", "cpu ms",
+                  "cpu ratio", "check"});
   const auto& columns = illustrateCases();
   PlotSpec plot;
   plot.title = "illustrate: frames per second";
   plot.valueLabel = "fps";
   plot.logScale = false;
-  for (std::size_t c = 0; c < columns.size(); ++c) plot.series.push_back({columns[c].key, false, int(c)});
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    plot.series.push_back({columns[c].key, false, int(c)});
   for (const Measured& m : measured) {
     for (const auto& window : m.windows) {
       if (!m.missing.empty()) {
@@ -466,9 +470,8 @@ TableResult runIllustrateTable(const BenchOptions& options, Progress& progress) 
                      check});
         fps.push_back(r.stats.fps());
         if (!r.problems.empty()) {
-          table.failures.push_back(std::string(m.dataset.name) + " " +
-                                   std::to_string(window.size) + "² " + r.column->key + ": " +
-                                   problemsOf(r));
+          table.failures.push_back(std::string(m.dataset.name) + " " + std::to_string(window.size) +
+                                   "² " + r.column->key + ": " + problemsOf(r));
         }
       }
       plot.groups.push_back(std::string(m.dataset.name) + " " + std::to_string(window.size) + "²");

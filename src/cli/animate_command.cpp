@@ -227,7 +227,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
   std::cout << summary << "\n";
 }
 
-const CommandRegistration registration(20, [](CLI::App& app) {
+const CommandRegistration registerAnimateCommand(20, [](CLI::App& app) {
   auto renderFlags = std::make_shared<RenderFlags>();
   auto flags = std::make_shared<AnimateFlags>();
   CLI::App* command = app.add_subcommand(

@@ -41,7 +41,7 @@ void run(BenchFlags flags) {
   }
 }
 
-const CommandRegistration registration(40, [](CLI::App& app) {
+const CommandRegistration registerBenchCommand(40, [](CLI::App& app) {
   auto flags = std::make_shared<BenchFlags>();
   auto& o = flags->options;
   CLI::App* command = app.add_subcommand(

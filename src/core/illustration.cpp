@@ -100,7 +100,8 @@ std::vector<ParameterSpec> makeParameters() {
   std::vector<ParameterSpec> specs = {
       // Transfer function and lighting. The paper gives no k_os, k_oe: 1 and 2 keep the
       // low-valued noise of CT air nearly transparent (o_v = v²) while dense material saturates.
-      parameter("k_os", 1.0, {}, "opacity scale: o_v = k_os·v^k_oe, v the value normalized to [0, 1]"),
+      parameter("k_os", 1.0, {},
+                "opacity scale: o_v = k_os·v^k_oe, v the value normalized to [0, 1]"),
       exponent("k_oe", 2.0, {}, "opacity exponent (< 1 softens, > 1 raises contrast)"),
       // The plain lit composite (the paper's I_G, its gaseous illumination): ambient plus
       // diffuse from the lights, ours.
@@ -126,7 +127,8 @@ std::vector<ParameterSpec> makeParameters() {
       // Figure 6 (its "kse = 0.5" is k_de).
       fraction("k_ds", 1.0, E::Distance, "distance: size of the blend towards c_b"),
       exponent("k_de", 0.5, E::Distance, "distance: rate of the blend with depth"),
-      exponent("k_hpe", 1.0, E::Halo, "halo: how directly a neighbour's normal must point at the sample"),
+      exponent("k_hpe", 1.0, E::Halo,
+               "halo: how directly a neighbour's normal must point at the sample"),
       exponent("k_hse", 2.0, E::Halo, "halo: how tightly halos stay in the plane across the view"),
       // Ours: the paper's two scalars and the neighbourhood's radius (4 voxels: halos visible
       // at 256², still 2.9× the plain composite's frame time, README's illustrate table).
@@ -230,11 +232,12 @@ void parseParameterList(std::string_view text, const std::string& where,
         for (const auto& s : illustrationParameters()) known.push_back(s.name);
       }
       throwInputError(where, quotedText(name) + " is not a parameter" +
-                                 (owner.empty() ? "" : " of " + owner) + " (known: " +
-                                 joined(known) + ")");
+                                 (owner.empty() ? "" : " of " + owner) +
+                                 " (known: " + joined(known) + ")");
     }
     const auto value = parseNumber(valueText);
-    if (!value) throwInputError(where + ": " + spec->name, quotedText(valueText) + " is not a number");
+    if (!value)
+      throwInputError(where + ": " + spec->name, quotedText(valueText) + " is not a number");
     checkParameter(*spec, *value, where);
     values[spec->name] = *value;
   }
@@ -281,8 +284,8 @@ EffectSet styleEffects(const nlohmann::json& value, const std::string& where) {
 
 std::vector<Light> styleLights(const nlohmann::json& value, const std::string& where) {
   if (!value.is_array()) {
-    throwInputError(where, "must be a list of lights \"AZ,EL\" or [AZ, EL] (got " +
-                               jsonSnippet(value) + ")");
+    throwInputError(
+        where, "must be a list of lights \"AZ,EL\" or [AZ, EL] (got " + jsonSnippet(value) + ")");
   }
   if (value.empty() || value.size() > kMaxLights) {
     throwInputError(where, "must hold 1 to " + std::to_string(kMaxLights) + " lights (got " +
@@ -308,8 +311,8 @@ std::vector<Light> styleLights(const nlohmann::json& value, const std::string& w
 IllustrationStyle parseStyle(const nlohmann::json& json, const std::string& source,
                              const std::filesystem::path& baseDir) {
   if (!json.is_object()) {
-    throwInputError(source, "must be a JSON object of style settings (got " + jsonSnippet(json) +
-                                ")");
+    throwInputError(source,
+                    "must be a JSON object of style settings (got " + jsonSnippet(json) + ")");
   }
   checkJsonKeys(json,
                 {"description", "effects", "parameters", "transfer_function", "color",
@@ -332,8 +335,9 @@ IllustrationStyle parseStyle(const nlohmann::json& json, const std::string& sour
       if (!spec) {
         std::vector<std::string> known;
         for (const auto& s : illustrationParameters()) known.push_back(s.name);
-        throwInputError(where("parameters"), quotedText(item.key()) + " is not a parameter (known: " +
-                                                 joined(known) + ")");
+        throwInputError(
+            where("parameters"),
+            quotedText(item.key()) + " is not a parameter (known: " + joined(known) + ")");
       }
       const double value = jsonNumber(item.value(), where("parameters") + ": " + spec->name);
       checkParameter(*spec, value, where("parameters"));
@@ -386,8 +390,8 @@ IllustrationStyle loadStyle(const std::string& nameOrFile) {
   }
   const auto names = stylePresetNames();
   if (std::find(names.begin(), names.end(), nameOrFile) == names.end()) {
-    throwInputError("--style", "unknown preset " + quotedText(nameOrFile) + " (presets: " +
-                                   joined(names) + "; or a .json file)");
+    throwInputError("--style", "unknown preset " + quotedText(nameOrFile) +
+                                   " (presets: " + joined(names) + "; or a .json file)");
   }
   // Presets hold their transfer functions inline (there is no folder beside them).
   return parseStyleText(embeddedStyleSource(nameOrFile + ".json"), "preset " + nameOrFile, {});
@@ -404,12 +408,9 @@ double Illustration::operator[](std::string_view name) const {
 nlohmann::json Illustration::toJson() const {
   nlohmann::json lightList = nlohmann::json::array();
   for (const auto& light : lights) lightList.push_back({light.azimuthDeg, light.elevationDeg});
-  nlohmann::json json = {{"style", style},
-                         {"effects", effects.names()},
-                         {"parameters", parameters},
-                         {"color", color.hex()},
-                         {"sketch_color", sketchColor.hex()},
-                         {"lights", lightList}};
+  nlohmann::json json = {
+      {"style", style},       {"effects", effects.names()},        {"parameters", parameters},
+      {"color", color.hex()}, {"sketch_color", sketchColor.hex()}, {"lights", lightList}};
   json["transfer_function"] =
       transferFunction ? transferFunction->toJson() : nlohmann::json("power (k_os, k_oe)");
   if (transferFunction) json["transfer_function_source"] = transferFunction->source;

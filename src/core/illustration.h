@@ -33,7 +33,7 @@ class EffectSet {
   bool has(Effect effect) const { return (bits_ >> int(effect)) & 1u; }
   void add(Effect effect) { bits_ |= 1u << int(effect); }
   bool empty() const { return bits_ == 0; }
-  std::vector<Effect> list() const;       // in Effect order
+  std::vector<Effect> list() const;        // in Effect order
   std::vector<std::string> names() const;  // in Effect order
   bool operator==(const EffectSet&) const = default;
 
@@ -51,7 +51,7 @@ struct ParameterSpec {
   double defaultValue = 0;
   double min = 0;  // inclusive, unless minExclusive
   bool minExclusive = false;
-  double max = 1e9;  // inclusive
+  double max = 1e9;              // inclusive
   std::optional<Effect> effect;  // the effect it shapes; none: transfer function and lighting
   std::string meaning;           // one line, for help and the README
 };
@@ -117,7 +117,8 @@ IllustrationStyle parseStyle(const nlohmann::json& json, const std::string& sour
 IllustrationStyle parseStyleText(std::string_view text, const std::string& source,
                                  const std::filesystem::path& baseDir);
 
-// The presets embedded at build time (src/core/styles/*.json), by name ("fig4-boundary-silhouette").
+// The presets embedded at build time (src/core/styles/*.json), by name
+// ("fig4-boundary-silhouette").
 std::vector<std::string> stylePresetNames();
 // `nameOrFile`: a preset name, or a path to a .json style file. InputError for an unknown
 // preset ("--style: unknown preset 'x' (presets: ...; or a .json file)") or a bad file.
@@ -128,7 +129,7 @@ bool isStyleFile(std::string_view text);
 // What a frame uses: a style resolved against the defaults.
 struct Illustration {
   EffectSet effects;
-  ParameterValues parameters;  // every parameter
+  ParameterValues parameters;                        // every parameter
   std::optional<TransferFunction> transferFunction;  // none: o_v = k_os·v^k_oe over `color`
   Rgba color{255, 255, 240, 255};                    // ivory
   Rgba sketchColor{0, 0, 0, 255};
@@ -142,7 +143,7 @@ struct Illustration {
 };
 
 // `base` (a loaded style, or empty), then each field `overrides` sets, over the defaults.
-Illustration resolveIllustration(const IllustrationStyle& base,
-                                 const IllustrationStyle& overrides, std::string styleName);
+Illustration resolveIllustration(const IllustrationStyle& base, const IllustrationStyle& overrides,
+                                 std::string styleName);
 
 }  // namespace vsil

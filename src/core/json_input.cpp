@@ -21,8 +21,8 @@ std::string conciseReason(const std::string& what) {
   } else if (const auto bracket = reason.find("] "); bracket != std::string::npos) {
     reason = reason.substr(bracket + 2);
   }
-  std::replace_if(reason.begin(), reason.end(), [](char c) { return c == '\n' || c == '\r'; },
-                  ' ');
+  std::replace_if(
+      reason.begin(), reason.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   constexpr std::size_t kMaxReason = 160;
   if (reason.size() > kMaxReason) reason = reason.substr(0, kMaxReason) + "...";
   return reason;
@@ -43,22 +43,24 @@ nlohmann::json readJsonFile(const std::string& path) {
 }
 
 std::string jsonSnippet(const nlohmann::json& value) {
-  std::string text = value.dump(-1, ' ', /*ensure_ascii=*/true,
-                                nlohmann::json::error_handler_t::replace);
+  std::string text =
+      value.dump(-1, ' ', /*ensure_ascii=*/true, nlohmann::json::error_handler_t::replace);
   constexpr std::size_t kMax = 40;
   if (text.size() > kMax) text = text.substr(0, kMax) + "...";
   return text;
 }
 
 double jsonNumber(const nlohmann::json& value, const std::string& where) {
-  if (!value.is_number()) throwInputError(where, "must be a number (got " + jsonSnippet(value) + ")");
+  if (!value.is_number())
+    throwInputError(where, "must be a number (got " + jsonSnippet(value) + ")");
   const double number = value.get<double>();
   if (!std::isfinite(number)) throwInputError(where, "must be a finite number");
   return number;
 }
 
 const std::string& jsonString(const nlohmann::json& value, const std::string& where) {
-  if (!value.is_string()) throwInputError(where, "must be a string (got " + jsonSnippet(value) + ")");
+  if (!value.is_string())
+    throwInputError(where, "must be a string (got " + jsonSnippet(value) + ")");
   return value.get_ref<const std::string&>();
 }
 

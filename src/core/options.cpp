@@ -29,8 +29,8 @@ std::string joined(const std::vector<std::string>& items, const std::string& sep
 
 // What a value of each kind is, in OptionKind's order, for messages.
 const char* kindName(OptionKind kind) {
-  static const char* const names[] = {"a number", "a whole number",  "a name",
-                                      "text",     "on or off",       "a list of texts"};
+  static const char* const names[] = {"a number", "a whole number", "a name",
+                                      "text",     "on or off",      "a list of texts"};
   return names[int(kind)];
 }
 
@@ -228,8 +228,8 @@ void OptionSpec::check(const OptionValue& value) const {
     const bool belowMin = minExclusive ? !(number > min) : !(number >= min);
     const bool aboveMax = maxExclusive ? !(number < max) : !(number <= max);
     if (belowMin || aboveMax) {
-      throwInputError(flag(), "must be " + describeRange(*this) + " (got " + formatNumber(number) +
-                                  ")");
+      throwInputError(flag(),
+                      "must be " + describeRange(*this) + " (got " + formatNumber(number) + ")");
     }
   }
   if (kind == OptionKind::Text && numberCount > 0) {
@@ -242,7 +242,8 @@ void OptionSpec::check(const OptionValue& value) const {
   if (kind == OptionKind::Choice) {
     const std::string& name = std::get<std::string>(value);
     if (std::find(choices.begin(), choices.end(), name) == choices.end()) {
-      throwInputError(flag(), "unknown value '" + name + "' (known: " + joined(choices, ", ") + ")");
+      throwInputError(flag(),
+                      "unknown value '" + name + "' (known: " + joined(choices, ", ") + ")");
     }
   }
   if (validate) validate(value);

@@ -62,9 +62,9 @@ struct OptionSpec {
   static OptionSpec text(std::string name, std::string help);  // default: empty
   static OptionSpec list(std::string name, std::string help);  // default: none given
   static OptionSpec flag(std::string name, std::string help);  // default: off
-  OptionSpec& above(double bound);    // > bound
-  OptionSpec& atLeast(double bound);  // >= bound
-  OptionSpec& atMost(double bound);   // <= bound
+  OptionSpec& above(double bound);                             // > bound
+  OptionSpec& atLeast(double bound);                           // >= bound
+  OptionSpec& atMost(double bound);                            // <= bound
   OptionSpec& validatedBy(std::function<void(const OptionValue&)> check);
   // Text: `count` numbers separated by commas (numberCount).
   OptionSpec& holdsNumbers(int count);
@@ -109,7 +109,7 @@ class OptionReader {
                DerivedDefaults derived = {});
   double number(std::string_view name) const;
   int integer(std::string_view name) const;
-  bool enabled(std::string_view name) const;  // a Switch
+  bool enabled(std::string_view name) const;             // a Switch
   const std::string& text(std::string_view name) const;  // Choice or Text
   const std::vector<std::string>& list(std::string_view name) const;
   bool given(std::string_view name) const;

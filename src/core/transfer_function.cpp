@@ -16,9 +16,8 @@ glm::dvec4 TransferFunction::at(double value) const {
   const auto rgbaOf = [](const TransferPoint& p) { return glm::dvec4(p.color, p.opacity); };
   if (value < points.front().value) return rgbaOf(points.front());
   // The first point above `value`; the one before it is at or below.
-  const auto above = std::upper_bound(
-      points.begin(), points.end(), value,
-      [](double v, const TransferPoint& p) { return v < p.value; });
+  const auto above = std::upper_bound(points.begin(), points.end(), value,
+                                      [](double v, const TransferPoint& p) { return v < p.value; });
   if (above == points.end()) return rgbaOf(points.back());
   const TransferPoint& low = *(above - 1);
   const TransferPoint& high = *above;
@@ -48,8 +47,10 @@ nlohmann::json TransferFunction::toJson() const {
 
 TransferFunction parseTransferFunction(const nlohmann::json& json, const std::string& source) {
   if (!json.is_array()) {
-    throwInputError(source, "must be a list of control points {\"value\", \"color\", "
-                            "\"opacity\"} (got " + jsonSnippet(json) + ")");
+    throwInputError(source,
+                    "must be a list of control points {\"value\", \"color\", "
+                    "\"opacity\"} (got " +
+                        jsonSnippet(json) + ")");
   }
   if (json.empty()) throwInputError(source, "has no control points");
   if (json.size() > kMaxTransferPoints) {
@@ -75,8 +76,8 @@ TransferFunction parseTransferFunction(const nlohmann::json& json, const std::st
     point.color = glm::dvec3(color.r, color.g, color.b) / 255.0;
     point.opacity = jsonNumber(item["opacity"], where + ": opacity");
     if (!(point.opacity >= 0.0 && point.opacity <= 1.0)) {
-      throwInputError(where + ": opacity", "must be in [0, 1] (got " +
-                                               jsonSnippet(item["opacity"]) + ")");
+      throwInputError(where + ": opacity",
+                      "must be in [0, 1] (got " + jsonSnippet(item["opacity"]) + ")");
     }
     if (!tf.points.empty() && point.value < tf.points.back().value) {
       throwInputError(where, "value " + jsonSnippet(item["value"]) +

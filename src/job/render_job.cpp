@@ -235,8 +235,8 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
   postfx.background = output.result.background;
   output.image = composeIllustration(output.result.frame, postfx, impl_->blur);
   output.postfxMs = millisecondsSince(postStart);
-  output.metadata = metadata(request, impl_->input, volume, output.result,
-                             impl_->context.info(), output.postfxMs);
+  output.metadata = metadata(request, impl_->input, volume, output.result, impl_->context.info(),
+                             output.postfxMs);
   output.warnings = warnings(request, volume);
   return output;
 }

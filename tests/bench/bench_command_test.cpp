@@ -32,7 +32,7 @@ int lineCount(const std::string& text) {
 class Nk3Run : public ::testing::Test {
  protected:
   void SetUp() override {
-  VSIL_REQUIRE_DATASETS();
+    VSIL_REQUIRE_DATASETS();
     dir_ = test::scratchDir();
     result_ =
         test::runVsil("bench --table nk3 --datasets " + datasetsDir() +

@@ -81,8 +81,8 @@ TEST(IllustrationInput, EffectsAndParametersByThePapersNames) {
   parseParameterList("k_gc=0.5, k_gs=2", "--param", {}, "", values);
   EXPECT_EQ(values.at("k_gc"), 0.5);
   EXPECT_EQ(values.at("k_gs"), 2.0);
-  for (const char* bad : {"k_zz=1", "k_gc", "k_gc=abc", "k_gc=nan", "k_gc=inf", "k_se=0",
-                          "k_se=-1", "k_ds=2", "k_hr=100"}) {
+  for (const char* bad : {"k_zz=1", "k_gc", "k_gc=abc", "k_gc=nan", "k_gc=inf", "k_se=0", "k_se=-1",
+                          "k_ds=2", "k_hr=100"}) {
     const std::string message =
         inputError([&] { parseParameterList(bad, "--param", {}, "", values); });
     EXPECT_EQ(message.rfind("--param: ", 0), 0u) << bad << " -> " << message;
@@ -111,17 +111,17 @@ TEST(IllustrationInput, StylesSetOnlyWhatTheyNameAndFlagsWin) {
   const Illustration resolved = resolveIllustration(style, flags, "s.json");
   EXPECT_TRUE(resolved.effects.has(Effect::Tone));
   EXPECT_FALSE(resolved.effects.has(Effect::Halo));
-  EXPECT_EQ(resolved["k_gc"], 0.9);   // the flag
-  EXPECT_EQ(resolved["k_gs"], 5.0);   // the default
+  EXPECT_EQ(resolved["k_gc"], 0.9);  // the flag
+  EXPECT_EQ(resolved["k_gs"], 5.0);  // the default
   ASSERT_EQ(resolved.lights.size(), 2u);
   EXPECT_EQ(resolved.lights[1].elevationDeg, 45.0);
   EXPECT_EQ(resolved.background, (Rgba{0, 0, 0x26, 255}));
   // The metadata holds every parameter.
   EXPECT_EQ(resolved.toJson().dump().find("k_hpe") != std::string::npos, true);
 
-  for (const char* bad : {R"({"shininess": 3})", R"({"effects": ["glow"]})",
-                          R"({"parameters": {"k_gc": "high"}})", R"({"lights": ["0,100"]})",
-                          R"({"transfer_function": []})", R"([1, 2])", R"({)"}) {
+  for (const char* bad :
+       {R"({"shininess": 3})", R"({"effects": ["glow"]})", R"({"parameters": {"k_gc": "high"}})",
+        R"({"lights": ["0,100"]})", R"({"transfer_function": []})", R"([1, 2])", R"({)"}) {
     const std::string message = inputError([&] { parseStyleText(bad, "s.json", "."); });
     EXPECT_EQ(message.rfind("s.json: ", 0), 0u) << bad << " -> " << message;
   }

@@ -47,10 +47,14 @@ TEST(Options, ParseChecksKindAndRangeNamingTheFlag) {
 
 TEST(Options, UnknownNamesAreReportedWithTheOwnersOptions) {
   const auto s = specs();
-  EXPECT_EQ(errorOf([&] { checkOptions(s, {{"k-os", 1.0}}, "technique 'x'"); }),
+  EXPECT_EQ(errorOf([&] {
+              checkOptions(s, {{"k-os", 1.0}}, "technique 'x'");
+            }),
             "--k-os: not an option of technique 'x' (its options: --ra-exponent, "
             "--depth-weight, --pipeline, --iso, --light)");
-  EXPECT_EQ(errorOf([&] { checkOptions(s, {{"depth-weight", 2.0}}, "technique 'x'"); }),
+  EXPECT_EQ(errorOf([&] {
+              checkOptions(s, {{"depth-weight", 2.0}}, "technique 'x'");
+            }),
             "--depth-weight: must be in [0, 1] (got 2)");
   EXPECT_NO_THROW(checkOptions(s, {{"depth-weight", 1.0}, {"pipeline", std::string("paper")}},
                                "technique 'x'"));

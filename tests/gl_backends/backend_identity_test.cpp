@@ -74,10 +74,10 @@ TEST_P(BackendIdentity, OsmesaAndEglOnLlvmpipeDrawTheSameBytes) {
       const std::string outputs =
           (technique.outputs.state ? " --state-out " + prefix.string() + "-state.png" : "") +
           (technique.outputs.depth ? " --depth-out " + prefix.string() + "-depth.png" : "");
-      const auto result = test::runVsil("render " + kScenes[scene] + " --technique " +
-                                        c.technique + " " + c.flags + " --fill shaded --width 3 " +
-                                        flags[b] + " --out " + prefix.string() + ".png" + outputs +
-                                        " --meta-out " + prefix.string() + ".json");
+      const auto result =
+          test::runVsil("render " + kScenes[scene] + " --technique " + c.technique + " " + c.flags +
+                        " --fill shaded --width 3 " + flags[b] + " --out " + prefix.string() +
+                        ".png" + outputs + " --meta-out " + prefix.string() + ".json");
       ASSERT_EQ(result.exitCode, 0) << flags[b] << ": " << result.err;
       meta[b] = nlohmann::json::parse(test::readFileBytes(prefix.string() + ".json"));
     }

@@ -11,7 +11,7 @@ namespace {
 
 using test::Bytes;
 
-const glm::ivec3 kDims{5, 4, 3};
+const glm::ivec3 kVtiDims{5, 4, 3};
 
 enum class Format { Ascii, Inline, AppendedRaw, AppendedBase64 };
 
@@ -118,10 +118,10 @@ class VtiRoundTrip : public ::testing::TestWithParam<VtiCase> {};
 
 TEST_P(VtiRoundTrip, ReadsBackTheWrittenSamples) {
   const VtiCase& c = GetParam();
-  const auto values = test::testValues(kDims, c.type);
+  const auto values = test::testValues(kVtiDims, c.type);
   const Volume volume = loadVolume(writeVti(test::scratchDir(), c, values));
   EXPECT_EQ(volume.name, "image");
-  EXPECT_EQ(volume.dims, kDims);
+  EXPECT_EQ(volume.dims, kVtiDims);
   EXPECT_EQ(volume.spacing, glm::dvec3(0.5, 1, 2.25));
   EXPECT_EQ(volume.type, c.type);
   if (c.format == Format::Ascii && c.type == SampleType::Float32) {
@@ -135,7 +135,7 @@ TEST_P(VtiRoundTrip, ReadsBackTheWrittenSamples) {
   }
 }
 
-std::vector<VtiCase> allCases() {
+std::vector<VtiCase> vtiCases() {
   std::vector<VtiCase> cases;
   for (SampleType type :
        {SampleType::UInt8, SampleType::UInt16, SampleType::Int16, SampleType::Float32}) {
@@ -153,7 +153,7 @@ std::vector<VtiCase> allCases() {
   return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(Vti, VtiRoundTrip, ::testing::ValuesIn(allCases()),
+INSTANTIATE_TEST_SUITE_P(Vti, VtiRoundTrip, ::testing::ValuesIn(vtiCases()),
                          [](const auto& info) { return caseName(info.param); });
 
 }  // namespace

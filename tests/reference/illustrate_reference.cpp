@@ -165,8 +165,8 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
       taps.push_back({glm::vec3(voxel / glm::dvec3(volume.dims)), worldFromEye * glm::vec3(-eye),
                       float(tap.weight)});
     }
-    mask = haloMaskVoxels(volume.samples.data(), volume.dims,
-                          visibleValues(ill, table, range), haloMaskReach(ill["k_hr"]));
+    mask = haloMaskVoxels(volume.samples.data(), volume.dims, visibleValues(ill, table, range),
+                          haloMaskReach(ill["k_hr"]));
   }
   const auto maskAt = [&](glm::ivec3 t) {
     return float(mask[(std::size_t(t.z) * std::size_t(volume.dims.y) + std::size_t(t.y)) *

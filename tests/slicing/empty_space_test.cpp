@@ -10,11 +10,11 @@
 
 #include <gtest/gtest.h>
 
+#include "frame_compare.h"
 #include "gl_harness.h"
 #include "slice_sampler.h"
 #include "slicing/empty_space.h"
 #include "slicing/gl_objects.h"
-#include "frame_compare.h"
 #include "slicing/renderer.h"
 #include "slicing/technique.h"
 #include "slicing/technique_table.h"
@@ -331,8 +331,8 @@ std::vector<SceneCase> sceneCases() {
   std::vector<SceneCase> cases;
   for (const auto& [viewName, spec] : views) {
     for (const auto& technique : techniqueTable()) {
-      cases.push_back({technique.name + viewName, technique.name,
-                       test::isoOptions(technique, 0.2), spec});
+      cases.push_back(
+          {technique.name + viewName, technique.name, test::isoOptions(technique, 0.2), spec});
     }
   }
   return cases;

@@ -151,8 +151,8 @@ TEST_P(GlMatchesReference, PixelByPixel) {
       if (technique.outputs.color) {
         double error = 0;
         for (int k = 0; k < 4; ++k) {
-          error = std::max(error, double(std::abs(gl.frame.color(y, x)[k] -
-                                                  cpu.frame.color(y, x)[k])));
+          error =
+              std::max(error, double(std::abs(gl.frame.color(y, x)[k] - cpu.frame.color(y, x)[k])));
         }
         same = same && error <= reference.colorTolerance;
         if (!cpu.ambiguous(y, x)) maxColorError = std::max(maxColorError, error);
@@ -179,8 +179,7 @@ TEST_P(GlMatchesReference, PixelByPixel) {
   if (technique.outputs.state) {
     EXPECT_GT(lines, 10) << "the scene should show lines";
   }
-  EXPECT_EQ(unexplained, 0) << "mismatches away from decision thresholds:"
-                            << firstMismatches.str();
+  EXPECT_EQ(unexplained, 0) << "mismatches away from decision thresholds:" << firstMismatches.str();
   // Near-threshold disagreements are rare: at most 1 % of the pixels shown (the line pixels
   // where a technique draws lines) unless the technique's reference says why more.
   EXPECT_LE(ambiguous,

@@ -27,7 +27,9 @@ struct EffectCase {
   bool transferFunction = false;
 };
 
-std::ostream& operator<<(std::ostream& out, const EffectCase& c) { return out << c.name; }
+std::ostream& operator<<(std::ostream& out, const EffectCase& c) {
+  return out << c.name;
+}
 
 // A transfer function over gen:sphere's values (0 .. ~1): transparent outside, a reddish shell,
 // an opaque ivory core; written once per test program.
@@ -95,8 +97,8 @@ TEST_P(IllustrateMatchesReference, EveryChannelWithin2Of255) {
     for (int x = 0; x < settings.size.x; ++x) {
       double pixelError = 0;
       for (int k = 0; k < 4; ++k) {
-        pixelError = std::max(
-            pixelError, double(std::abs(gl.frame.color(y, x)[k] - cpu.frame.color(y, x)[k])));
+        pixelError = std::max(pixelError,
+                              double(std::abs(gl.frame.color(y, x)[k] - cpu.frame.color(y, x)[k])));
       }
       maxError = std::max(maxError, pixelError);
       if (pixelError > 2.0 / 255.0 && ++over <= 3) {
@@ -143,10 +145,10 @@ TEST_F(IllustrateTest, NeutralParametersGiveExactlyThePlainComposite) {
   const Volume volume = generateVolume("sphere:48");
   const RenderResult plain = render(volume, illustrateSettings("", "k_os=0.3"));
   // Every effect but sketch (which has no neutral setting: it replaces the colour).
-  const RenderResult neutral = render(
-      volume, illustrateSettings("boundary,silhouette,fading,distance,halo,tone",
-                                 "k_os=0.3,k_gc=1,k_gs=0,k_sc=1,k_ss=0,k_fs=0,k_fv=0,k_fo=0,"
-                                 "k_ds=0,k_hd=0,k_ho=0,k_ta=1,k_td=0,k_ty=0,k_tb=0"));
+  const RenderResult neutral =
+      render(volume, illustrateSettings("boundary,silhouette,fading,distance,halo,tone",
+                                        "k_os=0.3,k_gc=1,k_gs=0,k_sc=1,k_ss=0,k_fs=0,k_fv=0,k_fo=0,"
+                                        "k_ds=0,k_hd=0,k_ho=0,k_ta=1,k_td=0,k_ty=0,k_tb=0"));
   EXPECT_GT(test::shownPixels(plain.frame), 500);
   EXPECT_EQ(test::differingPixels(plain.frame, neutral.frame), 0)
       << "max channel difference " << maxChannelDifference(plain.frame.color, neutral.frame.color);
@@ -213,8 +215,8 @@ TEST_F(IllustrateTest, SilhouetteEnhancementRaisesOpacityAtTheRimNotWhereTheSphe
   int rim = 48;
   while (rim + 1 < 96 && plain.frame.color(y, rim + 1)[3] > 1e-3f) ++rim;
   ASSERT_GT(rim, 60);
-  std::cout << "[ info ] alpha ratio centre " << alphaRatio(48, y) << ", rim (x " << rim - 1
-            << ") " << alphaRatio(rim - 1, y) << "\n";
+  std::cout << "[ info ] alpha ratio centre " << alphaRatio(48, y) << ", rim (x " << rim - 1 << ") "
+            << alphaRatio(rim - 1, y) << "\n";
   EXPECT_LE(alphaRatio(48, y), 1.0f);
   EXPECT_GT(alphaRatio(rim - 1, y), 2.0f);
 }

@@ -36,9 +36,8 @@ TEST_F(GlTest, EveryEmbeddedShaderIsKeyedByItsPathUnderSlicing) {
 TEST_F(GlTest, CacheBuildsEachVariantOnceAndVariantsDiffer) {
   gl::ProgramCache cache;
   const gl::ProgramSpec plain = gl::screenPassProgram({}, "shaders/mark_dead.frag");
-  const gl::ProgramSpec variant = gl::screenPassProgram({"shaders/hit_records.glsl"},
-                                                        "shaders/mark_dead.frag",
-                                                        {"NEIGHBOURS_FINAL"});
+  const gl::ProgramSpec variant = gl::screenPassProgram(
+      {"shaders/hit_records.glsl"}, "shaders/mark_dead.frag", {"NEIGHBOURS_FINAL"});
   EXPECT_NE(plain.key(), variant.key());
   // mark_dead.frag needs hit_records.glsl; listing it makes the program build.
   const gl::ProgramSpec withRecords =
@@ -62,8 +61,8 @@ TEST_F(GlTest, CompileErrorsNameTheFileAndLine) {
 TEST_F(GlTest, GeneratedSourcesCarryTheirLabelIntoErrorsAndTheCacheKey) {
   gl::ProgramSpec spec = gl::screenPassProgram({}, "shaders/state_constants.frag");
   spec.fragment.insert(spec.fragment.begin() + 1,
-                       gl::ShaderSource::generated("rules:focus.rules",
-                                                   "\n\nfloat broken() { return undefinedName; }\n"));
+                       gl::ShaderSource::generated(
+                           "rules:focus.rules", "\n\nfloat broken() { return undefinedName; }\n"));
   const std::string error = errorOf(spec);
   EXPECT_NE(error.find("rules:focus.rules:3("), std::string::npos) << error;
 

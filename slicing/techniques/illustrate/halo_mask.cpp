@@ -52,9 +52,8 @@ std::vector<std::uint8_t> haloMaskVoxels(const float* samples, glm::ivec3 dims,
   return other;
 }
 
-void HaloMaskTexture::update(const std::vector<double>& key, GLuint volumeTexture,
-                             glm::ivec3 dims, const std::function<bool(float)>& visible,
-                             int reach) {
+void HaloMaskTexture::update(const std::vector<double>& key, GLuint volumeTexture, glm::ivec3 dims,
+                             const std::function<bool(float)>& visible, int reach) {
   if (texture_ && key == key_) return;
   std::vector<float> samples(std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z));
   GLint bound = 0;
@@ -68,8 +67,8 @@ void HaloMaskTexture::update(const std::vector<double>& key, GLuint volumeTextur
   if (!texture_) texture_ = gl::createTexture();
   VSIL_GL(glBindTexture(GL_TEXTURE_3D, texture_.id()));
   VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
-  VSIL_GL(glTexImage3D(GL_TEXTURE_3D, 0, GL_R8, dims.x, dims.y, dims.z, 0, GL_RED,
-                       GL_UNSIGNED_BYTE, mask.data()));
+  VSIL_GL(glTexImage3D(GL_TEXTURE_3D, 0, GL_R8, dims.x, dims.y, dims.z, 0, GL_RED, GL_UNSIGNED_BYTE,
+                       mask.data()));
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   VSIL_GL(glBindTexture(GL_TEXTURE_3D, GLuint(bound)));

@@ -14,8 +14,8 @@ namespace {
 
 const std::vector<OptionSpec>& illustrateOptions() {
   static const std::vector<OptionSpec> options{
-      effectsOption(),         parameterOption(),      styleOption(), transferFunctionOption(),
-      colorOption(),           sketchColorOption(),    lightOption()};
+      effectsOption(), parameterOption(),   styleOption(), transferFunctionOption(),
+      colorOption(),   sketchColorOption(), lightOption()};
   return options;
 }
 
@@ -57,13 +57,12 @@ std::vector<HaloTap> haloTaps(double radiusVoxels) {
   std::vector<HaloTap> taps;
   const double diagonal = std::sqrt(0.5);
   for (int k = 0; k < 4; ++k) {
-    const glm::dvec2 axis = k == 0 ? glm::dvec2(1, 0)
+    const glm::dvec2 axis = k == 0   ? glm::dvec2(1, 0)
                             : k == 1 ? glm::dvec2(0, 1)
                             : k == 2 ? glm::dvec2(-1, 0)
                                      : glm::dvec2(0, -1);
     taps.push_back({axis, 0.5 * radiusVoxels, 0});
-    const glm::dvec2 corner(k == 0 || k == 3 ? diagonal : -diagonal,
-                            k < 2 ? diagonal : -diagonal);
+    const glm::dvec2 corner(k == 0 || k == 3 ? diagonal : -diagonal, k < 2 ? diagonal : -diagonal);
     taps.push_back({corner, radiusVoxels, 0});
   }
   double sum = 0;
@@ -76,8 +75,8 @@ ResolvedOptions IllustrateTechnique::resolve(const FrameContext& frame) {
   illustration_ = illustrationFromOptions(illustrateOptions(), *frame.options);
   table_.clear();
   if (illustration_.transferFunction) {
-    table_ = illustration_.transferFunction->table(frame.valueRange,
-                                                   TransferFunctionTexture::kEntries);
+    table_ =
+        illustration_.transferFunction->table(frame.valueRange, TransferFunctionTexture::kEntries);
   }
   ResolvedOptions resolved;
   resolved.background = illustration_.background;
@@ -106,8 +105,8 @@ float transparentBelow(const Illustration& illustration, const std::vector<glm::
   if (first == table.begin()) return -std::numeric_limits<float>::infinity();
   if (first == table.end()) return range.max;
   const double before = double(first - table.begin() - 1);
-  return float(double(range.min) + (double(range.max) - double(range.min)) * before /
-                                       double(table.size() - 1));
+  return float(double(range.min) +
+               (double(range.max) - double(range.min)) * before / double(table.size() - 1));
 }
 
 BrickOccupancy IllustrateTechnique::occupancy(const FrameContext& frame) const {
@@ -158,7 +157,8 @@ void IllustrateTechnique::beginFrame(const FrameContext& frame) {
 void IllustrateTechnique::setUniforms(const FrameContext& frame) {
   gl::Program& program = *program_;
   program.use();
-  for (const auto& [name, value] : illustration_.parameters) program.set(name.c_str(), float(value));
+  for (const auto& [name, value] : illustration_.parameters)
+    program.set(name.c_str(), float(value));
   const glm::mat3 rotation = worldFromEye(*frame.view);
   program.set("worldFromEye", rotation);
   std::vector<glm::vec3> lights;

@@ -51,9 +51,9 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
                 gl::EmptyFramebuffer(size, depth)});
   }
   pipeline_ = frame.options->text("pipeline") == "paper" ? Pipeline::Paper : Pipeline::Fast;
-  const std::vector<std::string> variant =
-      pipeline_ == Pipeline::Paper ? std::vector<std::string>{"PAPER_PIPELINE"}
-                                   : std::vector<std::string>{};
+  const std::vector<std::string> variant = pipeline_ == Pipeline::Paper
+                                               ? std::vector<std::string>{"PAPER_PIPELINE"}
+                                               : std::vector<std::string>{};
   gl::ProgramCache& cache = *frame.programs;
   programs_.footprint =
       &cache.get(gl::slicePassProgram(sources(), "techniques/silhouette/footprint.frag", variant));
