@@ -26,7 +26,8 @@ void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
   drawSlicePolygon(frame, slice);
 }
 
-void FirstHitRecorder::beginFrame(const FrameContext& frame) {
+void FirstHitRecorder::beginFrame(const FrameContext& frame,
+                                  std::optional<MaterialThreshold> material) {
   const glm::ivec2 size = frame.view->viewport;
   if (!targets_ || targets_->record.size() != size) {
     targets_.reset();
@@ -34,10 +35,17 @@ void FirstHitRecorder::beginFrame(const FrameContext& frame) {
     const GLuint depth = record.depthStencil();
     targets_.emplace(Targets{std::move(record), gl::EmptyFramebuffer(size, depth)});
   }
-  slicePass_ =
-      &frame.programs->get(gl::slicePassProgram(hitRecordSources(), "shaders/first_hit.frag"));
+  slicePass_ = &frame.programs->get(gl::slicePassProgram(
+      hitRecordSources(), "shaders/first_hit.frag",
+      material ? std::vector<std::string>{"MATERIAL_THRESHOLD"} : std::vector<std::string>{}));
   slicePass_->use();
-  slicePass_->set("isoValue", float(frame.options->number("iso")));
+  if (material) {
+    slicePass_->set("materialEps", material->materialEps);
+    maximumTexture_ = material->maximumTexture;
+  } else {
+    slicePass_->set("isoValue", float(frame.options->number("iso")));
+    maximumTexture_ = 0;
+  }
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   const GLfloat zero[4] = {0, 0, 0, 0};
   targets_->record.bindForDrawing();
@@ -54,6 +62,9 @@ void FirstHitRecorder::drawSlice(const FrameContext& frame, const SliceContext& 
     gl::DepthTest skipEmptyAndDead(GL_GREATER, /*write=*/false);
     gl::Blending keepFirstHit(GL_FUNC_ADD, GL_ONE_MINUS_DST_ALPHA, GL_DST_ALPHA);
     slicePass_->use();
+    if (maximumTexture_ != 0) {
+      gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_2D, maximumTexture_);
+    }
     drawSlicePolygon(frame, slice);
   }
   if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {

@@ -39,14 +39,22 @@ void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
                     DeadRule rule, float deadOpacity = 1.0f);
 
 // Records each pixel's first iso-surface hit (shaders/first_hit.frag), for the techniques that
-// need no more of a ray (rightangle, firsthit): one pass per slice keeps the first hit by
+// need no more of a ray (rightangle, firsthit, demip's second sweep): one pass per slice keeps the first hit by
 // blending, skips empty space in front and, every kMarkDeadInterval slices, pixels that have
 // their hit.
 class FirstHitRecorder {
  public:
-  // Targets for the frame's size, the slice pass's program and iso value, the record cleared
-  // and the depth where rays enter occupied bricks written.
-  void beginFrame(const FrameContext& frame);
+  // Instead of the iso value, a threshold per pixel: DEMIP's second sweep looks for the first
+  // sample within `materialEps` of the pixel's maximum (an R32F texture of the frame's size).
+  struct MaterialThreshold {
+    GLuint maximumTexture = 0;
+    float materialEps = 0.0f;
+  };
+
+  // Targets for the frame's size, the slice pass's program and its threshold (the iso value, or
+  // `material`), the record cleared and the depth where rays enter occupied bricks written.
+  void beginFrame(const FrameContext& frame,
+                  std::optional<MaterialThreshold> material = std::nullopt);
   void drawSlice(const FrameContext& frame, const SliceContext& slice);
   // RGBA32F (STATE_FILLED, depth, first-hit eye distance, 1) at hits, 0 elsewhere.
   const gl::RenderTarget& record() const { return targets_->record; }
@@ -58,6 +66,7 @@ class FirstHitRecorder {
   };
   std::optional<Targets> targets_;
   gl::Program* slicePass_ = nullptr;
+  GLuint maximumTexture_ = 0;  // bound for the slice pass when the threshold is per pixel
 };
 
 // The last pass of a frame (shaders/finish_hits.frag): shades the first hit recorded in

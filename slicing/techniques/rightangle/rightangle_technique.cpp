@@ -12,7 +12,8 @@ TechniqueInfo rightAngleTechniqueInfo() {
            OptionSpec::number("ra-threshold", 0.3,
                               "a first hit is a line pixel where (1 - |n.v|)^k exceeds this")},
           FrameOutputs{.state = true, .color = false, .depth = true},
-          [] { return std::make_unique<RightAngleTechnique>(); }};
+          [] { return std::make_unique<RightAngleTechnique>(); },
+          /*checkValues=*/{}};
 }
 
 BrickOccupancy RightAngleTechnique::occupancy(const FrameContext& frame) const {

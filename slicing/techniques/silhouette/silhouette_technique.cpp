@@ -30,7 +30,8 @@ TechniqueInfo silhouetteTechniqueInfo() {
                               "fast (fused in-place passes, empty-space skipping) or paper (the "
                               "paper's three passes); the same pixels")},
           FrameOutputs{.state = true, .color = false, .depth = true},
-          [] { return std::make_unique<SilhouetteTechnique>(); }};
+          [] { return std::make_unique<SilhouetteTechnique>(); },
+          /*checkValues=*/{}};
 }
 
 BrickOccupancy SilhouetteTechnique::occupancy(const FrameContext& frame) const {
