@@ -10,7 +10,7 @@ TechniqueInfo firstHitTechniqueInfo() {
           {isoOption()},
           FrameOutputs{.state = false, .color = true, .depth = true},
           [] { return std::make_unique<FirstHitTechnique>(); },
-          /*checkValues=*/{}};
+          /*usesGradients=*/false, /*checkValues=*/{}};
 }
 
 BrickOccupancy FirstHitTechnique::occupancy(const FrameContext& frame) const {

@@ -14,7 +14,8 @@ TechniqueInfo lmipTechniqueInfo() {
           {windowOption(), lmipThresholdOption()},
           FrameOutputs{.state = false, .color = true, .depth = true},
           [] { return std::make_unique<LmipTechnique>(); },
-          checkWindow};
+          /*usesGradients=*/false,
+          /*checkValues=*/checkWindow};
 }
 
 BrickOccupancy LmipTechnique::occupancy(const FrameContext&) const {
@@ -55,7 +56,7 @@ void LmipTechnique::drawSlice(const FrameContext& frame, const SliceContext& sli
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // the next slice reads these records
   }
   if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
-    markDeadPixels(frame, slice, targets_->depthOnly, targets_->record, /*neighboursFinal=*/false);
+    markDeadPixels(frame, slice, targets_->depthOnly, targets_->record, DeadRule::OwnRecord);
   }
 }
 

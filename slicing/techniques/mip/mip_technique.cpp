@@ -15,7 +15,8 @@ TechniqueInfo mipTechniqueInfo() {
           {windowOption()},
           FrameOutputs{.state = false, .color = true, .depth = false},
           [] { return std::make_unique<MipTechnique>(false); },
-          checkWindow};
+          /*usesGradients=*/false,
+          /*checkValues=*/checkWindow};
 }
 
 TechniqueInfo demipTechniqueInfo() {
@@ -25,7 +26,8 @@ TechniqueInfo demipTechniqueInfo() {
           demipOptions(),
           FrameOutputs{.state = false, .color = true, .depth = true},
           [] { return std::make_unique<MipTechnique>(true); },
-          checkDemipValues};
+          /*usesGradients=*/false,
+          /*checkValues=*/checkDemipValues};
 }
 
 BrickOccupancy MipTechnique::occupancy(const FrameContext& frame) const {

@@ -13,7 +13,7 @@ TechniqueInfo rightAngleTechniqueInfo() {
                               "a first hit is a line pixel where (1 - |n.v|)^k exceeds this")},
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<RightAngleTechnique>(); },
-          /*checkValues=*/{}};
+          /*usesGradients=*/false, /*checkValues=*/{}};
 }
 
 BrickOccupancy RightAngleTechnique::occupancy(const FrameContext& frame) const {

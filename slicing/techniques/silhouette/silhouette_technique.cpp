@@ -31,7 +31,7 @@ TechniqueInfo silhouetteTechniqueInfo() {
                               "paper's three passes); the same pixels")},
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<SilhouetteTechnique>(); },
-          /*checkValues=*/{}};
+          /*usesGradients=*/false, /*checkValues=*/{}};
 }
 
 BrickOccupancy SilhouetteTechnique::occupancy(const FrameContext& frame) const {
