@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
 # Renders the README's gallery, docs/images/*.png, from the classic datasets: one small picture
 # per look, each beside the paper figure it can be compared with (README, "Gallery").
-#   scripts/gallery.sh [VSIL]     (default build/vsil; datasets from $VSIL_SHARED_DIR or ../shared)
+#   scripts/gallery.sh [VSIL] [PREFIX]   (default build/vsil; datasets from $VSIL_SHARED_DIR or
+#                                         ../shared; PREFIX: only the entries whose name starts so)
 # Each entry is NAME|INPUT|OPTIONS. Add a technique's entries here when it lands; the README
 # table names the same files. Deterministic: the same binary renders the same bytes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 vsil=$(readlink -f "${1:-build/vsil}")
+prefix=${2:-}
 data=${VSIL_SHARED_DIR:-../shared}/datasets
 [[ -x $vsil ]] || { echo "gallery: no vsil binary at $vsil (build first)" >&2; exit 2; }
 [[ -d $data ]] || { echo "gallery: no datasets folder at $data" >&2; exit 2; }
 out=docs/images
 mkdir -p "$out"
 
-common="--size 256x256 --background white"
+common="--size 256x256"
 entries=(
   # Nagy & Klein, Fig. 5-7: the right-angle method, the one-pixel silhouettes, broadened lines.
   "nk_engine_ra|$data/engine.vti|--technique rightangle --iso 80 --view 40,25 --width 2"
@@ -37,12 +39,28 @@ entries=(
   "er_engine_fig7|$data/engine.vti|--technique illustrate --style fig7-tone --view 40,25"
   "er_neghip_fig11|$data/neghip_64x64x64_uint8.nhdr|--technique illustrate --style fig11-gradient-silhouette --view 30,20 --zoom 1.3"
   "er_ironprot_fig15|$data/ironProt.vtk|--technique illustrate --style fig15-tone --view 30,20 --zoom 1.3"
+  # Diaz & Vazquez, Fig. 1 and 5: MIP, then DEMIP with growing depth weight (black background, as
+  # MIP is read); Fig. 3: the three depth estimates; Fig. 7: the three colour sphere maps.
+  "dv_aneurism_mip|$data/aneurism.vti|--technique mip --window 40,255 --view 30,20 --zoom 1.4 --background black"
+  "dv_aneurism_demip|$data/aneurism.vti|--technique demip --window 40,255 --view 30,20 --zoom 1.4 --background black"
+  "dv_aneurism_demip_dw40|$data/aneurism.vti|--technique demip --window 40,255 --depth-weight 0.4 --view 30,20 --zoom 1.4 --background black"
+  "dv_bonsai_exact|$data/bonsai.vti|--technique demip --window 40,255 --depth-weight 0.3 --view 30,10 --background black"
+  "dv_bonsai_steps|$data/bonsai.vti|--technique demip --window 40,255 --depth-weight 0.3 --depth-mode steps --view 30,10 --background black"
+  "dv_bonsai_entry_steps|$data/bonsai.vti|--technique demip --window 40,255 --depth-weight 0.3 --depth-mode entry-plus-steps --view 30,10 --background black"
+  "dv_aneurism_red_blue|$data/aneurism.vti|--technique demip --window 40,255 --sphere-weight 0.5 --sphere-map red-blue --view 30,20 --zoom 1.4 --background black"
+  "dv_aneurism_green_red|$data/aneurism.vti|--technique demip --window 40,255 --sphere-weight 0.5 --sphere-map green-red --view 30,20 --zoom 1.4 --background black"
+  "dv_aneurism_green_blue|$data/aneurism.vti|--technique demip --window 40,255 --sphere-weight 0.5 --sphere-map green-blue --view 30,20 --zoom 1.4 --background black"
 )
 
+count=0
 for entry in "${entries[@]}"; do
   IFS='|' read -r name input options <<<"$entry"
+  [[ $name == "$prefix"* ]] || continue
+  count=$((count + 1))
   echo "gallery: $name" >&2
+  background="--background white"  # unless the entry names its own (MIP is read over black)
+  [[ $options == *--background* ]] && background=""
   # shellcheck disable=SC2086  # options are a word list on purpose
-  "$vsil" render "$input" $common $options --out "$out/$name.png"
+  "$vsil" render "$input" $common $background $options --out "$out/$name.png"
 done
-echo "gallery: ${#entries[@]} images in $(pwd)/$out" >&2
+echo "gallery: $count images in $(pwd)/$out" >&2

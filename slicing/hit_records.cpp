@@ -1,6 +1,7 @@
 #include "slicing/hit_records.h"
 
 #include <limits>
+#include <stdexcept>
 
 #include "slicing/gl_state.h"
 #include "slicing/texture_units.h"
@@ -34,7 +35,8 @@ namespace {
 constexpr MarchShape kFirstHitMarchShape{{16, 16}, {16, 16}};
 }  // namespace
 
-void FirstHitRecorder::beginFrame(const FrameContext& frame, SlicingPipeline pipeline) {
+void FirstHitRecorder::beginFrame(const FrameContext& frame, SlicingPipeline pipeline,
+                                  std::optional<MaterialThreshold> material) {
   const glm::ivec2 size = frame.view->viewport;
   if (!targets_ || targets_->record.size() != size) {
     targets_.reset();
@@ -43,19 +45,28 @@ void FirstHitRecorder::beginFrame(const FrameContext& frame, SlicingPipeline pip
     targets_.emplace(Targets{std::move(record), gl::EmptyFramebuffer(size, depth)});
   }
   pipeline_ = pipeline;
-  const float iso = float(frame.options->number("iso"));
   if (pipeline_ == SlicingPipeline::Tiles) {
+    if (material) {
+      throw std::logic_error("FirstHitRecorder: the tiles march has no material threshold");
+    }
     // The march writes every pixel's record once: nothing to clear, no depth buffer.
     march_ = &marchProgram(frame, hitRecordSources(), "shaders/first_hit_march.comp",
                            kFirstHitMarchShape);
     march_->use();
-    march_->set("isoValue", iso);
+    march_->set("isoValue", float(frame.options->number("iso")));
     return;
   }
-  slicePass_ =
-      &frame.programs->get(gl::slicePassProgram(hitRecordSources(), "shaders/first_hit.frag"));
+  slicePass_ = &frame.programs->get(gl::slicePassProgram(
+      hitRecordSources(), "shaders/first_hit.frag",
+      material ? std::vector<std::string>{"MATERIAL_THRESHOLD"} : std::vector<std::string>{}));
   slicePass_->use();
-  slicePass_->set("isoValue", iso);
+  if (material) {
+    slicePass_->set("materialEps", material->materialEps);
+    maximumTexture_ = material->maximumTexture;
+  } else {
+    slicePass_->set("isoValue", float(frame.options->number("iso")));
+    maximumTexture_ = 0;
+  }
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   const GLfloat zero[4] = {0, 0, 0, 0};
   targets_->record.bindForDrawing();
@@ -77,6 +88,9 @@ void FirstHitRecorder::drawSlice(const FrameContext& frame, const SliceContext& 
     if (skipping) skipEmptyAndDead.emplace(GL_GREATER, /*write=*/false);
     gl::Blending keepFirstHit(GL_FUNC_ADD, GL_ONE_MINUS_DST_ALPHA, GL_DST_ALPHA);
     slicePass_->use();
+    if (maximumTexture_ != 0) {
+      gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_2D, maximumTexture_);
+    }
     drawSlicePolygon(frame, slice);
   }
   if (skipping && slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {

@@ -40,17 +40,27 @@ void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
                     DeadRule rule, float deadOpacity = 1.0f);
 
 // Records each pixel's first iso-surface hit, for the techniques that need no more of a ray
-// (rightangle, firsthit), in one of three pipelines (technique_table.h SlicingPipeline) that
-// leave the same records. Fast: one pass per slice (shaders/first_hit.frag) keeps the first hit
-// by blending, skips empty space in front and, every kMarkDeadInterval slices, pixels that have
-// their hit. Paper: the same pass over every pixel of each slice polygon. Tiles: one compute
-// dispatch after the slices (tile_march.h, shaders/first_hit_march.comp).
+// (rightangle, firsthit, demip's second sweep), in one of three pipelines (technique_table.h
+// SlicingPipeline) that leave the same records. Fast: one pass per slice
+// (shaders/first_hit.frag) keeps the first hit by blending, skips empty space in front and,
+// every kMarkDeadInterval slices, pixels that have their hit. Paper: the same pass over every
+// pixel of each slice polygon. Tiles: one compute dispatch after the slices (tile_march.h,
+// shaders/first_hit_march.comp).
 class FirstHitRecorder {
  public:
-  // Targets for the frame's size, the program and iso value; for the passes per slice the
-  // record cleared and the depth where rays enter occupied bricks written.
-  void beginFrame(const FrameContext& frame,
-                  SlicingPipeline pipeline = SlicingPipeline::Fast);
+  // Instead of the iso value, a threshold per pixel: DEMIP's second sweep looks for the first
+  // sample within `materialEps` of the pixel's maximum (an R32F texture of the frame's size).
+  // Passes per slice only (Fast or Paper).
+  struct MaterialThreshold {
+    GLuint maximumTexture = 0;
+    float materialEps = 0.0f;
+  };
+
+  // Targets for the frame's size, the program and its threshold (the iso value, or `material`);
+  // for the passes per slice the record cleared and the depth where rays enter occupied bricks
+  // written.
+  void beginFrame(const FrameContext& frame, SlicingPipeline pipeline = SlicingPipeline::Fast,
+                  std::optional<MaterialThreshold> material = std::nullopt);
   void drawSlice(const FrameContext& frame, const SliceContext& slice);
   // After the last slice: the march (tiles), or nothing.
   void endSlices(const FrameContext& frame);
@@ -66,6 +76,7 @@ class FirstHitRecorder {
   SlicingPipeline pipeline_ = SlicingPipeline::Fast;
   gl::Program* slicePass_ = nullptr;
   gl::Program* march_ = nullptr;
+  GLuint maximumTexture_ = 0;  // bound for the slice pass when the threshold is per pixel
 };
 
 // The last pass of a frame (shaders/finish_hits.frag): shades the first hit recorded in

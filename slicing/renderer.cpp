@@ -47,6 +47,7 @@ void validate(const RenderSettings& settings) {
   }
   const TechniqueInfo& technique = findTechnique(settings.technique);
   checkOptions(technique.options, settings.options, "technique '" + technique.name + "'");
+  if (technique.checkValues) technique.checkValues(settings.options);
 }
 
 }  // namespace
@@ -67,7 +68,7 @@ struct Renderer::Impl {
   glm::ivec3 dims{0};
   glm::dvec3 spacing{1.0};
   ValueRange valueRange;
-  float defaultIso = 0.5f;
+  DerivedDefaults derivedDefaults;
   gl::BufferName sliceBuffer;
   gl::VertexArrayName sliceVertexArray;
   gl::VertexArrayName screenVertexArray;
@@ -108,7 +109,7 @@ void Renderer::setVolume(const Volume& volume) {
   impl_->dims = volume.dims;
   impl_->spacing = volume.spacing;
   impl_->valueRange = valueRange(volume);
-  impl_->defaultIso = defaultIso(volume);
+  impl_->derivedDefaults = derivedDefaults(volume);
 }
 
 RenderResult Renderer::render(const RenderSettings& settings) {
@@ -116,7 +117,7 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   validate(settings);
   const TechniqueInfo& info = findTechnique(settings.technique);
   Technique& technique = impl_->technique(info);
-  const OptionReader options(info.options, settings.options, {impl_->defaultIso});
+  const OptionReader options(info.options, settings.options, impl_->derivedDefaults);
 
   RenderResult result;
   result.view = makeView(settings.camera, impl_->dims, impl_->spacing, settings.size);

@@ -5,6 +5,8 @@
 #include "core/error.h"
 #include "slicing/techniques/firsthit/firsthit_technique.h"
 #include "slicing/techniques/illustrate/illustrate_technique.h"
+#include "slicing/techniques/mip/lmip_technique.h"
+#include "slicing/techniques/mip/mip_technique.h"
 #include "slicing/techniques/rightangle/rightangle_technique.h"
 #include "slicing/techniques/silhouette/silhouette_technique.h"
 
@@ -16,6 +18,9 @@ const std::vector<TechniqueInfo>& techniqueTable() {
       rightAngleTechniqueInfo(),
       firstHitTechniqueInfo(),
       illustrateTechniqueInfo(),
+      mipTechniqueInfo(),
+      demipTechniqueInfo(),
+      lmipTechniqueInfo(),
   };
   return table;
 }

@@ -31,6 +31,9 @@ struct TechniqueInfo {
   // Samples the volume's gradient texture (slicing/gradient_texture.h): the render's memory
   // bound counts it.
   bool usesGradients = false;
+  // Checks what the option declarations cannot: text values the technique parses itself and
+  // rules between options. Throws InputError naming the flag; runs before any GL work.
+  std::function<void(const OptionValues& given)> checkValues;
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }

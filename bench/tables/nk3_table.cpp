@@ -15,6 +15,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "harness/format.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
 #include "io/volume_loader.h"
@@ -617,12 +618,6 @@ struct Nk3Line {
   std::string check;
 };
 
-std::string dimsLabel(glm::ivec3 dims) {
-  if (dims.x == dims.y && dims.y == dims.z) return std::to_string(dims.x) + "³";
-  if (dims.x == dims.y) return std::to_string(dims.x) + "²·" + std::to_string(dims.z);
-  return std::to_string(dims.x) + "·" + std::to_string(dims.y) + "·" + std::to_string(dims.z);
-}
-
 std::vector<Nk3Line> tableLines(const Nk3Measured& m) {
   std::vector<Nk3Line> lines;
   const bool missing = !m.missing.empty();
@@ -650,20 +645,6 @@ std::vector<Nk3Line> tableLines(const Nk3Measured& m) {
 }
 
 // ---- Formatting: the printed table, Markdown, the plot and the notes -------------------------
-
-std::string formatFps(double fps) {
-  if (!(fps > 0)) return "–";
-  char text[32];
-  std::snprintf(text, sizeof text, fps >= 100 ? "%.0f" : fps >= 10 ? "%.1f" : "%.2f", fps);
-  return text;
-}
-
-std::string formatRatio(double ratio) {
-  if (!(ratio > 0) || !std::isfinite(ratio)) return "–";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f", ratio);
-  return text;
-}
 
 // Ours, then the paper's: fps per column and RA/OPS.
 TextTable textTable(const std::vector<Nk3Line>& lines) {

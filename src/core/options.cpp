@@ -291,6 +291,8 @@ OptionReader::OptionReader(const std::vector<OptionSpec>& specs, const OptionVal
       resolved_.emplace(spec.name, *spec.defaultValue);
     } else if (spec.derived == OptionSpec::Derived::VolumeIso) {
       resolved_.emplace(spec.name, derived.iso);
+    } else if (spec.derived == OptionSpec::Derived::RangeFraction) {
+      resolved_.emplace(spec.name, spec.rangeFraction * derived.valueRangeWidth);
     } else if (spec.kind == OptionKind::List) {
       resolved_.emplace(spec.name, std::vector<std::string>{});
     } else if (spec.kind == OptionKind::Text) {

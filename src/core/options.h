@@ -35,8 +35,11 @@ struct OptionSpec {
   // The value when none is given. Unset: derived (see `derived`; defaultNote says how for the
   // help), or empty for Text and List.
   std::optional<OptionValue> defaultValue;
-  enum class Derived { None, VolumeIso };
+  // VolumeIso: the volume's default iso value. RangeFraction: `rangeFraction` of the width of
+  // the volume's value range (a tolerance in data units that scales with the data).
+  enum class Derived { None, VolumeIso, RangeFraction };
   Derived derived = Derived::None;
+  double rangeFraction = 0.0;
   std::string defaultNote;
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();
@@ -95,6 +98,7 @@ void checkOptions(const std::vector<OptionSpec>& specs, const OptionValues& valu
 // defaults come from.
 struct DerivedDefaults {
   double iso = 0.5;  // the volume's default iso value (core/volume.h defaultIso)
+  double valueRangeWidth = 1.0;  // max − min of the volume's samples
 };
 
 // A technique's options resolved: the given values, else the declared or derived defaults.

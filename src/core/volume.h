@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "core/limits.h"
+#include "core/options.h"
 
 namespace vsil {
 
@@ -45,6 +46,9 @@ ValueRange valueRange(const Volume& volume);
 
 // The iso value a technique uses when none is given: the middle of the value range.
 float defaultIso(const Volume& volume);
+
+// The facts option defaults are derived from (core/options.h), for this volume.
+DerivedDefaults derivedDefaults(const Volume& volume);
 
 // Limits checked before anything is allocated. maxBytes bounds the in-memory volume
 // (4 bytes per sample; default: half the physical memory, core/limits.h); maxDimension bounds

@@ -60,6 +60,19 @@ TEST(Options, UnknownNamesAreReportedWithTheOwnersOptions) {
                                "technique 'x'"));
 }
 
+TEST(Options, RangeFractionDefaultsScaleWithTheValueRange) {
+  OptionSpec eps = OptionSpec::number("material-eps", 0, "tolerance").above(0);
+  eps.defaultValue.reset();
+  eps.derived = OptionSpec::Derived::RangeFraction;
+  eps.rangeFraction = 0.05;
+  const std::vector<OptionSpec> s{eps};
+  EXPECT_DOUBLE_EQ(OptionReader(s, {}, {.valueRangeWidth = 255.0}).number("material-eps"), 12.75);
+  EXPECT_DOUBLE_EQ(OptionReader(s, {}, {.valueRangeWidth = 1.0}).number("material-eps"), 0.05);
+  EXPECT_EQ(OptionReader(s, {{"material-eps", 3.0}}, {.valueRangeWidth = 255.0})
+                .number("material-eps"),
+            3.0);
+}
+
 TEST(Options, ReaderResolvesGivenDeclaredAndDerivedValues) {
   const auto s = specs();
   const OptionReader reader(s, {{"depth-weight", 0.5}}, {.iso = 42.0});

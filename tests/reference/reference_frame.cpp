@@ -14,7 +14,7 @@ ReferenceSetup setUpReference(const Volume& volume, const RenderSettings& settin
   setup.view = makeView(settings.camera, volume.dims, volume.spacing, settings.size);
   setup.plan = planSlices(setup.view, volume.dims, volume.spacing, settings.samplesPerVoxel);
   setup.options = OptionReader(findTechnique(settings.technique).options, settings.options,
-                               {defaultIso(volume)});
+                               derivedDefaults(volume));
   return setup;
 }
 

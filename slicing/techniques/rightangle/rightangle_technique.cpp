@@ -13,7 +13,8 @@ TechniqueInfo rightAngleTechniqueInfo() {
                               "a first hit is a line pixel where (1 - |n.v|)^k exceeds this"),
            pipelineOption()},
           FrameOutputs{.state = true, .color = false, .depth = true},
-          [] { return std::make_unique<RightAngleTechnique>(); }};
+          [] { return std::make_unique<RightAngleTechnique>(); },
+          /*usesGradients=*/false, /*checkValues=*/{}};
 }
 
 BrickOccupancy RightAngleTechnique::occupancy(const FrameContext& frame) const {

@@ -38,7 +38,8 @@ TechniqueInfo silhouetteTechniqueInfo() {
           "Nagy–Klein one-pixel iso-surface silhouettes (OPS), broadened to --width",
           {isoOption(), pipelineOption()},
           FrameOutputs{.state = true, .color = false, .depth = true},
-          [] { return std::make_unique<SilhouetteTechnique>(); }};
+          [] { return std::make_unique<SilhouetteTechnique>(); },
+          /*usesGradients=*/false, /*checkValues=*/{}};
 }
 
 BrickOccupancy SilhouetteTechnique::occupancy(const FrameContext& frame) const {
