@@ -185,7 +185,7 @@ gl::ProgramSpec facesProgram(std::vector<std::string> defines) {
 
 EmptySpaceSkipping::EmptySpaceSkipping()
     : entryProgram_(facesProgram({})),
-      exitProgram_(facesProgram({"EXIT_DEPTH"})),
+      depthAsColorProgram_(facesProgram({"DEPTH_AS_COLOR"})),
       buffer_(gl::createBuffer()),
       vertexArray_(gl::createVertexArray()) {
   VSIL_GL(glBindVertexArray(vertexArray_.id()));
@@ -219,7 +219,23 @@ void EmptySpaceSkipping::prepare(const BrickRanges& ranges, const BrickOccupancy
                        vertices.data(), GL_STREAM_DRAW));
 
   gl::Blending farthest(GL_MAX, GL_ONE, GL_ONE);
-  drawFaces(exitProgram_, glm::mat4(view.clipFromVoxel()), entryVertices_, exitVertices_);
+  drawFaces(depthAsColorProgram_, glm::mat4(view.clipFromVoxel()), entryVertices_,
+            exitVertices_);
+}
+
+void EmptySpaceSkipping::drawEntryDepthImage(const glm::mat4& clipFromVoxel) {
+  const glm::ivec2 size = exitDepth_->size();  // prepare() made it for this frame's viewport
+  if (!entryDepth_ || entryDepth_->size() != size) {
+    entryDepth_.reset();
+    entryDepth_.emplace(size, GL_R32F);
+  }
+  gl::Capability noScissor(GL_SCISSOR_TEST, false);
+  entryDepth_->bindForDrawing();
+  // As writeEntryDepth leaves the depth buffer: 1 where no ray enters, 0 everywhere unskipped.
+  const GLfloat clear[4] = {enabled_ ? 1.0f : 0.0f, 0, 0, 0};
+  VSIL_GL(glClearBufferfv(GL_COLOR, 0, clear));
+  gl::Blending nearest(GL_MIN, GL_ONE, GL_ONE);
+  drawFaces(depthAsColorProgram_, clipFromVoxel, 0, entryVertices_);
 }
 
 void EmptySpaceSkipping::writeEntryDepth(const glm::mat4& clipFromVoxel) {

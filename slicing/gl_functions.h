@@ -42,6 +42,7 @@
   X(glDepthMask, PFNGLDEPTHMASKPROC)                             \
   X(glDepthRange, PFNGLDEPTHRANGEPROC)                           \
   X(glDisable, PFNGLDISABLEPROC)                                 \
+  X(glDispatchCompute, PFNGLDISPATCHCOMPUTEPROC)                 \
   X(glDrawArrays, PFNGLDRAWARRAYSPROC)                           \
   X(glEnable, PFNGLENABLEPROC)                                   \
   X(glEnableVertexAttribArray, PFNGLENABLEVERTEXATTRIBARRAYPROC) \

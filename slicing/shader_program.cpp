@@ -130,6 +130,11 @@ ProgramSpec screenPassProgram(const std::vector<std::string>& shared, std::strin
           std::move(defines)};
 }
 
+ProgramSpec computeProgram(const std::vector<std::string>& shared, std::string computeFile,
+                           std::vector<std::string> defines) {
+  return {{}, {}, files(shared, std::move(computeFile)), std::move(defines)};
+}
+
 Program::Program(const ProgramSpec& spec) : label_(labelOf(spec)) {
   std::vector<GLuint> shaders;
   const auto deleteShaders = [&shaders] {

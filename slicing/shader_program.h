@@ -53,6 +53,10 @@ ProgramSpec slicePassProgram(const std::vector<std::string>& shared, std::string
                              std::vector<std::string> defines = {});
 ProgramSpec screenPassProgram(const std::vector<std::string>& shared, std::string fragmentFile,
                               std::vector<std::string> defines = {});
+//   compute program: `computeFile` alone (common.glsl then needs SLICE_STRIDE_VEC4 among the
+//   defines: tile_march.h marchProgram)
+ProgramSpec computeProgram(const std::vector<std::string>& shared, std::string computeFile,
+                           std::vector<std::string> defines = {});
 
 // A linked program. Every stage gets `#version 450 core`, VSIL_<STAGE>_SHADER, the texture and
 // image unit names (texture_units.h), the defines, then its sources, each numbered from line 1.

@@ -54,4 +54,19 @@ OptionSpec isoOption() {
   return spec;
 }
 
+OptionSpec pipelineOption() {
+  return OptionSpec::choice(
+      "pipeline", "fast", {"fast", "paper", "tiles"},
+      "fast (passes per slice, skipping empty space and finished pixels), paper (the paper's "
+      "passes per slice over every pixel of each slice polygon) or tiles (one compute dispatch "
+      "marching screen tiles through the slices); the same pixels");
+}
+
+SlicingPipeline pipelineOf(const OptionReader& options) {
+  const std::string& name = options.text("pipeline");
+  if (name == "paper") return SlicingPipeline::Paper;
+  if (name == "tiles") return SlicingPipeline::Tiles;
+  return SlicingPipeline::Fast;
+}
+
 }  // namespace vsil

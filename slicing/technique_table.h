@@ -47,4 +47,13 @@ std::vector<std::string> techniqueNames();
 // The iso-value option of the techniques that look for an iso-surface.
 OptionSpec isoOption();
 
+// How a frame walks the slices (--pipeline), for the techniques that offer a choice
+// (silhouette, rightangle); every choice gives the same pixels:
+//   fast:  a pass or two per slice, skipping empty space and pixels that can no longer change;
+//   paper: the papers' passes per slice over every pixel of each slice polygon, no skipping;
+//   tiles: one compute dispatch marching screen tiles through the slices (tile_march.h).
+enum class SlicingPipeline { Fast, Paper, Tiles };
+OptionSpec pipelineOption();
+SlicingPipeline pipelineOf(const OptionReader& options);
+
 }  // namespace vsil

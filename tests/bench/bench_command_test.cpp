@@ -77,8 +77,10 @@ TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
   }
   const auto& rows = document["rows"];
   ASSERT_TRUE(rows.is_array());
-  ASSERT_EQ(rows.size(), 6u) << "2 datasets x 1 size x 3 techniques\n" << rows.dump(1);
+  ASSERT_EQ(rows.size(), 18u) << "2 datasets x 1 size x 3 techniques x 3 pipelines\n"
+                              << rows.dump(1);
   std::map<std::string, int> perTechnique;
+  std::map<std::string, int> perPipeline;
   for (const auto& row : rows) {
     SCOPED_TRACE(row.dump());
     EXPECT_EQ(row["table"], "nk3");
@@ -86,9 +88,14 @@ TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
     EXPECT_TRUE(dataset == "neghip" || dataset == "hydrogen_atom");
     EXPECT_EQ(row["width"], 64);
     EXPECT_EQ(row["height"], 64);
-    const std::string technique = row["technique"];
-    EXPECT_TRUE(technique == "ra" || technique == "ops" || technique == "bs");
+    // ra, ops, bs for the default pipeline, as before the table had pipelines; ra-tiles, ...
+    // for the others.
+    const std::string technique = row["technique"], pipeline = row["pipeline"];
+    const std::string base = technique.substr(0, technique.find('-'));
+    EXPECT_TRUE(base == "ra" || base == "ops" || base == "bs");
+    EXPECT_TRUE(technique == base || technique == base + "-" + pipeline);
     ++perTechnique[technique];
+    ++perPipeline[pipeline];
     EXPECT_EQ(row["frames"], 2);
     const double median = row["ms_median"], low = row["ms_min"], high = row["ms_max"];
     EXPECT_GT(low, 0.0);
@@ -103,6 +110,8 @@ TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
   EXPECT_EQ(perTechnique["ra"], 2);
   EXPECT_EQ(perTechnique["ops"], 2);
   EXPECT_EQ(perTechnique["bs"], 2);
+  EXPECT_EQ(perTechnique.size(), 9u);
+  for (const char* pipeline : {"fast", "paper", "tiles"}) EXPECT_EQ(perPipeline[pipeline], 6);
 }
 
 TEST_F(Nk3Run, WritesMarkdownAndPlot) {
@@ -126,7 +135,7 @@ TEST(BenchCommand, SkullIsReportedMissingWithThePaperNumbers) {
             std::string::npos)
       << result.out;
   const auto rows = nlohmann::json::parse(test::readFileBytes(dir / "skull.json"))["rows"];
-  ASSERT_EQ(rows.size(), 6u) << "256² and 512², 3 techniques";
+  ASSERT_EQ(rows.size(), 18u) << "256² and 512², 3 techniques, 3 pipelines";
   for (const auto& row : rows) {
     EXPECT_EQ(row["dataset"], "skull");
     EXPECT_TRUE(row["missing"].is_string());

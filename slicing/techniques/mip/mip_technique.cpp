@@ -55,9 +55,9 @@ void MipTechnique::beginFrame(const FrameContext& frame) {
 
 void MipTechnique::beginSweep(const FrameContext& frame) {
   if (frame.sweep != 1) return;
-  hits_.beginFrame(
-      frame, FirstHitRecorder::MaterialThreshold{targets_->maximum.texture(),
-                                                 float(frame.options->number("material-eps"))});
+  hits_.beginFrame(frame, SlicingPipeline::Fast,
+                   FirstHitRecorder::MaterialThreshold{
+                       targets_->maximum.texture(), float(frame.options->number("material-eps"))});
 }
 
 void MipTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
