@@ -71,8 +71,9 @@ OptionSpec styleOption() {
 OptionSpec transferFunctionOption() {
   return OptionSpec::text("tf",
                           "transfer function file: a JSON list of {\"value\" (data units), "
-                          "\"color\", \"opacity\"} points, linearly interpolated (default: the "
-                          "power opacity k_os*v^k_oe over --color)");
+                          "\"color\", \"opacity\"} points, linearly interpolated (illustrate: "
+                          "instead of the power opacity k_os*v^k_oe over --color; mip, lmip, "
+                          "demip: instead of --window's grey ramp)");
 }
 
 OptionSpec colorOption() {

@@ -15,18 +15,6 @@
 namespace vsil::reference {
 namespace {
 
-// GL's linear filtering of a clamped texture along one axis: texel space u·n − 0.5.
-struct LinearTaps {
-  int i0, i1;
-  float f;
-};
-LinearTaps linearTaps(float u, int n) {
-  const float t = u * float(n) - 0.5f;
-  const float base = std::floor(t);
-  const int i = int(base);
-  return {std::clamp(i, 0, n - 1), std::clamp(i + 1, 0, n - 1), t - base};
-}
-
 // The gradient texture sampled trilinearly at texture coordinate `tex` (what texture() returns
 // from the RGBA16F texels).
 glm::vec4 sampleGradient(const GradientTexels& texels, glm::vec3 tex) {
@@ -143,8 +131,7 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
   const float span = range.max - range.min;
   const auto classify = [&](float value) -> glm::vec4 {
     if (ill.transferFunction) {
-      const LinearTaps t = linearTaps(value * tableCoord.x + tableCoord.y, int(table.size()));
-      return table[std::size_t(t.i0)] * (1 - t.f) + table[std::size_t(t.i1)] * t.f;
+      return sampleTable(table, value * tableCoord.x + tableCoord.y);
     }
     const float v = std::clamp((value - range.min) * (span > 0 ? 1.0f / span : 0.0f), 0.0f, 1.0f);
     return glm::vec4(ill.color.rgb01(), float(ill["k_os"]) * std::pow(v, float(ill["k_oe"])));

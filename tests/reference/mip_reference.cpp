@@ -7,6 +7,7 @@
 
 #include "slice_sampler.h"
 #include "slicing/techniques/mip/mip_options.h"
+#include "slicing/transfer_function_texture.h"
 
 namespace vsil::reference {
 
@@ -59,8 +60,37 @@ float maximumOf(const std::vector<RaySample>& samples) {
   return maximum;
 }
 
-float windowGrey(float value, IntensityWindow window) {
-  return std::clamp((value - window.low) / (window.high - window.low), 0.0f, 1.0f);
+// mip_finish.frag's classification of a pixel's value: the window's grey ramp, opacity 1 above
+// its low end; or --tf's table, read as GL reads the 1D texture.
+class Classification {
+ public:
+  Classification(const OptionReader& options, ValueRange range)
+      : window_(intensityWindow(options, range)) {
+    if (const auto tf = mipTransferFunction(options)) {
+      table_ = tf->table(range, TransferFunctionTexture::kEntries);
+      tableCoord_ = TransferFunctionTexture::coordinateFromValue(range);
+    }
+  }
+  // Straight colour and opacity; opacity 0 shows nothing.
+  glm::vec4 operator()(float value) const {
+    if (!table_.empty()) return sampleTable(table_, value * tableCoord_.x + tableCoord_.y);
+    if (!(value > window_.low)) return glm::vec4(0.0f);
+    const float grey = std::clamp((value - window_.low) / (window_.high - window_.low), 0.0f, 1.0f);
+    return {grey, grey, grey, 1.0f};
+  }
+  // Where rounding may decide whether a value shows (the window's low end).
+  bool nearEdge(float value, float isoEpsilon) const {
+    return table_.empty() && std::abs(value - window_.low) <= isoEpsilon;
+  }
+
+ private:
+  IntensityWindow window_;
+  std::vector<glm::vec4> table_;
+  glm::vec2 tableCoord_{0.0f};
+};
+
+cv::Vec4f premultiplied(glm::vec3 colour, float opacity) {
+  return {colour.r * opacity, colour.g * opacity, colour.b * opacity, opacity};
 }
 
 // Normalized depth where the pixel's ray enters the box −0.5 .. dims − 0.5 (0 in front of it),
@@ -85,7 +115,7 @@ ReferenceFrame render(const Volume& volume, const RenderSettings& settings, floa
                       bool depthEnhanced) {
   const ReferenceSetup setup = setUpReference(volume, settings);
   const OptionReader& options = setup.options;
-  const IntensityWindow window = intensityWindow(options, valueRange(volume));
+  const Classification classify(options, valueRange(volume));
   const RaySampler rays(volume, setup);
   ReferenceFrame result = emptyReferenceFrame(setup, settings.size, /*color=*/true);
   const View& view = setup.view;
@@ -98,10 +128,10 @@ ReferenceFrame render(const Volume& volume, const RenderSettings& settings, floa
       if (onBoxFace) result.ambiguous(y, x) = 1;
       if (samples.empty()) continue;
       const float maximum = maximumOf(samples);
-      if (std::abs(maximum - window.low) <= isoEpsilon) result.ambiguous(y, x) = 1;
-      if (!(maximum > window.low)) continue;
-      const float grey = windowGrey(maximum, window);
-      glm::vec3 colour(grey);
+      if (classify.nearEdge(maximum, isoEpsilon)) result.ambiguous(y, x) = 1;
+      const glm::vec4 classified = classify(maximum);
+      if (!(classified.a > 0)) continue;
+      glm::vec3 colour(classified);
       if (depthEnhanced) {
         const float threshold = maximum - float(options.number("material-eps"));
         const RaySample* hit = nullptr;
@@ -127,7 +157,8 @@ ReferenceFrame render(const Volume& volume, const RenderSettings& settings, floa
           }
         }
         const float weight = float(options.number("depth-weight"));
-        const float c = std::clamp(grey * (1 - weight) + 2 * weight * (1 - depth), 0.0f, 1.0f);
+        const glm::vec3 c =
+            glm::clamp(colour * (1 - weight) + 2 * weight * (1 - depth), 0.0f, 1.0f);
         // Colour sphere: the direction from the volume's centre to the hit picks the blend
         // between the map's front and back colours.
         const SphereMap& map = sphereMap(options.text("sphere-map"));
@@ -139,9 +170,9 @@ ReferenceFrame render(const Volume& volume, const RenderSettings& settings, floa
                 : 0.0f;
         const glm::vec3 sphere = glm::mix(map.back, map.front, 0.5f + 0.5f * facing);
         const float sphereWeight = float(options.number("sphere-weight"));
-        colour = glm::vec3(c) * (1 - sphereWeight) + sphere * sphereWeight;
+        colour = c * (1 - sphereWeight) + sphere * sphereWeight;
       }
-      result.frame.color(y, x) = cv::Vec4f(colour.r, colour.g, colour.b, 1.0f);
+      result.frame.color(y, x) = premultiplied(colour, classified.a);
     }
   }
   return result;
@@ -159,7 +190,7 @@ ReferenceFrame renderDemip(const Volume& volume, const RenderSettings& settings,
 
 ReferenceFrame renderLmip(const Volume& volume, const RenderSettings& settings, float isoEpsilon) {
   const ReferenceSetup setup = setUpReference(volume, settings);
-  const IntensityWindow window = intensityWindow(setup.options, valueRange(volume));
+  const Classification classify(setup.options, valueRange(volume));
   const float threshold = float(setup.options.number("lmip-threshold"));
   const RaySampler rays(volume, setup);
   ReferenceFrame result = emptyReferenceFrame(setup, settings.size, /*color=*/true);
@@ -177,10 +208,10 @@ ReferenceFrame renderLmip(const Volume& volume, const RenderSettings& settings, 
         if (s.value >= threshold && (!top || s.value > top->value)) top = &s;
       }
       const float shown = top ? top->value : maximumOf(samples);
-      if (std::abs(shown - window.low) <= isoEpsilon) result.ambiguous(y, x) = 1;
-      if (!(shown > window.low)) continue;
-      const float grey = windowGrey(shown, window);
-      result.frame.color(y, x) = cv::Vec4f(grey, grey, grey, 1.0f);
+      if (classify.nearEdge(shown, isoEpsilon)) result.ambiguous(y, x) = 1;
+      const glm::vec4 classified = classify(shown);
+      if (!(classified.a > 0)) continue;
+      result.frame.color(y, x) = premultiplied(glm::vec3(classified), classified.a);
       if (top) result.frame.depth(y, x) = float(top->slice->depth);
     }
   }

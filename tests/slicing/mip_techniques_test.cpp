@@ -3,12 +3,15 @@
 // Pixel values are compared between structures of the same frame, never against goldens.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
 #include "analytic_volumes.h"
 #include "gl_harness.h"
+#include "reference_table.h"
 #include "slicing/renderer.h"
+#include "test_support.h"
 
 namespace vsil {
 namespace {
@@ -29,8 +32,7 @@ cv::Point pixelOf(const View& view, glm::dvec3 voxel) {
           int((1 - clip.y / clip.w) * 0.5 * view.viewport.y)};
 }
 
-RenderResult renderTechnique(const Volume& volume, const std::string& technique,
-                             OptionValues options, double azimuth = 0) {
+RenderSettings settingsFor(const std::string& technique, OptionValues options, double azimuth = 0) {
   RenderSettings settings;
   settings.technique = technique;
   settings.options = std::move(options);
@@ -38,9 +40,18 @@ RenderResult renderTechnique(const Volume& volume, const std::string& technique,
   settings.camera.orthographic = true;
   settings.camera.azimuthDeg = azimuth;
   settings.camera.elevationDeg = 0;
+  return settings;
+}
+
+RenderResult render(const Volume& volume, const RenderSettings& settings) {
   Renderer renderer(test::sharedGlContext());
   renderer.setVolume(volume);
   return renderer.render(settings);
+}
+
+RenderResult renderTechnique(const Volume& volume, const std::string& technique,
+                             OptionValues options, double azimuth = 0) {
+  return render(volume, settingsFor(technique, std::move(options), azimuth));
 }
 
 float grey(const RenderResult& result, cv::Point pixel) {
@@ -166,6 +177,63 @@ TEST_F(MipTechniques, LmipShowsTheWeakFrontBallUntilTheThresholdPassesIt) {
   EXPECT_NEAR(grey(mip, centre), 1.0f, 1e-5);
   // The local maximum's depth: the weak ball's plateau (near face z = 50), the strong one's (26).
   EXPECT_NEAR(high.frame.depth(centre) - low.frame.depth(centre), 24.0 / 64.0, 2.0 / 64.0);
+}
+
+// --tf: a pixel's value takes the transfer function's colour and opacity. This one is
+// transparent up to 0.55, then red turning yellow at 1: of weakFrontStrongBack (peaks 0.5 and
+// 1), the weak ball's peak is transparent and the strong one's yellow. GL agrees with the CPU
+// reference for all three techniques (the table read with GL's linear filtering: within
+// 2/255, as illustrate's transfer function), and skipping bricks changes no byte.
+TEST_F(MipTechniques, TransferFunctionColoursTheValueAndMatchesTheReference) {
+  const std::string tf = (test::scratchDir() / "tf.json").string();
+  std::ofstream(tf) << R"([{"value": 0, "color": "#000000", "opacity": 0},
+                          {"value": 0.55, "color": "#ff0000", "opacity": 0},
+                          {"value": 0.6, "color": "#ff0000", "opacity": 0.5},
+                          {"value": 1, "color": "#ffff00", "opacity": 1}])";
+  const Volume volume = weakFrontStrongBack();
+  const std::vector<std::pair<std::string, OptionValues>> cases{
+      {"mip", {{"tf", tf}}},
+      {"lmip", {{"tf", tf}, {"lmip-threshold", 0.3}}},
+      {"demip", {{"tf", tf}, {"sphere-weight", 0.3}}},
+  };
+  for (const auto& [technique, options] : cases) {
+    SCOPED_TRACE(technique);
+    RenderSettings settings = settingsFor(technique, options);
+    const RenderResult gl = render(volume, settings);
+    const reference::ReferenceFrame cpu =
+        reference::findReference(technique).render(volume, settings, 1e-4f);
+    int shown = 0, differing = 0;
+    float maxError = 0;
+    for (int y = 0; y < settings.size.y; ++y) {
+      for (int x = 0; x < settings.size.x; ++x) {
+        shown += cpu.frame.color(y, x)[3] > 0;
+        if (cpu.ambiguous(y, x)) continue;
+        float error = 0;
+        for (int k = 0; k < 4; ++k) {
+          error = std::max(error, std::abs(gl.frame.color(y, x)[k] - cpu.frame.color(y, x)[k]));
+        }
+        maxError = std::max(maxError, error);
+        differing += error > 2.0f / 255;
+      }
+    }
+    // The strong ball's disc beyond the 0.55 shell (about 380 pixels); for lmip only its rim,
+    // where the weak ball's transparent peak does not lie in front.
+    EXPECT_GT(shown, technique == "lmip" ? 10 : 300);
+    EXPECT_EQ(differing, 0) << "max error " << maxError * 255 << "/255";
+
+    settings.emptySpaceSkipping = false;
+    const RenderResult unskipped = render(volume, settings);
+    EXPECT_EQ(cv::norm(gl.frame.color, unskipped.frame.color, cv::NORM_INF), 0.0);
+  }
+  const cv::Point centre = pixelOf(renderTechnique(volume, "mip", {}).view, {32, 32, 32});
+  const cv::Vec4f strong = renderTechnique(volume, "mip", {{"tf", tf}}).frame.color(centre);
+  EXPECT_NEAR(strong[0], 1.0f, 2.0f / 255) << "yellow, opacity 1";
+  EXPECT_NEAR(strong[1], 1.0f, 2.0f / 255);
+  EXPECT_NEAR(strong[2], 0.0f, 2.0f / 255);
+  EXPECT_NEAR(strong[3], 1.0f, 2.0f / 255);
+  const cv::Vec4f weak =
+      renderTechnique(volume, "lmip", {{"tf", tf}, {"lmip-threshold", 0.3}}).frame.color(centre);
+  EXPECT_EQ(weak[3], 0.0f) << "lmip's first local maximum, 0.5, is transparent";
 }
 
 }  // namespace

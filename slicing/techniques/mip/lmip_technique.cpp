@@ -2,6 +2,7 @@
 
 #include "slicing/gl_state.h"
 #include "slicing/hit_records.h"
+#include "slicing/illustration_options.h"
 #include "slicing/techniques/mip/mip_options.h"
 #include "slicing/techniques/mip/mip_technique.h"
 #include "slicing/texture_units.h"
@@ -11,11 +12,11 @@ namespace vsil {
 TechniqueInfo lmipTechniqueInfo() {
   return {"lmip",
           "local MIP: the first local maximum above a threshold along each ray",
-          {windowOption(), lmipThresholdOption()},
+          {windowOption(), transferFunctionOption(), lmipThresholdOption()},
           FrameOutputs{.state = false, .color = true, .depth = true},
           [] { return std::make_unique<LmipTechnique>(); },
           /*usesGradients=*/false,
-          /*checkValues=*/checkWindow};
+          /*checkValues=*/checkWindowOrTf};
 }
 
 BrickOccupancy LmipTechnique::occupancy(const FrameContext&) const {
@@ -62,7 +63,8 @@ void LmipTechnique::drawSlice(const FrameContext& frame, const SliceContext& sli
 
 void LmipTechnique::endFrame(const FrameContext& frame) {
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
-  gl::Program& finish = useMipFinish(frame, {"LMIP"}, targets_->record.texture(), targets_->colour);
+  gl::Program& finish =
+      useMipFinish(frame, {"LMIP"}, targets_->record.texture(), targets_->colour, transferTable_);
   finish.set("lmipThreshold", float(frame.options->number("lmip-threshold")));
   drawScreen(frame);
 }

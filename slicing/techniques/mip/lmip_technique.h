@@ -1,13 +1,14 @@
 #pragma once
 // lmip: local maximum intensity projection, the classic relative of DEMIP (Sato et al. 1998):
 // each ray shows the first local maximum at or above --lmip-threshold, or its plain maximum
-// where it never reaches the threshold, through mip's window. One sweep; the record is updated
-// in place per slice (lmip_slice.frag); pixels whose maximum is found are retired (marked dead).
-// No brick is skipped: any sample, however low, may end a run, so none can be left out.
+// where it never reaches the threshold, through mip's window or --tf. One sweep; the record is
+// updated in place per slice (lmip_slice.frag); pixels whose maximum is found are retired (marked
+// dead). No brick is skipped: any sample, however low, may end a run, so none can be left out.
 #include <optional>
 
 #include "slicing/technique.h"
 #include "slicing/technique_table.h"
+#include "slicing/transfer_function_texture.h"
 
 namespace vsil {
 
@@ -29,6 +30,7 @@ class LmipTechnique : public Technique {
   };
   std::optional<Targets> targets_;
   gl::Program* slicePass_ = nullptr;
+  std::optional<TransferFunctionTexture> transferTable_;  // --tf
 };
 
 }  // namespace vsil

@@ -3,12 +3,21 @@
 // (UNIT_RECORD, hit_records.glsl: state, normalized depth d, eye distance, 1); with LMIP, at
 // UNIT_AUXILIARY0, lmip's record instead (lmip_slice.frag) and the value it shows.
 // Out: premultiplied RGBA. A pixel shows something (alpha 1) only where its maximum exceeds the
-// window's low end; its grey is the window's ramp. DEMIP (paper eq. 1 and 2):
-//   c = grey * (1 - depthWeight) + 2 * depthWeight * (1 - depth), clamped to [0, 1],
+// window's low end; its grey is the window's ramp. With TRANSFER_TABLE (--tf) the value's colour
+// and opacity from the table instead, where the opacity is above 0 (alpha = opacity). DEMIP
+// (paper eq. 1 and 2), per channel of that colour:
+//   c = colour * (1 - depthWeight) + 2 * depthWeight * (1 - depth), clamped to [0, 1],
 //   colour = c * (1 - sphereWeight) + sphereColour * sphereWeight.
 // With depthWeight = sphereWeight = 0 the result is exactly mip's (x*1 + 0 in float).
 layout(binding = UNIT_AUXILIARY0) uniform sampler2D valueTexture;
+#ifdef TRANSFER_TABLE
+layout(binding = UNIT_TRANSFER_FUNCTION) uniform sampler1D transferTable;
+uniform vec2 tableCoordFromValue;  // texture coordinate = value·x + y
+// Below every value: where no slice sampled a pixel, its value is kNoSample (mip_technique.h).
+const float kNothingSampled = -1.0e38;
+#else
 uniform vec2 window;  // low, high (data units)
+#endif
 layout(location = 0) out vec4 result;
 
 #ifdef LMIP
@@ -78,17 +87,29 @@ vec3 sphereColour(float hitEyeDistance) {
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   float maximum = shownValue(pixel);
+#ifdef TRANSFER_TABLE
+  vec4 classified = maximum > kNothingSampled
+                        ? texture(transferTable, maximum * tableCoordFromValue.x + tableCoordFromValue.y)
+                        : vec4(0.0);
+  if (!(classified.a > 0.0)) {
+    result = vec4(0.0);
+    return;
+  }
+  vec3 colour = classified.rgb;
+  float opacity = classified.a;
+#else
   if (!(maximum > window.x)) {
     result = vec4(0.0);
     return;
   }
-  float grey = clamp((maximum - window.x) / (window.y - window.x), 0.0, 1.0);
-  vec3 colour = vec3(grey);
+  vec3 colour = vec3(clamp((maximum - window.x) / (window.y - window.x), 0.0, 1.0));
+  float opacity = 1.0;
+#endif
 #ifdef DEMIP
   vec4 record = texelFetch(recordTexture, pixel, 0);
-  float c = clamp(grey * (1.0 - depthWeight) + 2.0 * depthWeight * (1.0 - weightingDepth(record.g)),
-                  0.0, 1.0);
-  colour = vec3(c) * (1.0 - sphereWeight) + sphereColour(record.b) * sphereWeight;
+  vec3 c = clamp(colour * (1.0 - depthWeight) + 2.0 * depthWeight * (1.0 - weightingDepth(record.g)),
+                 0.0, 1.0);
+  colour = c * (1.0 - sphereWeight) + sphereColour(record.b) * sphereWeight;
 #endif
-  result = vec4(colour, 1.0);
+  result = vec4(colour * opacity, opacity);
 }

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/number_pair.h"
+#include "slicing/illustration_options.h"
 
 namespace vsil {
 
@@ -40,12 +41,25 @@ IntensityWindow intensityWindow(const OptionReader& options, ValueRange volumeRa
   return {float(pair.x), float(pair.y)};
 }
 
-void checkWindow(const OptionValues& given) {
+std::optional<TransferFunction> mipTransferFunction(const OptionReader& options) {
+  const std::string& path = options.text("tf");
+  if (path.empty()) return std::nullopt;
+  return loadTransferFunction(path);
+}
+
+void checkWindowOrTf(const OptionValues& given) {
+  const std::string* tf = givenText(given, "tf");
+  if (tf && !tf->empty()) loadTransferFunction(*tf);  // InputError naming the file
   const std::string* text = givenText(given, "window");
-  if (!text) return;
+  if (!text || text->empty()) return;
   const glm::dvec2 pair = parseNumberPair("--window", *text);
   if (!(pair.x < pair.y)) {
     throwInputError("--window", "'" + *text + "' needs LO < HI");
+  }
+  if (tf && !tf->empty()) {
+    throwInputError("--tf",
+                    "give --window or --tf, not both (the transfer function replaces the "
+                    "window's grey ramp)");
   }
 }
 
@@ -76,6 +90,7 @@ std::vector<OptionSpec> demipOptions() {
   rotate.defaultValue = std::string("0,0");
   return {
       windowOption(),
+      transferFunctionOption(),
       eps,
       OptionSpec::number("depth-weight", 0.15,
                          "d_w in color = MIP*(1 - d_w) + 2*d_w*(1 - depth); 0 is plain MIP")
@@ -96,7 +111,7 @@ std::vector<OptionSpec> demipOptions() {
 }
 
 void checkDemipValues(const OptionValues& given) {
-  checkWindow(given);
+  checkWindowOrTf(given);
   if (const std::string* name = givenText(given, "sphere-map")) sphereMap(*name);
   if (const std::string* text = givenText(given, "sphere-rotate")) {
     parseNumberPair("--sphere-rotate", *text);

@@ -1,6 +1,7 @@
 #pragma once
 // The options of mip, lmip and demip, declared once here (a flag two techniques share must mean
 // the same), and the text values they parse themselves.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,7 @@
 
 #include "core/camera.h"
 #include "core/options.h"
+#include "core/transfer_function.h"
 #include "core/volume.h"
 
 namespace vsil {
@@ -21,7 +23,14 @@ struct IntensityWindow {
 OptionSpec windowOption();
 // The given window, else the volume's value range.
 IntensityWindow intensityWindow(const OptionReader& options, ValueRange volumeRange);
-void checkWindow(const OptionValues& given);
+
+// --tf FILE instead of the window (illustration_options.h transferFunctionOption, the file
+// illustrate reads): each pixel's value takes the function's colour and opacity (premultiplied;
+// mip_finish.frag), so a pixel shows something only where the opacity at its value is above 0.
+std::optional<TransferFunction> mipTransferFunction(const OptionReader& options);  // if given
+
+// --window LO < HI, a readable --tf, and not both.
+void checkWindowOrTf(const OptionValues& given);
 
 OptionSpec lmipThresholdOption();
 

@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "slicing/gl_state.h"
+#include "slicing/illustration_options.h"
 #include "slicing/techniques/mip/mip_options.h"
 #include "slicing/techniques/mip/sphere_legend.h"
 #include "slicing/texture_units.h"
@@ -12,11 +13,11 @@ namespace vsil {
 TechniqueInfo mipTechniqueInfo() {
   return {"mip",
           "maximum intensity projection through a grey window",
-          {windowOption()},
+          {windowOption(), transferFunctionOption()},
           FrameOutputs{.state = false, .color = true, .depth = false},
           [] { return std::make_unique<MipTechnique>(false); },
           /*usesGradients=*/false,
-          /*checkValues=*/checkWindow};
+          /*checkValues=*/checkWindowOrTf};
 }
 
 TechniqueInfo demipTechniqueInfo() {
@@ -31,10 +32,20 @@ TechniqueInfo demipTechniqueInfo() {
 }
 
 BrickOccupancy MipTechnique::occupancy(const FrameContext& frame) const {
-  const IntensityWindow window = intensityWindow(*frame.options, frame.valueRange);
-  // mip shows only maxima above the window's low end. demip's second sweep looks for samples
-  // within eps of a maximum above it, so it needs the bricks reaching low - eps.
+  // demip's second sweep looks for samples within eps of a shown maximum.
   const float eps = depthEnhanced_ ? float(frame.options->number("material-eps")) : 0.0f;
+  const ValueRange range = frame.valueRange;
+  if (const auto tf = mipTransferFunction(*frame.options)) {
+    // A brick whose values are all transparent, with every value below them, cannot hold a
+    // shown maximum, and a ray whose maximum it would hold shows nothing with it or without.
+    return [table = tf->table(range, TransferFunctionTexture::kEntries), range,
+            eps](ValueRange brick) {
+      return TransferFunctionTexture::opaqueSomewhere(table, range, range.min, brick.max + eps);
+    };
+  }
+  // mip shows only maxima above the window's low end; demip's second sweep needs the bricks
+  // reaching low - eps.
+  const IntensityWindow window = intensityWindow(*frame.options, range);
   return reachesIso(window.low - eps);
 }
 
@@ -73,14 +84,25 @@ void MipTechnique::drawSlice(const FrameContext& frame, const SliceContext& slic
   drawSlicePolygon(frame, slice);
 }
 
-gl::Program& useMipFinish(const FrameContext& frame, const std::vector<std::string>& defines,
-                          GLuint values, const gl::RenderTarget& colour) {
-  const IntensityWindow window = intensityWindow(*frame.options, frame.valueRange);
+gl::Program& useMipFinish(const FrameContext& frame, std::vector<std::string> defines,
+                          GLuint values, const gl::RenderTarget& colour,
+                          std::optional<TransferFunctionTexture>& transferTable) {
+  const std::optional<TransferFunction> tf = mipTransferFunction(*frame.options);
+  if (tf) defines.emplace_back("TRANSFER_TABLE");
   gl::Program& finish =
       frame.programs->get(gl::screenPassProgram({}, "techniques/mip/mip_finish.frag", defines));
   colour.bindForDrawing();
   finish.use();
-  finish.set("window", glm::vec2(window.low, window.high));
+  if (tf) {
+    if (!transferTable) transferTable.emplace();
+    transferTable->upload(*tf, frame.valueRange);
+    gl::bindTexture(gl::TextureUnit::TransferFunction, GL_TEXTURE_1D, transferTable->id());
+    finish.set("tableCoordFromValue",
+               TransferFunctionTexture::coordinateFromValue(frame.valueRange));
+  } else {
+    const IntensityWindow window = intensityWindow(*frame.options, frame.valueRange);
+    finish.set("window", glm::vec2(window.low, window.high));
+  }
   gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_2D, values);
   return finish;
 }
@@ -113,7 +135,8 @@ void MipTechnique::endFrame(const FrameContext& frame) {
     if (mode == DepthMode::EntryPlusSteps) defines.push_back("DEPTH_ENTRY_PLUS_STEPS");
   }
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
-  gl::Program& finish = useMipFinish(frame, defines, targets_->maximum.texture(), targets_->colour);
+  gl::Program& finish =
+      useMipFinish(frame, defines, targets_->maximum.texture(), targets_->colour, transferTable_);
   if (depthEnhanced_) {
     const View& view = *frame.view;
     const SphereMap& map = sphereMap(options.text("sphere-map"));

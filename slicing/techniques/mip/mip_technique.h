@@ -13,6 +13,7 @@
 
 #include "slicing/hit_records.h"
 #include "slicing/technique_table.h"
+#include "slicing/transfer_function_texture.h"
 
 namespace vsil {
 
@@ -39,16 +40,19 @@ class MipTechnique : public Technique {
   std::optional<Targets> targets_;
   FirstHitRecorder hits_;  // demip's second sweep
   gl::Program* maximumPass_ = nullptr;
+  std::optional<TransferFunctionTexture> transferTable_;  // --tf
 };
 
 // What a pixel's maximum holds where no slice sampled it (mip_finish.frag shows nothing there).
 constexpr float kNoSample = -3.4e38f;
 
 // The finishing pass of mip, lmip and demip (mip_finish.frag with `defines`) made current, with
-// its window set, `values` bound where it reads the pixels' values and `colour` bound for
-// drawing; the caller sets its variant's uniforms and draws the screen.
-gl::Program& useMipFinish(const FrameContext& frame, const std::vector<std::string>& defines,
-                          GLuint values, const gl::RenderTarget& colour);
+// its window set, or with --tf its table uploaded into `transferTable` (made on first use) and
+// bound, `values` bound where it reads the pixels' values and `colour` bound for drawing; the
+// caller sets its variant's uniforms and draws the screen.
+gl::Program& useMipFinish(const FrameContext& frame, std::vector<std::string> defines,
+                          GLuint values, const gl::RenderTarget& colour,
+                          std::optional<TransferFunctionTexture>& transferTable);
 // The colour target as the frame's colour, and channel `depthChannel` of `record` as its depth
 // where a pixel shows something and `hasDepth` holds for its record (NaN elsewhere).
 FrameBuffers colourWithDepth(const gl::RenderTarget& colour, const gl::RenderTarget& record,
