@@ -33,14 +33,14 @@ glm::mat3 worldFromEye(const View& view) {
 }  // namespace
 
 TechniqueInfo illustrateTechniqueInfo() {
-  TechniqueInfo info{"illustrate",
-                     "Ebert–Rheingans volume illustration: front-to-back compositing with "
-                     "boundary, silhouette, fading, sketch, distance, halo and tone effects",
-                     illustrateOptions(),
-                     FrameOutputs{.state = false, .color = true, .depth = false},
-                     [] { return std::make_unique<IllustrateTechnique>(); }};
-  info.usesGradients = true;
-  return info;
+  return {"illustrate",
+          "Ebert–Rheingans volume illustration: front-to-back compositing with "
+          "boundary, silhouette, fading, sketch, distance, halo and tone effects",
+          illustrateOptions(),
+          FrameOutputs{.state = false, .color = true, .depth = false},
+          [] { return std::make_unique<IllustrateTechnique>(); },
+          /*usesGradients=*/true,
+          /*checkValues=*/{}};
 }
 
 std::vector<std::string> illustrateDefines(const Illustration& illustration) {
