@@ -50,6 +50,9 @@ entries=(
   "dv_aneurism_red_blue|$data/aneurism.vti|--technique demip --window 40,255 --sphere-weight 0.5 --sphere-map red-blue --view 30,20 --zoom 1.4 --background black"
   "dv_aneurism_green_red|$data/aneurism.vti|--technique demip --window 40,255 --sphere-weight 0.5 --sphere-map green-red --view 30,20 --zoom 1.4 --background black"
   "dv_aneurism_green_blue|$data/aneurism.vti|--technique demip --window 40,255 --sphere-weight 0.5 --sphere-map green-blue --view 30,20 --zoom 1.4 --background black"
+  # The same with a transfer function instead of the grey window (docs/tf/), as MIP and DEMIP.
+  "dv_aneurism_tf_mip|$data/aneurism.vti|--technique mip --tf docs/tf/aneurism_vessels.json --view 30,20 --zoom 1.4 --background black"
+  "dv_aneurism_tf_demip|$data/aneurism.vti|--technique demip --tf docs/tf/aneurism_vessels.json --depth-weight 0.3 --view 30,20 --zoom 1.4 --background black"
 )
 
 count=0
