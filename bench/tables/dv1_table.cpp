@@ -253,16 +253,16 @@ TableResult runDv1Table(const BenchOptions& options, Progress& progress) {
   progress.finish();
 
   char method[600];
-  std::snprintf(method, sizeof method,
-                "method: %d warm-up + %d timed frames per column, MIP/DEMIP/DEMIP+sphere/DVR "
-                "taking turns, orbit from azimuth %.0f° in steps of %.1f° at elevation %.0f°, 1 slice per "
-                "voxel, window = the value range, DEMIP defaults (d_w 0.15, eps 5 %% of the "
-                "range, exact depth), sphere weight %.1f (red-blue), DVR = illustrate with no "
-                "effects; frame time = Renderer::render (every sweep + glFinish + readback; the "
-                "gradient texture DVR shades with is built once per volume, in the warm-up), fps "
-                "= 1000 / median",
-                options.warmup, options.frames, kOrbitStartDeg, kOrbitStepDeg, kElevationDeg,
-                kSphereWeight);
+  std::snprintf(
+      method, sizeof method,
+      "method: %d warm-up + %d timed frames per column, MIP/DEMIP/DEMIP+sphere/DVR "
+      "taking turns, orbit from azimuth %.0f° in steps of %.1f° at elevation %.0f°, 1 slice per "
+      "voxel, window = the value range, DEMIP defaults (d_w 0.15, eps 5 %% of the "
+      "range, exact depth), sphere weight %.1f (red-blue), DVR = illustrate with no "
+      "effects; frame time = Renderer::render (every sweep + glFinish + readback; the "
+      "gradient texture DVR shades with is built once per volume, on its first frame, "
+      "a warm-up frame with --warmup >= 1), fps = 1000 / median",
+      options.warmup, options.frames, kOrbitStartDeg, kOrbitStepDeg, kElevationDeg, kSphereWeight);
   table.notes.push_back(method);
   table.notes.push_back("not measured: the paper's MIDA column (no MIDA technique)");
   std::string paper = "the paper's Table 1 (fps at 512², MIP / DEMIP / MIDA / DVR):";
