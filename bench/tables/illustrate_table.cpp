@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/transfer_function.h"
+#include "harness/format.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
 #include "io/volume_loader.h"
@@ -329,26 +330,6 @@ std::string problemsOf(const CaseResult& r) {
 
 double ratio(double a, double b) {
   return a > 0 && b > 0 ? a / b : std::numeric_limits<double>::quiet_NaN();
-}
-
-std::string dimsLabel(glm::ivec3 dims) {
-  if (dims.x == dims.y && dims.y == dims.z) return std::to_string(dims.x) + "³";
-  if (dims.x == dims.y) return std::to_string(dims.x) + "²·" + std::to_string(dims.z);
-  return std::to_string(dims.x) + "·" + std::to_string(dims.y) + "·" + std::to_string(dims.z);
-}
-
-std::string formatFps(double fps) {
-  if (!(fps > 0)) return "–";
-  char text[32];
-  std::snprintf(text, sizeof text, fps >= 100 ? "%.0f" : fps >= 10 ? "%.1f" : "%.2f", fps);
-  return text;
-}
-
-std::string formatRatio(double r) {
-  if (!std::isfinite(r)) return "–";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f", r);
-  return text;
 }
 
 // Whether a case meets its target: its ratio to the plain composite, or for the plain
