@@ -1,8 +1,7 @@
 #include "postfx/compose.h"
 
-#include <cmath>
-
 #include <algorithm>
+#include <cmath>
 
 #include <opencv2/imgproc.hpp>
 
@@ -43,13 +42,14 @@ cv::Mat composeColorOverBackground(const cv::Mat4f& color, const Rgba& backgroun
 
 cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& options,
                             FftGaussianBlur& blur, const cv::Mat1b& lines) {
-  if (frame.state.empty()) return composeColorOverBackground(frame.color, options.background);
+  const Rgba background = options.background.value_or(kDefaultBackground);
+  if (frame.state.empty()) return composeColorOverBackground(frame.color, background);
   const cv::Mat1b band = lines.empty() ? broadenSilhouettes(frame, options.width, blur) : lines;
-  const bool opaque = options.lineColor.a == 255 && options.background.a == 255 &&
+  const bool opaque = options.lineColor.a == 255 && background.a == 255 &&
                       (options.fill == FillMode::None || options.fillColor.a == 255);
   const cv::Vec4b lineColor = options.lineColor.bgra(), fillColor = options.fillColor.bgra();
   const bool shaded = options.fill == FillMode::Shaded && !frame.shade.empty();
-  cv::Mat4b image(frame.state.size(), options.background.bgra());
+  cv::Mat4b image(frame.state.size(), background.bgra());
   for (int y = 0; y < image.rows; ++y) {
     cv::Vec4b* out = image[y];
     const std::uint8_t* inBand = band[y];

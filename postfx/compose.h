@@ -1,13 +1,15 @@
 #pragma once
 // Composition of an illustration. For techniques that return pixel states (silhouette,
 // rightangle): broadened lines in the line colour over the fill of the Filled pixels (none, a
-// flat colour, or that colour shaded by the diffuse shade) over the background. For techniques
-// that return colour (FrameBuffers::color, premultiplied): that colour over the background.
+// flat colour, or that colour shaded by the diffuse shade) over the background. For techniques that
+// return colour (FrameBuffers::color, premultiplied): that colour over the background.
 // The result is 8-bit BGRA (BGR when every colour is opaque), ready for writePng.
+#include <optional>
+
 #include <opencv2/core.hpp>
 
+#include "core/color.h"
 #include "core/frame.h"
-#include "postfx/color.h"
 #include "postfx/gaussian_fft.h"
 #include "postfx/width_law.h"
 
@@ -18,7 +20,8 @@ enum class FillMode { None, Flat, Shaded };
 struct PostfxOptions {
   WidthLaw width = WidthLaw::fixed(3);
   Rgba lineColor{0, 0, 0, 255};
-  Rgba background{255, 255, 255, 255};
+  // Unset: the technique's choice (RenderResult::background), else white.
+  std::optional<Rgba> background;
   FillMode fill = FillMode::None;
   Rgba fillColor{200, 200, 200, 255};
 };

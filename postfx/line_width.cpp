@@ -164,8 +164,8 @@ std::vector<DepthBin> widthAgainstDepth(const std::vector<LineWidthSample>& samp
   return bins;
 }
 
-cv::Mat3b plotWidthAgainstDepth(const std::vector<LineWidthSample>& samples,
-                                const cv::Mat1f& depth, const std::vector<DepthBin>& bins) {
+cv::Mat3b plotWidthAgainstDepth(const std::vector<LineWidthSample>& samples, const cv::Mat1f& depth,
+                                const std::vector<DepthBin>& bins) {
   const int width = 640, height = 480, left = 70, right = 20, top = 30, bottom = 60;
   cv::Mat3b plot(height, width, cv::Vec3b(255, 255, 255));
   double maxWidth = 1;

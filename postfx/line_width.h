@@ -19,7 +19,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "postfx/color.h"
+#include "core/color.h"
 
 namespace vsil {
 
@@ -58,7 +58,7 @@ std::vector<DepthBin> widthAgainstDepth(const std::vector<LineWidthSample>& samp
                                         const cv::Mat1f& depth, int binCount = 10);
 
 // Scatter of width against depth (points) with the bins' means (line), axes and labels.
-cv::Mat3b plotWidthAgainstDepth(const std::vector<LineWidthSample>& samples,
-                                const cv::Mat1f& depth, const std::vector<DepthBin>& bins);
+cv::Mat3b plotWidthAgainstDepth(const std::vector<LineWidthSample>& samples, const cv::Mat1f& depth,
+                                const std::vector<DepthBin>& bins);
 
 }  // namespace vsil

@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
 # Renders the README's gallery, docs/images/*.png, from the classic datasets: one small picture
 # per look, each beside the paper figure it can be compared with (README, "Gallery").
-#   scripts/gallery.sh [VSIL]     (default build/vsil; datasets from $VSIL_SHARED_DIR or ../shared)
+#   scripts/gallery.sh [VSIL] [PREFIX]   (default build/vsil; datasets from $VSIL_SHARED_DIR or
+#                                         ../shared; PREFIX: only the entries whose name starts so)
 # Each entry is NAME|INPUT|OPTIONS. Add a technique's entries here when it lands; the README
 # table names the same files. Deterministic: the same binary renders the same bytes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 vsil=$(readlink -f "${1:-build/vsil}")
+prefix=${2:-}
 data=${VSIL_SHARED_DIR:-../shared}/datasets
 [[ -x $vsil ]] || { echo "gallery: no vsil binary at $vsil (build first)" >&2; exit 2; }
 [[ -d $data ]] || { echo "gallery: no datasets folder at $data" >&2; exit 2; }
 out=docs/images
 mkdir -p "$out"
 
-common="--size 256x256 --background white"
+common="--size 256x256"
 entries=(
   # Nagy & Klein, Fig. 5-7: the right-angle method, the one-pixel silhouettes, broadened lines.
   "nk_engine_ra|$data/engine.vti|--technique rightangle --iso 80 --view 40,25 --width 2"
@@ -26,12 +28,42 @@ entries=(
   "nk_bonsai_w2|$data/bonsai.vti|--iso 40 --view 30,10 --width 2 --fill shaded --fill-color #d9c7a0"
   # Fig. 9: depth-dependent width on a close-up, lines thicker where the object comes nearer.
   "nk_hydrogen_depthlaw|$data/hydrogen_atom_128x128x128_uint8.nhdr|--iso 20 --view 60,30 --zoom 2.2 --width-near 8 --width-far 1 --fill shaded --fill-color #f0d0c0"
+  # Ebert & Rheingans: the plain lit composite (gaseous illumination, Fig. 1-2) and one picture
+  # per style preset, named after the figure it mirrors (over white: the gallery's background
+  # wins over fig6's own dark blue, so its distance blending fades towards white).
+  "er_engine_plain|$data/engine.vti|--technique illustrate --view 40,25"
+  "er_engine_fig3|$data/engine.vti|--technique illustrate --style fig3-boundary --view 40,25"
+  "er_bonsai_fig4|$data/bonsai.vti|--technique illustrate --style fig4-boundary-silhouette --view 30,10"
+  "er_engine_fig5|$data/engine.vti|--technique illustrate --style fig5-sketch --view 40,25"
+  "er_bonsai_fig6|$data/bonsai.vti|--technique illustrate --style fig6-distance-halo --view 30,10"
+  "er_engine_fig7|$data/engine.vti|--technique illustrate --style fig7-tone --view 40,25"
+  "er_neghip_fig11|$data/neghip_64x64x64_uint8.nhdr|--technique illustrate --style fig11-gradient-silhouette --view 30,20 --zoom 1.3"
+  "er_ironprot_fig15|$data/ironProt.vtk|--technique illustrate --style fig15-tone --view 30,20 --zoom 1.3"
+  # Diaz & Vazquez, Fig. 1 and 5: MIP, then DEMIP with growing depth weight (black background, as
+  # MIP is read); Fig. 3: the three depth estimates; Fig. 7: the three colour sphere maps.
+  "dv_aneurism_mip|$data/aneurism.vti|--technique mip --window 40,255 --view 30,20 --zoom 1.4 --background black"
+  "dv_aneurism_demip|$data/aneurism.vti|--technique demip --window 40,255 --view 30,20 --zoom 1.4 --background black"
+  "dv_aneurism_demip_dw40|$data/aneurism.vti|--technique demip --window 40,255 --depth-weight 0.4 --view 30,20 --zoom 1.4 --background black"
+  "dv_bonsai_exact|$data/bonsai.vti|--technique demip --window 40,255 --depth-weight 0.3 --view 30,10 --background black"
+  "dv_bonsai_steps|$data/bonsai.vti|--technique demip --window 40,255 --depth-weight 0.3 --depth-mode steps --view 30,10 --background black"
+  "dv_bonsai_entry_steps|$data/bonsai.vti|--technique demip --window 40,255 --depth-weight 0.3 --depth-mode entry-plus-steps --view 30,10 --background black"
+  "dv_aneurism_red_blue|$data/aneurism.vti|--technique demip --window 40,255 --sphere-weight 0.5 --sphere-map red-blue --view 30,20 --zoom 1.4 --background black"
+  "dv_aneurism_green_red|$data/aneurism.vti|--technique demip --window 40,255 --sphere-weight 0.5 --sphere-map green-red --view 30,20 --zoom 1.4 --background black"
+  "dv_aneurism_green_blue|$data/aneurism.vti|--technique demip --window 40,255 --sphere-weight 0.5 --sphere-map green-blue --view 30,20 --zoom 1.4 --background black"
+  # The same with a transfer function instead of the grey window (docs/tf/), as MIP and DEMIP.
+  "dv_aneurism_tf_mip|$data/aneurism.vti|--technique mip --tf docs/tf/aneurism_vessels.json --view 30,20 --zoom 1.4 --background black"
+  "dv_aneurism_tf_demip|$data/aneurism.vti|--technique demip --tf docs/tf/aneurism_vessels.json --depth-weight 0.3 --view 30,20 --zoom 1.4 --background black"
 )
 
+count=0
 for entry in "${entries[@]}"; do
   IFS='|' read -r name input options <<<"$entry"
+  [[ $name == "$prefix"* ]] || continue
+  count=$((count + 1))
   echo "gallery: $name" >&2
+  background="--background white"  # unless the entry names its own (MIP is read over black)
+  [[ $options == *--background* ]] && background=""
   # shellcheck disable=SC2086  # options are a word list on purpose
-  "$vsil" render "$input" $common $options --out "$out/$name.png"
+  "$vsil" render "$input" $common $background $options --out "$out/$name.png"
 done
-echo "gallery: ${#entries[@]} images in $(pwd)/$out" >&2
+echo "gallery: $count images in $(pwd)/$out" >&2

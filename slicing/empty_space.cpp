@@ -100,8 +100,35 @@ glm::dvec3 BrickRanges::regionHigh(glm::ivec3 brick) const {
   return glm::min(glm::dvec3((brick + 1) * kB), glm::dvec3(dims_)) - 0.5;
 }
 
+namespace {
+
+// Grows the occupied bricks (x fastest) by `margin` bricks along each axis in turn: a box of
+// (2·margin + 1)³ bricks around each.
+void growOccupied(std::vector<bool>& occupied, glm::ivec3 bricks, int margin) {
+  for (int axis = 0; axis < 3 && margin > 0; ++axis) {
+    const std::vector<bool> before = occupied;
+    const glm::ivec3 stride(1, bricks.x, bricks.x * bricks.y);
+    for (int bz = 0; bz < bricks.z; ++bz) {
+      for (int by = 0; by < bricks.y; ++by) {
+        for (int bx = 0; bx < bricks.x; ++bx) {
+          const glm::ivec3 b(bx, by, bz);
+          const int i = bx + by * stride.y + bz * stride.z;
+          const int lo = std::max(0, b[axis] - margin);
+          const int hi = std::min(bricks[axis] - 1, b[axis] + margin);
+          for (int k = lo; k <= hi && !occupied[std::size_t(i)]; ++k) {
+            if (before[std::size_t(i + (k - b[axis]) * stride[axis])])
+              occupied[std::size_t(i)] = true;
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
 OccupiedFaces occupiedFaces(const BrickRanges& ranges, const BrickOccupancy& occupied,
-                            const View& view) {
+                            const View& view, int margin) {
   const glm::dmat4 voxelFromEye = glm::inverse(view.eyeFromVoxel);
   // Perspective: a face is turned to the eye when the eye lies beyond its plane; orthographic:
   // when the direction towards the eye points out of it.
@@ -118,6 +145,7 @@ OccupiedFaces occupiedFaces(const BrickRanges& ranges, const BrickOccupancy& occ
       }
     }
   }
+  growOccupied(occupiedBricks, bricks, margin);
   auto isOccupied = [&](glm::ivec3 b) {
     return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) &&
            glm::all(glm::lessThan(b, bricks)) &&
@@ -172,7 +200,7 @@ gl::ProgramSpec facesProgram(std::vector<std::string> defines) {
 
 EmptySpaceSkipping::EmptySpaceSkipping()
     : entryProgram_(facesProgram({})),
-      exitProgram_(facesProgram({"EXIT_DEPTH"})),
+      depthAsColorProgram_(facesProgram({"DEPTH_AS_COLOR"})),
       buffer_(gl::createBuffer()),
       vertexArray_(gl::createVertexArray()) {
   VSIL_GL(glBindVertexArray(vertexArray_.id()));
@@ -183,7 +211,7 @@ EmptySpaceSkipping::EmptySpaceSkipping()
 }
 
 void EmptySpaceSkipping::prepare(const BrickRanges& ranges, const BrickOccupancy& occupied,
-                                 const View& view, bool enabled) {
+                                 const View& view, bool enabled, int margin) {
   enabled_ = enabled;
   entryVertices_ = exitVertices_ = 0;
   if (!exitDepth_ || exitDepth_->size() != view.viewport) {
@@ -196,7 +224,7 @@ void EmptySpaceSkipping::prepare(const BrickRanges& ranges, const BrickOccupancy
   VSIL_GL(glClearBufferfv(GL_COLOR, 0, exitClear));
   if (!enabled) return;
 
-  OccupiedFaces faces = occupiedFaces(ranges, occupied, view);
+  OccupiedFaces faces = occupiedFaces(ranges, occupied, view, margin);
   entryVertices_ = GLsizei(faces.entry.size());
   exitVertices_ = GLsizei(faces.exit.size());
   std::vector<glm::vec3>& vertices = faces.entry;  // entry faces first, then exit faces
@@ -206,7 +234,23 @@ void EmptySpaceSkipping::prepare(const BrickRanges& ranges, const BrickOccupancy
                        vertices.data(), GL_STREAM_DRAW));
 
   gl::Blending farthest(GL_MAX, GL_ONE, GL_ONE);
-  drawFaces(exitProgram_, glm::mat4(view.clipFromVoxel()), entryVertices_, exitVertices_);
+  drawFaces(depthAsColorProgram_, glm::mat4(view.clipFromVoxel()), entryVertices_,
+            exitVertices_);
+}
+
+void EmptySpaceSkipping::drawEntryDepthImage(const glm::mat4& clipFromVoxel) {
+  const glm::ivec2 size = exitDepth_->size();  // prepare() made it for this frame's viewport
+  if (!entryDepth_ || entryDepth_->size() != size) {
+    entryDepth_.reset();
+    entryDepth_.emplace(size, GL_R32F);
+  }
+  gl::Capability noScissor(GL_SCISSOR_TEST, false);
+  entryDepth_->bindForDrawing();
+  // As writeEntryDepth leaves the depth buffer: 1 where no ray enters, 0 everywhere unskipped.
+  const GLfloat clear[4] = {enabled_ ? 1.0f : 0.0f, 0, 0, 0};
+  VSIL_GL(glClearBufferfv(GL_COLOR, 0, clear));
+  gl::Blending nearest(GL_MIN, GL_ONE, GL_ONE);
+  drawFaces(depthAsColorProgram_, clipFromVoxel, 0, entryVertices_);
 }
 
 void EmptySpaceSkipping::writeEntryDepth(const glm::mat4& clipFromVoxel) {

@@ -12,7 +12,8 @@
 // does. Slice passes that test GREATER against it then skip, before their shader runs, every
 // pixel in front of the volume's content and every pixel whose ray misses it. The faces turned
 // away from the eye give where each ray leaves occupied space for good; the passes that mark
-// dead pixels (mark_dead.frag) mark those pixels too once the slices are past it. Skipped
+// dead pixels (mark_dead.frag) mark those pixels too once the slices are past it. Compute
+// passes, which have no depth test, read the entry depth from an image instead. Skipped
 // pixels are exactly those whose samples stay below the iso value, so no output changes (the
 // GL tests compare against a CPU reference that samples everything).
 #include <functional>
@@ -61,8 +62,10 @@ struct OccupiedFaces {
   std::vector<glm::vec3> entry;
   std::vector<glm::vec3> exit;
 };
+// `margin` > 0 grows the occupied bricks by that many bricks in every direction first
+// (Technique::occupancyMargin).
 OccupiedFaces occupiedFaces(const BrickRanges& ranges, const BrickOccupancy& occupied,
-                            const View& view);
+                            const View& view, int margin = 0);
 constexpr double kEntryMargin = 0.5;
 
 // The GL side: per frame, the occupied bricks' entry faces (drawn into a technique's depth
@@ -73,11 +76,15 @@ class EmptySpaceSkipping {
   // Uploads this frame's faces and draws the exit depth image; `enabled` false turns skipping
   // off (entry depth 0, exit depth 1 everywhere).
   void prepare(const BrickRanges& ranges, const BrickOccupancy& occupied, const View& view,
-               bool enabled);
+               bool enabled, int margin = 0);
   // Into the bound framebuffer's depth-stencil buffer: stencil 0 and, per pixel, a depth no
   // greater than that of the first slice whose sample there may reach the iso value (1 where
   // none can). Colour buffers are left untouched.
   void writeEntryDepth(const glm::mat4& clipFromVoxel);
+  // The same depth as an R32F image (entryDepthTexture), for passes without a depth test (the
+  // tile march, tile_march.h). Draws it; the caller asks once per frame.
+  void drawEntryDepthImage(const glm::mat4& clipFromVoxel);
+  GLuint entryDepthTexture() const { return entryDepth_ ? entryDepth_->texture() : 0; }
   // R32F, per pixel the window depth beyond which the ray meets no occupied brick (0 where it
   // meets none at all).
   GLuint exitDepthTexture() const { return exitDepth_ ? exitDepth_->texture() : 0; }
@@ -86,13 +93,14 @@ class EmptySpaceSkipping {
   void drawFaces(gl::Program& program, const glm::mat4& clipFromVoxel, GLint first, GLsizei count);
 
   bool enabled_ = true;
-  gl::Program entryProgram_;  // shaders/occupied_faces.{vert,frag}
-  gl::Program exitProgram_;
+  gl::Program entryProgram_;        // shaders/occupied_faces.{vert,frag}: depth only
+  gl::Program depthAsColorProgram_;  // the window depth as colour (exit image, entry image)
   gl::BufferName buffer_;
   gl::VertexArrayName vertexArray_;
   GLsizei entryVertices_ = 0;  // entry faces first in the buffer, then exit faces
   GLsizei exitVertices_ = 0;
   std::optional<gl::RenderTarget> exitDepth_;
+  std::optional<gl::RenderTarget> entryDepth_;  // made on the first drawEntryDepthImage
 };
 
 }  // namespace vsil

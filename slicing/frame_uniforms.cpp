@@ -6,11 +6,16 @@
 
 namespace vsil {
 
-FrameUniforms::FrameUniforms() : frameBuffer_(gl::createBuffer()), sliceBuffer_(gl::createBuffer()) {
+FrameUniforms::FrameUniforms()
+    : frameBuffer_(gl::createBuffer()), sliceBuffer_(gl::createBuffer()) {
   GLint alignment = 256;
   glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
+  alignment = std::max(alignment, GLint(16));  // a power of two: also whole vec4s
   const GLsizeiptr size = sizeof(SliceBlock);
   sliceStride_ = (size + alignment - 1) / alignment * alignment;
+  GLint maxBlockSize = 16384;  // the least GL 4.5 allows
+  glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &maxBlockSize);
+  slicesPerRange_ = std::max(1, int(maxBlockSize / sliceStride_));
 }
 
 void FrameUniforms::upload(const View& view, glm::ivec3 dims, const SlicePlan& plan) {
@@ -28,9 +33,11 @@ void FrameUniforms::upload(const View& view, glm::ivec3 dims, const SlicePlan& p
   VSIL_GL(glBindBuffer(GL_UNIFORM_BUFFER, frameBuffer_.id()));
   VSIL_GL(glBufferData(GL_UNIFORM_BUFFER, sizeof(frame), &frame, GL_STREAM_DRAW));
 
-  // At least one block, so that screen passes always have one bound.
+  // At least one block, so that screen passes always have one bound; a range's worth more, so
+  // that every slice range is whole.
   slices_ = int(plan.slices.size());
-  std::vector<std::byte> blocks(std::size_t(sliceStride_) * std::size_t(std::max(slices_, 1)));
+  std::vector<std::byte> blocks(std::size_t(sliceStride_) *
+                                std::size_t(std::max(slices_, 1) + slicesPerRange_));
   for (int k = 0; k < slices_; ++k) {
     const Slice& slice = plan.slices[std::size_t(k)];
     const SliceTexCoords tex = sliceTexCoords(view, dims, slice.eyeDistance);
@@ -47,7 +54,8 @@ void FrameUniforms::upload(const View& view, glm::ivec3 dims, const SlicePlan& p
     std::memcpy(blocks.data() + std::size_t(k) * std::size_t(sliceStride_), &block, sizeof(block));
   }
   VSIL_GL(glBindBuffer(GL_UNIFORM_BUFFER, sliceBuffer_.id()));
-  VSIL_GL(glBufferData(GL_UNIFORM_BUFFER, GLsizeiptr(blocks.size()), blocks.data(), GL_STREAM_DRAW));
+  VSIL_GL(
+      glBufferData(GL_UNIFORM_BUFFER, GLsizeiptr(blocks.size()), blocks.data(), GL_STREAM_DRAW));
   glBindBuffer(GL_UNIFORM_BUFFER, 0);
   bindFrame();
 }
@@ -55,6 +63,11 @@ void FrameUniforms::upload(const View& view, glm::ivec3 dims, const SlicePlan& p
 void FrameUniforms::bindSlice(int k) const {
   glBindBufferRange(GL_UNIFORM_BUFFER, kSliceBlockBinding, sliceBuffer_.id(),
                     GLintptr(k) * sliceStride_, sizeof(SliceBlock));
+}
+
+void FrameUniforms::bindSliceRange(int first) const {
+  VSIL_GL(glBindBufferRange(GL_UNIFORM_BUFFER, kSliceRangeBinding, sliceBuffer_.id(),
+                            GLintptr(first) * sliceStride_, slicesPerRange_ * sliceStride_));
 }
 
 void FrameUniforms::bindFrame() const {

@@ -3,6 +3,8 @@
 // frame's (camera, volume) uploaded once per frame, and one block per slice (where its pixels
 // sample the volume, its depths), all uploaded once per frame into one buffer; a pass binds its
 // slice's block with one glBindBufferRange instead of about fifteen glUniform calls per program.
+// Compute shaders that walk the slices themselves (tile_march.h) read a range of consecutive
+// slices' blocks as one uniform block of vec4s (shaders/tile_march.glsl sliceAt).
 #include <cstddef>
 #include <cstdint>
 
@@ -41,13 +43,19 @@ struct SliceBlock {
   float previousDepth;  // the previous slice's d (0 before the first)
   std::uint32_t index;  // the slice's index in the plan
 };
+// The vec4 words tile_march.glsl's sliceAt() reads: (texPerNdcX, eyeDistance), (texPerNdcY,
+// depth), (texAtNdcOrigin, windowDepth), (previousDepth, index, -, -).
+static_assert(offsetof(SliceBlock, eyeDistance) == 12);
 static_assert(offsetof(SliceBlock, texPerNdcY) == 16);
+static_assert(offsetof(SliceBlock, depth) == 28);
 static_assert(offsetof(SliceBlock, texAtNdcOrigin) == 32);
+static_assert(offsetof(SliceBlock, windowDepth) == 44);
 static_assert(offsetof(SliceBlock, previousDepth) == 48);
 static_assert(offsetof(SliceBlock, index) == 52);
 
 inline constexpr GLuint kFrameBlockBinding = 0;
 inline constexpr GLuint kSliceBlockBinding = 1;
+inline constexpr GLuint kSliceRangeBinding = 2;  // tile_march.glsl `uniform SliceRange`
 
 class FrameUniforms {
  public:
@@ -59,10 +67,20 @@ class FrameUniforms {
   // For passes that read no slice (screen passes): slice 0's block, or nothing to read.
   void bindFrame() const;
 
+  // The tile march's view: slices [first, first + slicesPerRange()) as one uniform block at
+  // kSliceRangeBinding, slice first + i from vec4 i * sliceStrideVec4() on. As many as fit in a
+  // uniform block (GL_MAX_UNIFORM_BLOCK_SIZE); the buffer is padded so that every range is
+  // whole, its slices past the plan's last unused.
+  void bindSliceRange(int first) const;
+  int slicesPerRange() const { return slicesPerRange_; }
+  int sliceStrideVec4() const { return int(sliceStride_ / 16); }
+
  private:
   gl::BufferName frameBuffer_;
   gl::BufferName sliceBuffer_;
-  GLsizeiptr sliceStride_ = 0;  // sizeof(SliceBlock) rounded up to the offset alignment
+  // sizeof(SliceBlock) rounded up to the offset alignment, and to whole vec4s (the range view)
+  GLsizeiptr sliceStride_ = 0;
+  int slicesPerRange_ = 0;
   int slices_ = 0;
 };
 

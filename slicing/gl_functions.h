@@ -42,6 +42,7 @@
   X(glDepthMask, PFNGLDEPTHMASKPROC)                             \
   X(glDepthRange, PFNGLDEPTHRANGEPROC)                           \
   X(glDisable, PFNGLDISABLEPROC)                                 \
+  X(glDispatchCompute, PFNGLDISPATCHCOMPUTEPROC)                 \
   X(glDrawArrays, PFNGLDRAWARRAYSPROC)                           \
   X(glEnable, PFNGLENABLEPROC)                                   \
   X(glEnableVertexAttribArray, PFNGLENABLEVERTEXATTRIBARRAYPROC) \
@@ -83,11 +84,14 @@
   X(glScissor, PFNGLSCISSORPROC)                                 \
   X(glShaderSource, PFNGLSHADERSOURCEPROC)                       \
   X(glStencilMask, PFNGLSTENCILMASKPROC)                         \
+  X(glTexImage1D, PFNGLTEXIMAGE1DPROC)                           \
   X(glTexImage2D, PFNGLTEXIMAGE2DPROC)                           \
   X(glTexImage3D, PFNGLTEXIMAGE3DPROC)                           \
   X(glTexParameteri, PFNGLTEXPARAMETERIPROC)                     \
+  X(glTexSubImage1D, PFNGLTEXSUBIMAGE1DPROC)                     \
   X(glTexSubImage3D, PFNGLTEXSUBIMAGE3DPROC)                     \
   X(glUniform1f, PFNGLUNIFORM1FPROC)                             \
+  X(glUniform1fv, PFNGLUNIFORM1FVPROC)                           \
   X(glUniform1i, PFNGLUNIFORM1IPROC)                             \
   X(glUniform1ui, PFNGLUNIFORM1UIPROC)                           \
   X(glUniform2fv, PFNGLUNIFORM2FVPROC)                           \

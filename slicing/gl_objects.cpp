@@ -121,5 +121,4 @@ void EmptyFramebuffer::bindForDrawing() const {
   VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
 }
 
-
 }  // namespace vsil::gl

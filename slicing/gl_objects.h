@@ -100,5 +100,4 @@ class EmptyFramebuffer {
   FramebufferName framebuffer_;
 };
 
-
 }  // namespace vsil::gl

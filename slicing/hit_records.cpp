@@ -1,29 +1,42 @@
 #include "slicing/hit_records.h"
 
 #include <limits>
+#include <stdexcept>
 
 #include "slicing/gl_state.h"
 #include "slicing/texture_units.h"
+#include "slicing/tile_march.h"
 
 namespace vsil {
 
 void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
                     const gl::EmptyFramebuffer& depthOnly, const gl::RenderTarget& record,
-                    bool neighboursFinal) {
-  gl::Program& markDead = frame.programs->get(gl::slicePassProgram(
-      hitRecordSources(), "shaders/mark_dead.frag",
-      neighboursFinal ? std::vector<std::string>{"NEIGHBOURS_FINAL"} : std::vector<std::string>{}));
+                    DeadRule rule, float deadOpacity) {
+  std::vector<std::string> defines;
+  if (rule == DeadRule::NeighbourRecords) defines.emplace_back("NEIGHBOURS_FINAL");
+  if (rule == DeadRule::Opacity) defines.emplace_back("OPACITY_DEAD");
+  gl::Program& markDead = frame.programs->get(
+      gl::slicePassProgram(hitRecordSources(), "shaders/mark_dead.frag", defines));
   depthOnly.bindForDrawing();
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   gl::DepthTest depthTest(GL_GREATER, /*write=*/true);  // pixels already dead (depth 1) skipped
   gl::DepthRange everyFragmentAtOne(1.0, 1.0);
   markDead.use();
+  if (rule == DeadRule::Opacity) markDead.set("deadOpacity", deadOpacity);
   gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, record.texture());
   gl::bindTexture(gl::TextureUnit::ExitDepth, GL_TEXTURE_2D, frame.emptySpace->exitDepthTexture());
   drawSlicePolygon(frame, slice);
 }
 
-void FirstHitRecorder::beginFrame(const FrameContext& frame) {
+namespace {
+// The tiles walk's workgroup (first_hit_march.comp): no apron, since no pixel reads another's
+// samples. 8x8 and 32x8 tiles measured within the noise of 16x16 (see kMarchShape in
+// techniques/silhouette/silhouette_technique.cpp).
+constexpr MarchShape kFirstHitMarchShape{{16, 16}, {16, 16}};
+}  // namespace
+
+void FirstHitRecorder::beginFrame(const FrameContext& frame, SlicingPipeline pipeline,
+                                  std::optional<MaterialThreshold> material) {
   const glm::ivec2 size = frame.view->viewport;
   if (!targets_ || targets_->record.size() != size) {
     targets_.reset();
@@ -31,31 +44,63 @@ void FirstHitRecorder::beginFrame(const FrameContext& frame) {
     const GLuint depth = record.depthStencil();
     targets_.emplace(Targets{std::move(record), gl::EmptyFramebuffer(size, depth)});
   }
-  slicePass_ = &frame.programs->get(
-      gl::slicePassProgram(hitRecordSources(), "shaders/first_hit.frag"));
+  pipeline_ = pipeline;
+  if (pipeline_ == SlicingPipeline::Tiles) {
+    if (material) {
+      throw std::logic_error("FirstHitRecorder: the tiles march has no material threshold");
+    }
+    // The march writes every pixel's record once: nothing to clear, no depth buffer.
+    march_ = &marchProgram(frame, hitRecordSources(), "shaders/first_hit_march.comp",
+                           kFirstHitMarchShape);
+    march_->use();
+    march_->set("isoValue", float(frame.options->number("iso")));
+    return;
+  }
+  slicePass_ = &frame.programs->get(gl::slicePassProgram(
+      hitRecordSources(), "shaders/first_hit.frag",
+      material ? std::vector<std::string>{"MATERIAL_THRESHOLD"} : std::vector<std::string>{}));
   slicePass_->use();
-  slicePass_->set("isoValue", float(frame.options->number("iso")));
+  if (material) {
+    slicePass_->set("materialEps", material->materialEps);
+    maximumTexture_ = material->maximumTexture;
+  } else {
+    slicePass_->set("isoValue", float(frame.options->number("iso")));
+    maximumTexture_ = 0;
+  }
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   const GLfloat zero[4] = {0, 0, 0, 0};
   targets_->record.bindForDrawing();
   VSIL_GL(glClearBufferfv(GL_COLOR, 0, zero));
-  frame.emptySpace->writeEntryDepth(glm::mat4(frame.view->clipFromVoxel()));
+  if (pipeline_ == SlicingPipeline::Fast) {
+    frame.emptySpace->writeEntryDepth(glm::mat4(frame.view->clipFromVoxel()));
+  }
 }
 
 void FirstHitRecorder::drawSlice(const FrameContext& frame, const SliceContext& slice) {
-  if (slice.vertexCount == 0) return;
+  if (pipeline_ == SlicingPipeline::Tiles || slice.vertexCount == 0) return;
+  const bool skipping = pipeline_ == SlicingPipeline::Fast;
   targets_->record.bindForDrawing();
   {
     // GREATER, no depth writes: skips empty space in front (empty_space.h) and dead pixels,
-    // early. The blending keeps each pixel's first hit (first_hit.frag).
-    gl::DepthTest skipEmptyAndDead(GL_GREATER, /*write=*/false);
+    // early. The paper pipeline samples every pixel of the polygon. The blending keeps each
+    // pixel's first hit (first_hit.frag).
+    std::optional<gl::DepthTest> skipEmptyAndDead;
+    if (skipping) skipEmptyAndDead.emplace(GL_GREATER, /*write=*/false);
     gl::Blending keepFirstHit(GL_FUNC_ADD, GL_ONE_MINUS_DST_ALPHA, GL_DST_ALPHA);
     slicePass_->use();
+    if (maximumTexture_ != 0) {
+      gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_2D, maximumTexture_);
+    }
     drawSlicePolygon(frame, slice);
   }
-  if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
-    markDeadPixels(frame, slice, targets_->depthOnly, targets_->record, /*neighboursFinal=*/false);
+  if (skipping && slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
+    markDeadPixels(frame, slice, targets_->depthOnly, targets_->record, DeadRule::OwnRecord);
   }
+}
+
+void FirstHitRecorder::endSlices(const FrameContext& frame) {
+  if (pipeline_ == SlicingPipeline::Tiles)
+    runMarch(frame, *march_, kFirstHitMarchShape, targets_->record);
 }
 
 gl::Program& finishProgram(const FrameContext& frame, const std::vector<std::string>& shared) {

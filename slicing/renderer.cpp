@@ -11,6 +11,7 @@
 #include "slicing/frame_uniforms.h"
 #include "slicing/gl_context.h"
 #include "slicing/gl_state.h"
+#include "slicing/gradient_texture.h"
 #include "slicing/technique.h"
 #include "slicing/technique_table.h"
 #include "slicing/texture_units.h"
@@ -46,6 +47,7 @@ void validate(const RenderSettings& settings) {
   }
   const TechniqueInfo& technique = findTechnique(settings.technique);
   checkOptions(technique.options, settings.options, "technique '" + technique.name + "'");
+  if (technique.checkValues) technique.checkValues(settings.options);
 }
 
 }  // namespace
@@ -60,11 +62,13 @@ struct Renderer::Impl {
   std::optional<BrickRanges> brickRanges;
   std::optional<EmptySpaceSkipping> emptySpace;
   std::optional<FrameUniforms> uniforms;
+  GradientTextureCache gradients;
+  int volumeGeneration = 0;
   gl::ProgramCache programs;
   glm::ivec3 dims{0};
   glm::dvec3 spacing{1.0};
   ValueRange valueRange;
-  float defaultIso = 0.5f;
+  DerivedDefaults derivedDefaults;
   gl::BufferName sliceBuffer;
   gl::VertexArrayName sliceVertexArray;
   gl::VertexArrayName screenVertexArray;
@@ -99,11 +103,13 @@ const gl::ProgramCache& Renderer::programs() const {
 void Renderer::setVolume(const Volume& volume) {
   impl_->volumeTexture.reset();
   impl_->volumeTexture.emplace(volume);
+  impl_->gradients.reset(impl_->volumeTexture->id(), volume.dims, volume.spacing);
+  ++impl_->volumeGeneration;
   impl_->brickRanges.emplace(volume);
   impl_->dims = volume.dims;
   impl_->spacing = volume.spacing;
   impl_->valueRange = valueRange(volume);
-  impl_->defaultIso = defaultIso(volume);
+  impl_->derivedDefaults = derivedDefaults(volume);
 }
 
 RenderResult Renderer::render(const RenderSettings& settings) {
@@ -111,7 +117,7 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   validate(settings);
   const TechniqueInfo& info = findTechnique(settings.technique);
   Technique& technique = impl_->technique(info);
-  const OptionReader options(info.options, settings.options, {impl_->defaultIso});
+  const OptionReader options(info.options, settings.options, impl_->derivedDefaults);
 
   RenderResult result;
   result.view = makeView(settings.camera, impl_->dims, impl_->spacing, settings.size);
@@ -163,9 +169,16 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   frame.screenVertexArray = impl_->screenVertexArray.id();
   frame.programs = &impl_->programs;
   frame.uniforms = &*impl_->uniforms;
+  frame.gradients = &impl_->gradients;
+  frame.volumeGeneration = impl_->volumeGeneration;
+  const ResolvedOptions resolved = technique.resolve(frame);
+  result.background =
+      settings.background.value_or(resolved.background.value_or(kDefaultBackground));
+  frame.background = result.background;
+  result.options.update(resolved.details);
   if (!impl_->emptySpace) impl_->emptySpace.emplace();
   impl_->emptySpace->prepare(*impl_->brickRanges, technique.occupancy(frame), result.view,
-                             settings.emptySpaceSkipping);
+                             settings.emptySpaceSkipping, technique.occupancyMargin(frame));
   frame.emptySpace = &*impl_->emptySpace;
 
   technique.beginFrame(frame);

@@ -6,12 +6,14 @@
 //   renderer.setVolume(volume);
 //   vsil::RenderResult result = renderer.render(settings);   // result.frame.state, .depth ...
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "core/camera.h"
+#include "core/color.h"
 #include "core/frame.h"
 #include "core/options.h"
 #include "core/volume.h"
@@ -32,6 +34,14 @@ struct RenderSettings {
   // Skip what cannot change a pixel (slicing/empty_space.h); the pixels are the same either
   // way. Off: every slice samples its whole polygon, as in the papers.
   bool emptySpaceSkipping = true;
+  // Colour techniques retire a pixel once its accumulated opacity passed 1 − 1/255 (early ray
+  // termination, slicing/compositing.h): no channel changes by more than 1/255. Off: every
+  // sample in occupied space is composited.
+  bool earlyRayTermination = true;
+  // The colour the frame will be composed over (`--background`) when the caller chose one;
+  // techniques that blend towards it read FrameContext::background (illustrate's distance
+  // colour blending, c_b). Unset: the technique's own choice (a style's), else white.
+  std::optional<Rgba> background;
   // The technique's options by name (its entry in technique_table.h declares them); options
   // not given take their declared defaults, the iso value the volume's default.
   OptionValues options;
@@ -45,8 +55,11 @@ struct RenderTimings {
 struct RenderResult {
   FrameBuffers frame;
   View view;
-  nlohmann::json options;  // every option of the technique with the value used
-  int sliceCount = 0;  // slices drawn, not counting the extra empty one
+  // Every option of the technique with the value used, and what the technique resolved them
+  // to (e.g. illustrate's "illustration": effects, every parameter, lights).
+  nlohmann::json options;
+  Rgba background = kDefaultBackground;  // what the frame was made for and is composed over
+  int sliceCount = 0;                    // slices drawn, not counting the extra empty one
   double sliceStepEye = 0;
   RenderTimings timings;
 };

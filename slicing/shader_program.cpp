@@ -44,9 +44,9 @@ std::string namedLog(const std::string& log, const std::vector<ShaderSource>& so
     const auto& match = *it;
     const std::size_t index = std::stoul(match[2].str());
     named += log.substr(copied, std::size_t(match.position(0)) - copied) + match[1].str();
-    named += (index == 0 || index > sources.size() ? std::string("prelude")
-                                                   : sources[index - 1].label) +
-             ":" + match[3].str() + "(";
+    named +=
+        (index == 0 || index > sources.size() ? std::string("prelude") : sources[index - 1].label) +
+        ":" + match[3].str() + "(";
     copied = std::size_t(match.position(0) + match.length(0));
   }
   return named + log.substr(copied);
@@ -72,8 +72,8 @@ GLuint compileStage(GLenum stage, const std::vector<ShaderSource>& sources,
     std::vector<char> log(std::size_t(std::max(length, 1)));
     glGetShaderInfoLog(shader, length, nullptr, log.data());
     glDeleteShader(shader);
-    throw GlError("compiling the " + std::string(stageOf(stage).name) + " stage of " + programLabel +
-                  ": " + namedLog(log.data(), sources));
+    throw GlError("compiling the " + std::string(stageOf(stage).name) + " stage of " +
+                  programLabel + ": " + namedLog(log.data(), sources));
   }
   return shader;
 }
@@ -82,8 +82,8 @@ std::string labelOf(const ProgramSpec& spec) {
   const auto& last = [](const std::vector<ShaderSource>& sources) {
     return sources.empty() ? std::string() : sources.back().label;
   };
-  std::string label = spec.compute.empty() ? last(spec.vertex) + "+" + last(spec.fragment)
-                                           : last(spec.compute);
+  std::string label =
+      spec.compute.empty() ? last(spec.vertex) + "+" + last(spec.fragment) : last(spec.compute);
   for (const auto& define : spec.defines) label += " " + define;
   return label;
 }
@@ -116,14 +116,23 @@ std::string ProgramSpec::key() const {
 
 ProgramSpec slicePassProgram(const std::vector<std::string>& shared, std::string fragmentFile,
                              std::vector<std::string> defines) {
-  return {files(shared, "shaders/slice.vert"), files(shared, std::move(fragmentFile)), {},
+  return {files(shared, "shaders/slice.vert"),
+          files(shared, std::move(fragmentFile)),
+          {},
           std::move(defines)};
 }
 
 ProgramSpec screenPassProgram(const std::vector<std::string>& shared, std::string fragmentFile,
                               std::vector<std::string> defines) {
-  return {files(shared, "shaders/screen.vert"), files(shared, std::move(fragmentFile)), {},
+  return {files(shared, "shaders/screen.vert"),
+          files(shared, std::move(fragmentFile)),
+          {},
           std::move(defines)};
+}
+
+ProgramSpec computeProgram(const std::vector<std::string>& shared, std::string computeFile,
+                           std::vector<std::string> defines) {
+  return {{}, {}, files(shared, std::move(computeFile)), std::move(defines)};
 }
 
 Program::Program(const ProgramSpec& spec) : label_(labelOf(spec)) {
@@ -198,7 +207,10 @@ void Program::set(const char* name, const glm::mat4& value) {
   glUniformMatrix4fv(location(name), 1, GL_FALSE, glm::value_ptr(value));
 }
 void Program::set(const char* name, const glm::vec3* values, int count) {
-  glUniform3fv(location(name), count, glm::value_ptr(values[0]));
+  if (count > 0) glUniform3fv(location(name), count, glm::value_ptr(values[0]));
+}
+void Program::set(const char* name, const float* values, int count) {
+  if (count > 0) glUniform1fv(location(name), count, values);
 }
 
 Program& ProgramCache::get(const ProgramSpec& spec) {

@@ -53,6 +53,10 @@ ProgramSpec slicePassProgram(const std::vector<std::string>& shared, std::string
                              std::vector<std::string> defines = {});
 ProgramSpec screenPassProgram(const std::vector<std::string>& shared, std::string fragmentFile,
                               std::vector<std::string> defines = {});
+//   compute program: `computeFile` alone (common.glsl then needs SLICE_STRIDE_VEC4 among the
+//   defines: tile_march.h marchProgram)
+ProgramSpec computeProgram(const std::vector<std::string>& shared, std::string computeFile,
+                           std::vector<std::string> defines = {});
 
 // A linked program. Every stage gets `#version 450 core`, VSIL_<STAGE>_SHADER, the texture and
 // image unit names (texture_units.h), the defines, then its sources, each numbered from line 1.
@@ -76,6 +80,7 @@ class Program {
   void set(const char* name, const glm::mat4& value);
   // Arrays (e.g. light directions), `count` elements from `values`.
   void set(const char* name, const glm::vec3* values, int count);
+  void set(const char* name, const float* values, int count);
 
  private:
   GLint location(const char* name);

@@ -88,6 +88,7 @@ SlicePlan planSlices(const View& view, glm::ivec3 dims, glm::dvec3 spacing,
   const int count = std::max(1, int(std::lround(range * voxelsPerUnit * samplesPerVoxel)));
   SlicePlan plan;
   plan.stepEye = range / count;
+  plan.stepVoxels = plan.stepEye * voxelsPerUnit;
   plan.slices.reserve(std::size_t(count));
   for (int k = 0; k < count; ++k) {
     Slice slice;

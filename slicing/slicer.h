@@ -37,6 +37,9 @@ struct PixelRect {
 
 struct SlicePlan {
   double stepEye = 0;  // distance between consecutive planes
+  // The same distance in voxels along the view direction (anisotropic spacing counted), about
+  // 1 / samplesPerVoxel: the opacity correction's Δ/Δ₀ with Δ₀ one voxel (compositing.h).
+  double stepVoxels = 0;
   std::vector<Slice> slices;
 };
 

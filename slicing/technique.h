@@ -6,14 +6,19 @@
 // returns is declared once in technique_table.h.
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "core/color.h"
 #include "core/frame.h"
 #include "core/options.h"
 #include "core/volume.h"
 #include "slicing/empty_space.h"
 #include "slicing/frame_uniforms.h"
 #include "slicing/gl_objects.h"
+#include "slicing/gradient_texture.h"
 #include "slicing/renderer.h"
 #include "slicing/shader_program.h"
 #include "slicing/slicer.h"
@@ -37,6 +42,15 @@ struct FrameContext {
   EmptySpaceSkipping* emptySpace = nullptr;
   gl::ProgramCache* programs = nullptr;
   const FrameUniforms* uniforms = nullptr;
+  // The volume's gradient texture (gradient_texture.h), built on first use and kept for the
+  // volume's lifetime: only techniques that ask pay for it.
+  GradientTextureCache* gradients = nullptr;
+  // Changes whenever the Renderer gets a new volume: techniques keying caches of their own on
+  // the volume (illustrate's halo mask) compare it.
+  int volumeGeneration = 0;
+  // What the frame is composed over: RenderSettings::background, else what the technique's
+  // resolve() chose, else white (distance colour blending's c_b).
+  Rgba background = kDefaultBackground;
   int sweep = 0;  // which sweep over the slices is being drawn (0 .. sweepCount - 1)
 };
 
@@ -53,13 +67,28 @@ struct SliceContext {
   PixelRect recentUnion(int count, int margin, glm::ivec2 viewport) const;
 };
 
+// What a technique made of its options before the frame (Technique::resolve).
+struct ResolvedOptions {
+  // The colour to compose over when the caller chose none (e.g. an illustration style's).
+  std::optional<Rgba> background;
+  // Added to RenderResult::options for the metadata (e.g. {"illustration": {...}}).
+  nlohmann::json details = nlohmann::json::object();
+};
+
 class Technique {
  public:
   virtual ~Technique() = default;
+  // First in every frame, before occupancy(): reads the options and any files they name (styles,
+  // transfer functions); throws InputError for bad ones.
+  virtual ResolvedOptions resolve(const FrameContext&) { return {}; }
   virtual int sweepCount(const FrameContext&) const { return 1; }
   // Which bricks may hold something this frame shows (empty_space.h); the others are skipped
   // without sampling, so the occupancy must refuse only bricks that cannot change a pixel.
   virtual BrickOccupancy occupancy(const FrameContext& frame) const = 0;
+  // Occupied bricks grow by this many bricks in every direction before empty space is skipped:
+  // for techniques whose samples read a neighbourhood (illustrate's halos add opacity beside
+  // what the occupancy admits).
+  virtual int occupancyMargin(const FrameContext&) const { return 0; }
   virtual void beginFrame(const FrameContext& frame) = 0;
   virtual void beginSweep(const FrameContext&) {}
   virtual void drawSlice(const FrameContext& frame, const SliceContext& slice) = 0;

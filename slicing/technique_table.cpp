@@ -4,6 +4,9 @@
 
 #include "core/error.h"
 #include "slicing/techniques/firsthit/firsthit_technique.h"
+#include "slicing/techniques/illustrate/illustrate_technique.h"
+#include "slicing/techniques/mip/lmip_technique.h"
+#include "slicing/techniques/mip/mip_technique.h"
 #include "slicing/techniques/rightangle/rightangle_technique.h"
 #include "slicing/techniques/silhouette/silhouette_technique.h"
 
@@ -14,6 +17,10 @@ const std::vector<TechniqueInfo>& techniqueTable() {
       silhouetteTechniqueInfo(),
       rightAngleTechniqueInfo(),
       firstHitTechniqueInfo(),
+      illustrateTechniqueInfo(),
+      mipTechniqueInfo(),
+      demipTechniqueInfo(),
+      lmipTechniqueInfo(),
   };
   return table;
 }
@@ -45,6 +52,21 @@ OptionSpec isoOption() {
   spec.derived = OptionSpec::Derived::VolumeIso;
   spec.defaultNote = "from the volume (vsil info)";
   return spec;
+}
+
+OptionSpec pipelineOption() {
+  return OptionSpec::choice(
+      "pipeline", "fast", {"fast", "paper", "tiles"},
+      "fast (passes per slice, skipping empty space and finished pixels), paper (the paper's "
+      "passes per slice over every pixel of each slice polygon) or tiles (one compute dispatch "
+      "marching screen tiles through the slices); the same pixels");
+}
+
+SlicingPipeline pipelineOf(const OptionReader& options) {
+  const std::string& name = options.text("pipeline");
+  if (name == "paper") return SlicingPipeline::Paper;
+  if (name == "tiles") return SlicingPipeline::Tiles;
+  return SlicingPipeline::Fast;
 }
 
 }  // namespace vsil

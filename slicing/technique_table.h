@@ -28,6 +28,12 @@ struct TechniqueInfo {
   std::vector<OptionSpec> options;
   FrameOutputs outputs;
   std::function<std::unique_ptr<Technique>()> create;  // needs a current GL context
+  // Samples the volume's gradient texture (slicing/gradient_texture.h): the render's memory
+  // bound counts it.
+  bool usesGradients = false;
+  // Checks what the option declarations cannot: text values the technique parses itself and
+  // rules between options. Throws InputError naming the flag; runs before any GL work.
+  std::function<void(const OptionValues& given)> checkValues;
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }
@@ -40,5 +46,14 @@ std::vector<std::string> techniqueNames();
 
 // The iso-value option of the techniques that look for an iso-surface.
 OptionSpec isoOption();
+
+// How a frame walks the slices (--pipeline), for the techniques that offer a choice
+// (silhouette, rightangle); every choice gives the same pixels:
+//   fast:  a pass or two per slice, skipping empty space and pixels that can no longer change;
+//   paper: the papers' passes per slice over every pixel of each slice polygon, no skipping;
+//   tiles: one compute dispatch marching screen tiles through the slices (tile_march.h).
+enum class SlicingPipeline { Fast, Paper, Tiles };
+OptionSpec pipelineOption();
+SlicingPipeline pipelineOf(const OptionReader& options);
 
 }  // namespace vsil

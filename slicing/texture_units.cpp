@@ -27,6 +27,7 @@ std::string glslUnitDefines() {
       {"AUXILIARY0", TextureUnit::Auxiliary0},
       {"AUXILIARY1", TextureUnit::Auxiliary1},
       {"AUXILIARY2", TextureUnit::Auxiliary2},
+      {"ENTRY_DEPTH", TextureUnit::EntryDepth},
   };
   static const std::pair<const char*, ImageUnit> images[] = {
       {"RECORD", ImageUnit::Record},

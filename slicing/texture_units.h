@@ -20,6 +20,7 @@ enum class TextureUnit : GLuint {
   Auxiliary0 = 7,        // a technique's own inputs (halo neighbourhood, sphere map, ...)
   Auxiliary1 = 8,
   Auxiliary2 = 9,
+  EntryDepth = 10,  // where rays enter occupied bricks, as an image (empty_space.h; tile march)
 };
 
 enum class ImageUnit : GLuint {

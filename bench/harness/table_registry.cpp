@@ -2,7 +2,9 @@
 
 #include "core/error.h"
 #include "tables/animate_table.h"
+#include "tables/dv1_table.h"
 #include "tables/fft_table.h"
+#include "tables/illustrate_table.h"
 #include "tables/nk3_table.h"
 
 namespace vsil::bench {
@@ -15,16 +17,11 @@ std::vector<TableDefinition> makeRegistry() {
       {"fft", "broadening cost against sigma: FFT vs OpenCV GaussianBlur", {}, runFftTable, ""},
       {"animate", "one vsil animate against 36 vsil render processes (a 36-frame orbit)",
        animateDatasetNames(), runAnimateTable, ""},
-      {"dv1",
-       "Díaz–Vázquez Table 1: MIP, DEMIP and DVR composite frame rates",
-       {},
-       {},
-       "the mip and demip techniques and DVR compositing do not exist yet"},
+      {"dv1", "Díaz–Vázquez Table 1: MIP, DEMIP and DEMIP with colour sphere frame rates",
+       dv1DatasetNames(), runDv1Table, ""},
       {"illustrate",
-       "Ebert–Rheingans volume illustration frame rates",
-       {},
-       {},
-       "the illustrate technique does not exist yet"},
+       "Ebert–Rheingans volume illustration: plain composite, each effect, all, and RA",
+       illustrateDatasetNames(), runIllustrateTable, ""},
       {"semantic",
        "Rautek et al. semantic rendering frame rates",
        {},

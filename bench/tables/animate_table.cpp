@@ -167,10 +167,10 @@ AnimateCase measureCase(const std::string& dataset, const fs::path& file, double
   const fs::path errFile = scratch.path() / "stderr";
 
   const std::vector<std::string> glChoice = glArgs(gl);
-  std::vector<std::string> animateArgs = {"animate", file.string(), "--iso", isoText, "--size",
-                                          sizeText, "--view", kView, "--frames",
-                                          std::to_string(kFrames), "--orbit", "360", "--quiet",
-                                          "--out-dir", animated.string()};
+  std::vector<std::string> animateArgs = {
+      "animate", file.string(), "--iso",   isoText,     "--size",
+      sizeText,  "--view",      kView,     "--frames",  std::to_string(kFrames),
+      "--orbit", "360",         "--quiet", "--out-dir", animated.string()};
   animateArgs.insert(animateArgs.end(), glChoice.begin(), glChoice.end());
   const ProcessRun animate = runVsil(animateArgs, errFile);
   result.animateSeconds = animate.seconds;
@@ -198,9 +198,11 @@ AnimateCase measureCase(const std::string& dataset, const fs::path& file, double
   for (int i = 0; i < kFrames; ++i) {
     progress.step("render " + std::to_string(i + 1) + "/" + std::to_string(kFrames));
     const nlohmann::json& view = frames[i]["parameters"]["view"];
-    std::vector<std::string> renderArgs = {
-        "render", file.string(), "--iso", isoText, "--size", sizeText, "--view",
-        view[0].dump() + "," + view[1].dump(), "--out", (rendered / frameName(i)).string()};
+    std::vector<std::string> renderArgs = {"render", file.string(),
+                                           "--iso",  isoText,
+                                           "--size", sizeText,
+                                           "--view", view[0].dump() + "," + view[1].dump(),
+                                           "--out",  (rendered / frameName(i)).string()};
     renderArgs.insert(renderArgs.end(), glChoice.begin(), glChoice.end());
     const ProcessRun render = runVsil(renderArgs, errFile);
     if (render.exitCode != 0) {

@@ -15,6 +15,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "harness/format.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
 #include "io/volume_loader.h"
@@ -119,27 +120,56 @@ constexpr double kMinStepSlack = 0.125;
 constexpr int kPlacementRadius = 2;
 constexpr double kMinPlacedFraction = 0.98;
 
-// The three columns of Table 3, in order: what each renders (an entry of the table of
-// techniques) and what it adds after the render.
+// The three columns of Table 3 (RA, OPS, BS), each measured once per slicing pipeline
+// (technique_table.h: fast, paper, tiles; both techniques offer the same ones, so RA and OPS
+// are compared like with like): what each renders (an entry of the table of techniques), with
+// which pipeline, and what it adds after the render.
 struct Nk3Column {
-  std::string key;    // JSON "technique", progress and failures: ra, ops, bs
-  std::string label;  // the printed table and the plot: RA, OPS, BS
+  // JSON "technique", progress and failures: ra, ops, bs for the default pipeline (the keys the
+  // table had before it had pipelines), ra-paper, ops-tiles, ... for the others
+  std::string key;
+  std::string label;     // the printed table and the plot: RA, OPS, BS
+  std::string pipeline;  // --pipeline
   const TechniqueInfo& technique;
   bool broadened;        // BS: FFT broadening to kBroadenedWidth and composition, timed
   bool resolvesContour;  // finished frames hold no Contour pixel (the extra empty slice)
   double PaperFps::*paperFps;
 };
 
+// Positions within a pipeline's three columns, for the checks between columns.
+constexpr std::size_t kRa = 0, kOps = 1, kBs = 2, kColumnsPerPipeline = 3;
+
+// The pipelines, the default one first.
+const std::vector<std::string>& nk3Pipelines() {
+  static const std::vector<std::string> pipelines = [] {
+    const OptionSpec spec = pipelineOption();
+    const std::string first = std::get<std::string>(*spec.defaultValue);
+    std::vector<std::string> ordered{first};
+    for (const auto& choice : spec.choices) {
+      if (choice != first) ordered.push_back(choice);
+    }
+    return ordered;
+  }();
+  return pipelines;
+}
+
+// kColumnsPerPipeline columns per pipeline, in nk3Pipelines() order.
 const std::vector<Nk3Column>& nk3Columns() {
-  static const std::vector<Nk3Column> columns = {
-      {"ra", "RA", findTechnique("rightangle"), false, false, &PaperFps::ra},
-      {"ops", "OPS", findTechnique("silhouette"), false, true, &PaperFps::ops},
-      {"bs", "BS", findTechnique("silhouette"), true, true, &PaperFps::bs},
-  };
+  static const std::vector<Nk3Column> columns = [] {
+    std::vector<Nk3Column> all;
+    for (const std::string& pipeline : nk3Pipelines()) {
+      const std::string suffix = pipeline == nk3Pipelines().front() ? "" : "-" + pipeline;
+      all.push_back({"ra" + suffix, "RA", pipeline, findTechnique("rightangle"), false, false,
+                     &PaperFps::ra});
+      all.push_back({"ops" + suffix, "OPS", pipeline, findTechnique("silhouette"), false, true,
+                     &PaperFps::ops});
+      all.push_back(
+          {"bs" + suffix, "BS", pipeline, findTechnique("silhouette"), true, true, &PaperFps::bs});
+    }
+    return all;
+  }();
   return columns;
 }
-// Positions in nk3Columns(), for the checks between columns.
-constexpr std::size_t kRa = 0, kOps = 1, kBs = 2;
 
 // ---- Choosing: which datasets at which window sizes, and which of them cannot be measured ---
 
@@ -195,7 +225,7 @@ struct CaseResult {
   std::vector<std::string> problems;
 };
 
-// A dataset as measured: every window size, each with its three cases (none when missing).
+// A dataset as measured: every window size, each with its cases (none when missing).
 struct Nk3Measured {
   const Nk3Dataset& dataset;
   std::string missing;  // why it was not measured; empty: measured
@@ -244,6 +274,7 @@ void renderFrame(Renderer& renderer, RenderSettings settings, int k, const Bench
                  FftGaussianBlur& blur, CaseResult& result, std::vector<cv::Mat1b>& warmupStates) {
   const Nk3Column& column = *result.column;
   settings.technique = column.technique.name;
+  settings.options["pipeline"] = column.pipeline;
   const bool warm = k < options.warmup;
   const int timedIndex = k - options.warmup;
   settings.camera.azimuthDeg = kOrbitStartDeg + kOrbitStepDeg * std::max(timedIndex, 0);
@@ -292,9 +323,10 @@ void renderFrame(Renderer& renderer, RenderSettings settings, int k, const Bench
   result.frames.push_back(sample);
 }
 
-// Runs RA, OPS and BS at one window size. The techniques take turns frame by frame (RA, OPS,
-// BS at the first orbit position, then at the next, ...), so that load from other processes
-// on a shared machine falls on all three alike and their ratios stay meaningful.
+// Runs RA, OPS and BS of every pipeline at one window size. They take turns frame by frame (RA,
+// OPS, BS of each pipeline at the first orbit position, then at the next, ...), so that load
+// from other processes on a shared machine falls on all of them alike and their ratios stay
+// meaningful.
 std::vector<CaseResult> runCases(Renderer& renderer, const RenderSettings& settings,
                                  const std::string& label, const BenchOptions& options,
                                  Progress& progress) {
@@ -375,6 +407,23 @@ double maxStepChange(const std::vector<FrameSample>& frames) {
   return largest;
 }
 
+// OPS frames of another pipeline show the silhouettes of the default pipeline's, frame for
+// frame, up to a few pixels: where a slice polygon's edge passes within a rounding error of a
+// pixel centre, rasterisation (fast, paper) and the texture-extent test alone (tiles, like the
+// CPU reference) may decide that pixel differently.
+constexpr double kPipelineSlack = 0.002;
+void checkPipelinesAgree(const CaseResult& reference, CaseResult& other) {
+  for (std::size_t i = 0; i < std::min(reference.frames.size(), other.frames.size()); ++i) {
+    const double a = reference.frames[i].silhouettes, b = other.frames[i].silhouettes;
+    if (std::abs(a - b) > std::max(2.0, kPipelineSlack * a)) {
+      other.problems.push_back("frame " + std::to_string(i + 1) + " has " + std::to_string(int(b)) +
+                               " silhouette pixels, " + reference.column->key + " had " +
+                               std::to_string(int(a)));
+      return;
+    }
+  }
+}
+
 // The same views give the same silhouettes: BS renders what OPS rendered, frame for frame.
 void checkSameSilhouettes(const CaseResult& ops, CaseResult& bs) {
   for (std::size_t i = 0; i < std::min(ops.frames.size(), bs.frames.size()); ++i) {
@@ -412,8 +461,8 @@ void checkPlacement(const CaseResult& ra, CaseResult& ops) {
   }
 }
 
-// RA, OPS and BS of one dataset at one window size, each checked on its own and against the
-// others.
+// RA, OPS and BS of every pipeline for one dataset at one window size, each checked on its own
+// and against the others.
 std::vector<CaseResult> measureWindow(Renderer& renderer, const Nk3Dataset& d, int window,
                                       const BenchOptions& options, Progress& progress) {
   RenderSettings settings;
@@ -425,8 +474,11 @@ std::vector<CaseResult> measureWindow(Renderer& renderer, const Nk3Dataset& d, i
       runCases(renderer, settings, std::string(d.name) + " " + std::to_string(window) + "²",
                options, progress);
   for (CaseResult& result : results) checkFrames(result, window);
-  checkPlacement(results[kRa], results[kOps]);
-  checkSameSilhouettes(results[kOps], results[kBs]);
+  for (std::size_t first = 0; first < results.size(); first += kColumnsPerPipeline) {
+    checkPlacement(results[first + kRa], results[first + kOps]);
+    checkSameSilhouettes(results[first + kOps], results[first + kBs]);
+    if (first > 0) checkPipelinesAgree(results[kOps], results[first + kOps]);
+  }
   return results;
 }
 
@@ -488,6 +540,7 @@ nlohmann::json caseRow(const Nk3Dataset& d, int window, const Nk3Column& column)
           {"width", window},
           {"height", window},
           {"technique", column.key},
+          {"pipeline", column.pipeline},
           {"paper_fps", paper ? nlohmann::json((*paper).*column.paperFps) : nlohmann::json()}};
 }
 
@@ -557,72 +610,58 @@ std::vector<std::string> failedChecks(const Nk3Measured& m) {
   return failures;
 }
 
-// One line of the printed table: a dataset at one window size.
+// One line of the printed table: a dataset at one window size with one pipeline.
 struct Nk3Line {
-  std::string dataset, size, window;
-  std::vector<double> fps;  // per column (0: not measured)
+  std::string dataset, size, window, pipeline;
+  std::vector<double> fps;  // RA, OPS, BS (0: not measured)
   std::optional<PaperFps> paper;
   std::string check;
 };
 
-std::string dimsLabel(glm::ivec3 dims) {
-  if (dims.x == dims.y && dims.y == dims.z) return std::to_string(dims.x) + "³";
-  if (dims.x == dims.y) return std::to_string(dims.x) + "²·" + std::to_string(dims.z);
-  return std::to_string(dims.x) + "·" + std::to_string(dims.y) + "·" + std::to_string(dims.z);
-}
-
 std::vector<Nk3Line> tableLines(const Nk3Measured& m) {
   std::vector<Nk3Line> lines;
   const bool missing = !m.missing.empty();
+  const auto& columns = nk3Columns();
   for (const auto& window : m.windows) {
-    Nk3Line line{m.dataset.name,
-                 missing ? m.dataset.paperSize : dimsLabel(m.dims),
-                 std::to_string(window.size) + "²",
-                 std::vector<double>(nk3Columns().size(), 0.0),
-                 paperFor(m.dataset, window.size),
-                 missing ? "missing" : "ok"};
-    std::string failed;
-    for (std::size_t i = 0; i < window.cases.size(); ++i) {
-      line.fps[i] = window.cases[i].stats.fps();
-      if (!window.cases[i].problems.empty()) failed += " " + window.cases[i].column->key;
+    for (std::size_t first = 0; first < columns.size(); first += kColumnsPerPipeline) {
+      Nk3Line line{m.dataset.name,
+                   missing ? m.dataset.paperSize : dimsLabel(m.dims),
+                   std::to_string(window.size) + "²",
+                   columns[first].pipeline,
+                   std::vector<double>(kColumnsPerPipeline, 0.0),
+                   paperFor(m.dataset, window.size),
+                   missing ? "missing" : "ok"};
+      std::string failed;
+      for (std::size_t i = 0; i < kColumnsPerPipeline && first + i < window.cases.size(); ++i) {
+        const CaseResult& result = window.cases[first + i];
+        line.fps[i] = result.stats.fps();
+        if (!result.problems.empty()) failed += " " + result.column->key;
+      }
+      if (!failed.empty()) line.check = "FAILED:" + failed;
+      lines.push_back(std::move(line));
     }
-    if (!failed.empty()) line.check = "FAILED:" + failed;
-    lines.push_back(std::move(line));
   }
   return lines;
 }
 
 // ---- Formatting: the printed table, Markdown, the plot and the notes -------------------------
 
-std::string formatFps(double fps) {
-  if (!(fps > 0)) return "–";
-  char text[32];
-  std::snprintf(text, sizeof text, fps >= 100 ? "%.0f" : fps >= 10 ? "%.1f" : "%.2f", fps);
-  return text;
-}
-
-std::string formatRatio(double ratio) {
-  if (!(ratio > 0) || !std::isfinite(ratio)) return "–";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f", ratio);
-  return text;
-}
-
 // Ours, then the paper's: fps per column and RA/OPS.
 TextTable textTable(const std::vector<Nk3Line>& lines) {
   const auto& columns = nk3Columns();
-  std::vector<std::string> header{"dataset", "size", "window"};
-  for (const auto& c : columns) header.push_back(c.label + " fps");
+  std::vector<std::string> header{"dataset", "size", "window", "pipeline"};
+  for (std::size_t i = 0; i < kColumnsPerPipeline; ++i) header.push_back(columns[i].label + " fps");
   header.push_back("RA/OPS");
-  for (const auto& c : columns) header.push_back("paper " + c.label);
+  for (std::size_t i = 0; i < kColumnsPerPipeline; ++i)
+    header.push_back("paper " + columns[i].label);
   header.insert(header.end(), {"paper RA/OPS", "check"});
   TextTable text(header);
   for (const Nk3Line& l : lines) {
-    std::vector<std::string> cells{l.dataset, l.size, l.window};
+    std::vector<std::string> cells{l.dataset, l.size, l.window, l.pipeline};
     for (double fps : l.fps) cells.push_back(formatFps(fps));
     cells.push_back(formatRatio(l.fps[kRa] / l.fps[kOps]));
-    for (const auto& c : columns) {
-      cells.push_back(l.paper ? formatFps((*l.paper).*c.paperFps) : "–");
+    for (std::size_t i = 0; i < kColumnsPerPipeline; ++i) {
+      cells.push_back(l.paper ? formatFps((*l.paper).*columns[i].paperFps) : "–");
     }
     cells.push_back(l.paper ? formatRatio(l.paper->raOverOps) : "–");
     cells.push_back(l.check);
@@ -638,15 +677,15 @@ PlotSpec plotSpec(const std::vector<Nk3Line>& lines) {
   plot.title = "nk3: frames per second (ours solid, paper hatched)";
   plot.valueLabel = "fps";
   plot.logScale = true;
-  for (std::size_t i = 0; i < columns.size(); ++i) {
+  for (std::size_t i = 0; i < kColumnsPerPipeline; ++i) {
     plot.series.push_back({columns[i].label, false, int(i)});
     plot.series.push_back({columns[i].label + " paper", true, int(i)});
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const Nk3Line& l : lines) {
-    plot.groups.push_back(l.dataset + " " + l.window);
+    plot.groups.push_back(l.dataset + " " + l.window + " " + l.pipeline);
     std::vector<double> values;
-    for (std::size_t i = 0; i < columns.size(); ++i) {
+    for (std::size_t i = 0; i < kColumnsPerPipeline; ++i) {
       values.push_back(l.fps[i] > 0 ? l.fps[i] : nan);
       values.push_back(l.paper ? (*l.paper).*columns[i].paperFps : nan);
     }
@@ -656,16 +695,19 @@ PlotSpec plotSpec(const std::vector<Nk3Line>& lines) {
 }
 
 std::string methodNote(const BenchOptions& options) {
-  char method[512];
+  std::string pipelines;
+  for (const auto& pipeline : nk3Pipelines())
+    pipelines += (pipelines.empty() ? "" : ", ") + pipeline;
+  char method[640];
   std::snprintf(method, sizeof method,
-                "method: %d warm-up + %d timed frames per technique, RA/OPS/BS taking turns, orbit "
-                "from azimuth %.0f° in "
+                "method: %d warm-up + %d timed frames per technique and pipeline (%s; RA and OPS "
+                "with the same one), all taking turns, orbit from azimuth %.0f° in "
                 "steps of %.1f° at elevation %.0f°, 1 slice per voxel, empty-space skipping on for "
-                "RA and OPS alike; frame time = "
+                "RA and OPS alike (the paper pipeline never skips); frame time = "
                 "Renderer::render (slicing + glFinish + readback), fps = 1000 / median; "
                 "BS adds broadening to W = %.0f px and composition",
-                options.warmup, options.frames, kOrbitStartDeg, kOrbitStepDeg, kElevationDeg,
-                kBroadenedWidth);
+                options.warmup, options.frames, pipelines.c_str(), kOrbitStartDeg, kOrbitStepDeg,
+                kElevationDeg, kBroadenedWidth);
   return method;
 }
 

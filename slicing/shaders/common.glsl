@@ -13,6 +13,8 @@ layout(std140, binding = 0) uniform FrameBlock {
   vec2 halfExtent;  // View::halfExtent
 };
 
+#ifndef VSIL_COMPUTE_SHADER
+// The slice a pass draws (compute shaders read slices by index: tile_march.glsl sliceAt).
 layout(std140, binding = 1) uniform SliceBlock {
   // Where pixel centres sample the volume on this slice (slicer.h SliceTexCoords): texture
   // coordinates affine in NDC, tex = ndc.x * sliceTexPerNdcX + ndc.y * sliceTexPerNdcY +
@@ -26,6 +28,7 @@ layout(std140, binding = 1) uniform SliceBlock {
   float previousSliceDepth;  // the previous slice's d (0 before the first)
   uint sliceIndex;
 };
+#endif
 
 layout(binding = UNIT_VOLUME) uniform sampler3D volumeTexture;  // data units, linear, clamped
 
@@ -46,6 +49,18 @@ vec3 sliceTexCoord() {
   return ndc.x * sliceTexPerNdcX + ndc.y * sliceTexPerNdcY + sliceTexAtNdcOrigin;
 }
 
+#endif
+
+#ifdef VSIL_COMPUTE_SHADER
+// Pixel `pixel`'s centre in NDC, the same operations as fragmentNdc() on gl_FragCoord (the
+// pixel + 0.5), so that a compute shader samples exactly where a slice pass does.
+vec2 pixelNdc(ivec2 pixel) { return (vec2(pixel) + 0.5) / viewportSize * 2.0 - 1.0; }
+
+// The texture coordinate a pixel centre at `ndc` samples on a slice whose SliceBlock holds
+// these coefficients (sliceTexCoord()'s operations).
+vec3 sliceTexCoordAt(vec3 texPerNdcX, vec3 texPerNdcY, vec3 texAtNdcOrigin, vec2 ndc) {
+  return ndc.x * texPerNdcX + ndc.y * texPerNdcY + texAtNdcOrigin;
+}
 #endif
 
 vec3 voxelFromEyePoint(vec3 eye) { return (voxelFromEye * vec4(eye, 1.0)).xyz; }

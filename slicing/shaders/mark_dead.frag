@@ -3,17 +3,25 @@
 // shader runs. Without NEIGHBOURS_FINAL (rightangle, firsthit) a pixel is dead once its own
 // record is final; with it (silhouette) when its own record and those of all 8 neighbours are
 // final (FILLED or SILHOUETTE): nothing a later slice does can change it or a neighbour's
-// decision. Either way a pixel is dead once the slices are past the last occupied brick on its
-// ray (slicing/empty_space.h): every later sample there is one the technique skips anyway.
+// decision. With OPACITY_DEAD (compositing techniques, slicing/compositing.h) when the opacity
+// it has accumulated (the record's alpha) reached deadOpacity: early ray termination. Either
+// way a pixel is dead once the slices are past the last occupied brick on its ray
+// (slicing/empty_space.h): every later sample there is one the technique skips anyway.
 // In: the record (hit_records.glsl), the exit depth (window depth where the ray leaves occupied
 // space for good). Out: depth only.
 layout(binding = UNIT_RECORD) uniform sampler2D recordTexture;
 layout(binding = UNIT_EXIT_DEPTH) uniform sampler2D exitDepthTexture;
 
+#if defined(OPACITY_DEAD)
+uniform float deadOpacity;
+#endif
+
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   if (sliceWindowDepth >= texelFetch(exitDepthTexture, pixel, 0).r) return;
-#ifdef NEIGHBOURS_FINAL
+#if defined(OPACITY_DEAD)
+  if (texelFetch(recordTexture, pixel, 0).a < deadOpacity) discard;
+#elif defined(NEIGHBOURS_FINAL)
   ivec2 size = textureSize(recordTexture, 0);
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {

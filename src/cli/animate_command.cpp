@@ -21,6 +21,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "core/number_pair.h"
 #include "core/limits.h"
 #include "core/progress_line.h"
 #include "core/version.h"
@@ -51,8 +52,8 @@ AnimationSpec animationSpec(const AnimateFlags& flags) {
   AnimationSpec spec;
   spec.frames = flags.frames;
   spec.orbitDeg = flags.orbit;
-  if (!flags.viewFrom.empty()) spec.viewFrom = parsePair("--view-from", flags.viewFrom);
-  if (!flags.viewTo.empty()) spec.viewTo = parsePair("--view-to", flags.viewTo);
+  if (!flags.viewFrom.empty()) spec.viewFrom = parseNumberPair("--view-from", flags.viewFrom);
+  if (!flags.viewTo.empty()) spec.viewTo = parseNumberPair("--view-to", flags.viewTo);
   for (const auto& text : flags.sweeps) spec.sweeps.push_back(parseSweep(text));
   return spec;
 }
@@ -227,7 +228,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
   std::cout << summary << "\n";
 }
 
-const CommandRegistration registration(20, [](CLI::App& app) {
+const CommandRegistration registerAnimateCommand(20, [](CLI::App& app) {
   auto renderFlags = std::make_shared<RenderFlags>();
   auto flags = std::make_shared<AnimateFlags>();
   CLI::App* command = app.add_subcommand(

@@ -44,5 +44,4 @@ gl::ContextOptions toContextOptions(const GlOptions& options) {
   return context;
 }
 
-
 }  // namespace vsil::cli

@@ -1,6 +1,5 @@
 #include "cli/cli_parse.h"
 
-#include <cmath>
 #include <cstdlib>
 #include <limits>
 
@@ -18,13 +17,6 @@ bool parseInt(const std::string& text, int& value) {
   return true;
 }
 
-bool parseDouble(const std::string& text, double& value) {
-  if (text.empty()) return false;
-  char* end = nullptr;
-  value = std::strtod(text.c_str(), &end);
-  return end == text.c_str() + text.size() && std::isfinite(value);
-}
-
 }  // namespace
 
 glm::ivec2 parseSize(const std::string& flag, const std::string& text) {
@@ -35,16 +27,6 @@ glm::ivec2 parseSize(const std::string& flag, const std::string& text) {
     throw InputError(flag + ": '" + text + "' is not a size WxH with positive integers");
   }
   return size;
-}
-
-glm::dvec2 parsePair(const std::string& flag, const std::string& text) {
-  const auto comma = text.find(',');
-  glm::dvec2 pair;
-  if (comma == std::string::npos || !parseDouble(text.substr(0, comma), pair.x) ||
-      !parseDouble(text.substr(comma + 1), pair.y)) {
-    throw InputError(flag + ": '" + text + "' is not a pair of numbers A,B");
-  }
-  return pair;
 }
 
 }  // namespace vsil::cli

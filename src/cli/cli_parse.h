@@ -1,5 +1,5 @@
 #pragma once
-// Parsing of compound flag values ("512x384", "30,20"). Errors name the flag.
+// Parsing of compound flag values ("512x384"). Errors name the flag.
 #include <string>
 
 #include <glm/glm.hpp>
@@ -8,7 +8,6 @@ namespace vsil::cli {
 
 // "WxH" with positive integers.
 glm::ivec2 parseSize(const std::string& flag, const std::string& text);
-// "A,B" with finite numbers.
-glm::dvec2 parsePair(const std::string& flag, const std::string& text);
+// "A,B" with finite numbers: core/number_pair.h parseNumberPair.
 
 }  // namespace vsil::cli

@@ -3,6 +3,7 @@
 #include "cli/cli_parse.h"
 #include "cli/cli_postfx_options.h"
 #include "cli/cli_technique_options.h"
+#include "core/number_pair.h"
 
 namespace vsil::cli {
 
@@ -31,7 +32,7 @@ RenderRequest toRenderRequest(const RenderFlags& flags) {
   settings.technique = flags.technique;
   settings.options = flags.techniqueOptions;
   settings.size = parseSize("--size", flags.size);
-  const glm::dvec2 view = parsePair("--view", flags.view);
+  const glm::dvec2 view = parseNumberPair("--view", flags.view);
   settings.camera.azimuthDeg = view.x;
   settings.camera.elevationDeg = view.y;
   settings.camera.orthographic = flags.orthographic;

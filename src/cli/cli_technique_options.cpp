@@ -58,7 +58,8 @@ void addTechniqueOptions(CLI::App& command, std::string& technique, OptionValues
                          [&values, spec = *spec](const std::vector<std::string>& texts) {
                            std::vector<std::string> all;
                            for (const auto& text : texts) {
-                             const auto parsed = std::get<std::vector<std::string>>(spec.parse(text));
+                             const auto parsed =
+                                 std::get<std::vector<std::string>>(spec.parse(text));
                              all.insert(all.end(), parsed.begin(), parsed.end());
                            }
                            values[spec.name] = all;
@@ -70,7 +71,9 @@ void addTechniqueOptions(CLI::App& command, std::string& technique, OptionValues
       default:
         option = command.add_option_function<std::string>(
             spec->flag(),
-            [&values, spec = *spec](const std::string& text) { values[spec.name] = spec.parse(text); },
+            [&values, spec = *spec](const std::string& text) {
+              values[spec.name] = spec.parse(text);
+            },
             help);
         break;
     }

@@ -235,7 +235,7 @@ void runInfo(const InfoOptions& options) {
   }
 }
 
-const CommandRegistration registration(20, [](CLI::App& app) {
+const CommandRegistration registerInfoCommand(20, [](CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* command = app.add_subcommand(
       "info",

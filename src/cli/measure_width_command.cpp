@@ -83,7 +83,7 @@ void run(const MeasureWidthArgs& args) {
   if (!args.json.empty()) writeFileAtomically(args.json, report.dump(2) + "\n");
 }
 
-const CommandRegistration registration(30, [](CLI::App& app) {
+const CommandRegistration registerMeasureWidthCommand(30, [](CLI::App& app) {
   auto args = std::make_shared<MeasureWidthArgs>();
   auto* command = app.add_subcommand(
       "measure-width", "measure line widths in an image: mean, median, percentiles, histogram");

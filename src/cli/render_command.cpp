@@ -72,7 +72,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   std::cout << outputs.out << "\n";
 }
 
-const CommandRegistration registration(10, [](CLI::App& app) {
+const CommandRegistration registerRenderCommand(10, [](CLI::App& app) {
   auto flags = std::make_shared<RenderFlags>();
   auto outputs = std::make_shared<RenderOutputs>();
   CLI::App* command = app.add_subcommand("render", "Render one frame of a technique to PNG");

@@ -35,7 +35,7 @@ std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth) {
   return bytes >= 1.8e19 ? std::uint64_t(1.8e19) : std::uint64_t(bytes);
 }
 
-std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample) {
+std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample, bool gradients) {
   const glm::u64vec3 d(glm::max(dims, glm::ivec3(0)));
   const std::uint64_t voxels = d.x * d.y * d.z;
   const std::uint64_t textureBytes = bytesPerSample == 1 ? 2 : 4;
@@ -44,7 +44,8 @@ std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample) {
   const std::uint64_t rangesBytes =
       rangeBytes * (b.x * b.y * b.z + kMaxWorkerThreads * (b.x * d.y + b.x * b.y));
   const std::uint64_t slabBytes = std::max<std::uint64_t>(kUploadSlabBytes, d.x * d.y * 4);
-  return voxels * (bytesPerSample + textureBytes) + rangesBytes + 2 * slabBytes;
+  return voxels * (bytesPerSample + textureBytes + (gradients ? kGradientBytesPerVoxel : 0)) +
+         rangesBytes + 2 * slabBytes;
 }
 
 std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel) {

@@ -55,10 +55,14 @@ std::size_t defaultMemoryBytes();
 //   image:  render targets (ping-pong RGBA32F + two R8UI), readback copies, frame buffers,
 //           the FFT broadening's padded float/complex buffers and the composed image,
 //           bounded by kRenderBytesPerPixel per pixel of the padded image.
+//   gradients (techniques that shade by them): the RGBA16F gradient texture and, while it is
+//   built, the volume's samples read back, 12 bytes per voxel more.
+inline constexpr std::size_t kGradientBytesPerVoxel = 12;
 inline constexpr std::size_t kRenderBytesPerPixel = 128;
 inline constexpr std::size_t kUploadSlabBytes = std::size_t(8) << 20;
 std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth);
-std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample);
+std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample,
+                                bool gradients = false);
 // An upper bound of the slices a frame draws: ceil(|dims| * samplesPerVoxel) + 1.
 std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel);
 

@@ -29,8 +29,8 @@ std::string joined(const std::vector<std::string>& items, const std::string& sep
 
 // What a value of each kind is, in OptionKind's order, for messages.
 const char* kindName(OptionKind kind) {
-  static const char* const names[] = {"a number", "a whole number",  "a name",
-                                      "text",     "on or off",       "a list of texts"};
+  static const char* const names[] = {"a number", "a whole number", "a name",
+                                      "text",     "on or off",      "a list of texts"};
   return names[int(kind)];
 }
 
@@ -163,6 +163,11 @@ OptionSpec& OptionSpec::atMost(double bound) {
   return *this;
 }
 
+OptionSpec& OptionSpec::validatedBy(std::function<void(const OptionValue&)> check) {
+  validate = std::move(check);
+  return *this;
+}
+
 OptionSpec& OptionSpec::holdsNumbers(int count) {
   numberCount = count;
   return *this;
@@ -223,8 +228,8 @@ void OptionSpec::check(const OptionValue& value) const {
     const bool belowMin = minExclusive ? !(number > min) : !(number >= min);
     const bool aboveMax = maxExclusive ? !(number < max) : !(number <= max);
     if (belowMin || aboveMax) {
-      throwInputError(flag(), "must be " + describeRange(*this) + " (got " + formatNumber(number) +
-                                  ")");
+      throwInputError(flag(),
+                      "must be " + describeRange(*this) + " (got " + formatNumber(number) + ")");
     }
   }
   if (kind == OptionKind::Text && numberCount > 0) {
@@ -237,9 +242,11 @@ void OptionSpec::check(const OptionValue& value) const {
   if (kind == OptionKind::Choice) {
     const std::string& name = std::get<std::string>(value);
     if (std::find(choices.begin(), choices.end(), name) == choices.end()) {
-      throwInputError(flag(), "unknown value '" + name + "' (known: " + joined(choices, ", ") + ")");
+      throwInputError(flag(),
+                      "unknown value '" + name + "' (known: " + joined(choices, ", ") + ")");
     }
   }
+  if (validate) validate(value);
 }
 
 std::string OptionSpec::describe() const {
@@ -284,6 +291,8 @@ OptionReader::OptionReader(const std::vector<OptionSpec>& specs, const OptionVal
       resolved_.emplace(spec.name, *spec.defaultValue);
     } else if (spec.derived == OptionSpec::Derived::VolumeIso) {
       resolved_.emplace(spec.name, derived.iso);
+    } else if (spec.derived == OptionSpec::Derived::RangeFraction) {
+      resolved_.emplace(spec.name, spec.rangeFraction * derived.valueRangeWidth);
     } else if (spec.kind == OptionKind::List) {
       resolved_.emplace(spec.name, std::vector<std::string>{});
     } else if (spec.kind == OptionKind::Text) {

@@ -4,6 +4,7 @@
 // the CLI's flags and help, the metadata, the benchmark, the Python keywords — reads those
 // declarations. A technique reads its values by name through OptionReader; values given for an
 // option it does not declare are reported (checkOptions), never silently ignored.
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -34,14 +35,20 @@ struct OptionSpec {
   // The value when none is given. Unset: derived (see `derived`; defaultNote says how for the
   // help), or empty for Text and List.
   std::optional<OptionValue> defaultValue;
-  enum class Derived { None, VolumeIso };
+  // VolumeIso: the volume's default iso value. RangeFraction: `rangeFraction` of the width of
+  // the volume's value range (a tolerance in data units that scales with the data).
+  enum class Derived { None, VolumeIso, RangeFraction };
   Derived derived = Derived::None;
+  double rangeFraction = 0.0;
   std::string defaultNote;
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();
   bool minExclusive = false;
   bool maxExclusive = false;
   std::vector<std::string> choices;
+  // Checks the value further (a Text or List the technique parses itself: effect names,
+  // NAME=VALUE lists, colours); throws InputError naming the flag. Empty: no further check.
+  std::function<void(const OptionValue&)> validate;
   // Text holding this many numbers separated by commas ("X,Y,Z": a position, a colour); 0: any
   // text. Checked like a value's range; `vsil animate --sweep` interpolates it componentwise.
   int numberCount = 0;
@@ -55,9 +62,10 @@ struct OptionSpec {
   static OptionSpec text(std::string name, std::string help);  // default: empty
   static OptionSpec list(std::string name, std::string help);  // default: none given
   static OptionSpec flag(std::string name, std::string help);  // default: off
-  OptionSpec& above(double bound);    // > bound
-  OptionSpec& atLeast(double bound);  // >= bound
-  OptionSpec& atMost(double bound);   // <= bound
+  OptionSpec& above(double bound);                             // > bound
+  OptionSpec& atLeast(double bound);                           // >= bound
+  OptionSpec& atMost(double bound);                            // <= bound
+  OptionSpec& validatedBy(std::function<void(const OptionValue&)> check);
   // Text: `count` numbers separated by commas (numberCount).
   OptionSpec& holdsNumbers(int count);
 
@@ -90,6 +98,7 @@ void checkOptions(const std::vector<OptionSpec>& specs, const OptionValues& valu
 // defaults come from.
 struct DerivedDefaults {
   double iso = 0.5;  // the volume's default iso value (core/volume.h defaultIso)
+  double valueRangeWidth = 1.0;  // max − min of the volume's samples
 };
 
 // A technique's options resolved: the given values, else the declared or derived defaults.
@@ -100,7 +109,7 @@ class OptionReader {
                DerivedDefaults derived = {});
   double number(std::string_view name) const;
   int integer(std::string_view name) const;
-  bool enabled(std::string_view name) const;  // a Switch
+  bool enabled(std::string_view name) const;             // a Switch
   const std::string& text(std::string_view name) const;  // Choice or Text
   const std::vector<std::string>& list(std::string_view name) const;
   bool given(std::string_view name) const;

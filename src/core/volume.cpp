@@ -160,4 +160,9 @@ float defaultIso(const Volume& volume) {
   return float(0.5 * (double(range.min) + double(range.max)));
 }
 
+DerivedDefaults derivedDefaults(const Volume& volume) {
+  const ValueRange range = valueRange(volume);
+  return {.iso = defaultIso(volume), .valueRangeWidth = double(range.max) - double(range.min)};
+}
+
 }  // namespace vsil

@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "core/limits.h"
+#include "core/options.h"
 #include "core/volume_region.h"
 
 namespace vsil {
@@ -127,6 +128,9 @@ ValueRange valueRange(const Volume& volume);
 
 // The iso value a technique uses when none is given: the middle of the value range.
 float defaultIso(const Volume& volume);
+
+// The facts option defaults are derived from (core/options.h), for this volume.
+DerivedDefaults derivedDefaults(const Volume& volume);
 
 // Limits checked before a reader allocates or reads any payload. maxBytes bounds the memory of
 // the whole task the volume is read for (default: half the physical memory, core/limits.h);

@@ -14,7 +14,7 @@ namespace vsil::io {
 namespace {
 
 // The header (everything before the samples) must lie within this many bytes.
-constexpr std::size_t kMaxHeaderBytes = 64 * 1024;
+constexpr std::size_t kMaxLegacyHeaderBytes = 64 * 1024;
 
 struct LegacyHeader {
   bool binary = false;
@@ -69,7 +69,7 @@ LegacyHeader parseHeader(const std::string& path, std::string_view text) {
     const auto line = cursor.next();
     if (!line) {
       throwInputError(path, std::string("header ends before ") + what + " (within its first " +
-                                std::to_string(kMaxHeaderBytes) + " bytes)");
+                                std::to_string(kMaxLegacyHeaderBytes) + " bytes)");
     }
     return *line;
   };
@@ -136,7 +136,7 @@ LegacyHeader parseHeader(const std::string& path, std::string_view text) {
 
 Volume readLegacyVtk(const std::string& path, const LoadOptions& options) {
   const std::uint64_t fileSize = regularFileSize(path);
-  std::string start(std::size_t(std::min<std::uint64_t>(fileSize, kMaxHeaderBytes)), '\0');
+  std::string start(std::size_t(std::min<std::uint64_t>(fileSize, kMaxLegacyHeaderBytes)), '\0');
   {
     std::ifstream in(path, std::ios::binary);
     in.read(start.data(), std::streamsize(start.size()));

@@ -34,7 +34,8 @@ nlohmann::json matrixRowMajor(const glm::dmat4& m) {
 }
 
 const char* fillName(FillMode fill) {
-  return fill == FillMode::None ? "none" : fill == FillMode::Flat ? "flat" : "shaded";
+  static const char* const names[] = {"none", "flat", "shaded"};
+  return names[int(fill)];
 }
 
 double maxLineWidth(const PostfxOptions& postfx) {
@@ -72,12 +73,18 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
                                {"orthographic", settings.camera.orthographic},
                                {"zoom", settings.camera.zoom},
                                {"fov_y_deg", settings.camera.fovYDeg},
-                               {"sampling", settings.samplesPerVoxel}};
+                               {"sampling", settings.samplesPerVoxel},
+                               {"early_ray_termination", settings.earlyRayTermination},
+                               {"background", result.background.hex()}};
   parameters.update(result.options);
   if (technique.outputs.state) {
     parameters["width_near"] = request.postfx.width.near;
     parameters["width_far"] = request.postfx.width.far;
     parameters["fill"] = fillName(request.postfx.fill);
+    if (request.postfx.fill != FillMode::None) {
+      parameters["fill_color"] = request.postfx.fillColor.hex();
+    }
+    parameters["line_color"] = request.postfx.lineColor.hex();
   }
   nlohmann::json meta;
   meta["vsil_version"] = kVsilVersion;
@@ -114,8 +121,9 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
                      volume.source + " would need up to " + std::to_string(slices) +
                      " slices per frame, over the limit of " + std::to_string(limits::kMaxSlices));
   }
+  const bool gradients = findTechnique(settings.technique).usesGradients;
   const std::uint64_t bytes =
-      limits::renderVolumeBytes(volume.dims, sampleTypeSize(volume.type())) +
+      limits::renderVolumeBytes(volume.dims, sampleTypeSize(volume.type()), gradients) +
       limits::renderImageBytes(settings.size, maxLineWidth(request.postfx));
   limits::checkMemory("rendering " + volume.source + " at --size " +
                           std::to_string(settings.size.x) + "x" + std::to_string(settings.size.y),
@@ -183,6 +191,18 @@ Renderer& RenderJob::renderer() {
   return *impl_->renderer;
 }
 
+namespace {
+
+// The render settings as the renderer needs them: the background (what distance colour
+// blending blends towards) is a composition flag the technique reads.
+RenderSettings settingsFor(const RenderRequest& request) {
+  RenderSettings settings = request.settings;
+  if (request.postfx.background) settings.background = request.postfx.background;
+  return settings;
+}
+
+}  // namespace
+
 void RenderJob::checkRequest(const RenderRequest& request, const VolumeLimits& limits) {
   Renderer::validateSettings(request.settings);
   const WidthLaw& law = request.postfx.width;
@@ -205,8 +225,9 @@ void RenderJob::checkRequest(const RenderRequest& request, const VolumeLimits& l
 LoadOptions RenderJob::loadOptionsFor(const RenderRequest& request, LoadOptions load) {
   const glm::ivec2 size = request.settings.size;
   const std::uint64_t imageBytes = limits::renderImageBytes(size, maxLineWidth(request.postfx));
-  load.limits.taskBytes = [imageBytes](glm::ivec3 dims, SampleType type) {
-    return limits::renderVolumeBytes(dims, sampleTypeSize(type)) + imageBytes;
+  const bool gradients = findTechnique(request.settings.technique).usesGradients;
+  load.limits.taskBytes = [imageBytes, gradients](glm::ivec3 dims, SampleType type) {
+    return limits::renderVolumeBytes(dims, sampleTypeSize(type), gradients) + imageBytes;
   };
   load.limits.maxTextureBytes = limits::kMaxTextureBytes;
   load.limits.task = "rendering";
@@ -221,12 +242,14 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
   impl_->context.makeCurrent();
 
   RenderOutput output;
-  output.result = impl_->renderer->render(request.settings);
+  output.result = impl_->renderer->render(settingsFor(request));
   const auto postStart = std::chrono::steady_clock::now();
-  output.image = composeIllustration(output.result.frame, request.postfx, impl_->blur);
+  PostfxOptions postfx = request.postfx;
+  postfx.background = output.result.background;
+  output.image = composeIllustration(output.result.frame, postfx, impl_->blur);
   output.postfxMs = millisecondsSince(postStart);
-  output.metadata = metadata(request, impl_->input, volume, output.result,
-                             impl_->context.info(), output.postfxMs);
+  output.metadata = metadata(request, impl_->input, volume, output.result, impl_->context.info(),
+                             output.postfxMs);
   output.warnings = warnings(request, volume);
   return output;
 }

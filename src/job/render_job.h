@@ -24,7 +24,6 @@
 
 namespace vsil {
 
-
 struct RenderRequest {
   RenderSettings settings;
   PostfxOptions postfx;
@@ -35,8 +34,8 @@ struct RenderOutput {
   cv::Mat image;  // the illustration, 8-bit BGR or BGRA (compose.h)
   double postfxMs = 0;
   // What `--meta-out` writes: parameters (the shared ones, the technique's options, postfx),
-  // dataset, slices, camera, pixel counts, timings, the GL context (back end, renderer). The caller adds its own (output paths,
-  // total time).
+  // dataset, slices, camera, pixel counts, timings, the GL context (back end, renderer). The caller
+  // adds its own (output paths, total time).
   nlohmann::json metadata;
   // What the user should hear about although the frame was made (e.g. an iso value outside the
   // data's range): one line each, for stderr or Python warnings.
@@ -61,8 +60,7 @@ class RenderJob {
 
   // Renders, broadens and composes one frame. Checks the request first (checkRequest) and the
   // work the volume needs (slices per frame, memory) against `limits`.
-  RenderOutput render(const RenderRequest& request,
-                      const VolumeLimits& limits = VolumeLimits{});
+  RenderOutput render(const RenderRequest& request, const VolumeLimits& limits = VolumeLimits{});
 
   gl::GlContext& context();
   Renderer& renderer();

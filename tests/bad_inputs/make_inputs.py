@@ -47,3 +47,13 @@ write('inf_floats.vtk', vtk % ('ASCII', '2 1 1', '2', 'float') + '1 inf\n')
 os.makedirs(os.path.join(here, 'directory.vti'), exist_ok=True)
 write('directory.vti/README', 'A directory named like a volume: vsil must say it is a directory.\n')
 write('small.raw', bytes(100))
+
+# Transfer functions (--tf) and illustration styles (--style), the illustrate technique.
+write('tf_empty.json', '[]\n')
+write('tf_not_json.json', '[{"value": 0, "color": "red", "opacity": 0.5}\n')
+write('tf_nonmonotonic.json', '[{"value": 10, "color": "red", "opacity": 0.5},\n'
+                              ' {"value": 5, "color": "blue", "opacity": 1}]\n')
+write('tf_bad_opacity.json', '[{"value": 0, "color": "red", "opacity": 1.5}]\n')
+write('style_unknown_key.json', '{"effects": ["tone"], "shininess": 3}\n')
+write('style_bad_effect.json', '{"effects": ["tone", "glow"]}\n')
+write('style_bad_parameter.json', '{"parameters": {"k_gc": "high"}}\n')

@@ -32,7 +32,7 @@ int lineCount(const std::string& text) {
 class Nk3Run : public ::testing::Test {
  protected:
   void SetUp() override {
-  VSIL_REQUIRE_DATASETS();
+    VSIL_REQUIRE_DATASETS();
     dir_ = test::scratchDir();
     result_ =
         test::runVsil("bench --table nk3 --datasets " + datasetsDir() +
@@ -77,8 +77,10 @@ TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
   }
   const auto& rows = document["rows"];
   ASSERT_TRUE(rows.is_array());
-  ASSERT_EQ(rows.size(), 6u) << "2 datasets x 1 size x 3 techniques\n" << rows.dump(1);
+  ASSERT_EQ(rows.size(), 18u) << "2 datasets x 1 size x 3 techniques x 3 pipelines\n"
+                              << rows.dump(1);
   std::map<std::string, int> perTechnique;
+  std::map<std::string, int> perPipeline;
   for (const auto& row : rows) {
     SCOPED_TRACE(row.dump());
     EXPECT_EQ(row["table"], "nk3");
@@ -86,9 +88,14 @@ TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
     EXPECT_TRUE(dataset == "neghip" || dataset == "hydrogen_atom");
     EXPECT_EQ(row["width"], 64);
     EXPECT_EQ(row["height"], 64);
-    const std::string technique = row["technique"];
-    EXPECT_TRUE(technique == "ra" || technique == "ops" || technique == "bs");
+    // ra, ops, bs for the default pipeline, as before the table had pipelines; ra-tiles, ...
+    // for the others.
+    const std::string technique = row["technique"], pipeline = row["pipeline"];
+    const std::string base = technique.substr(0, technique.find('-'));
+    EXPECT_TRUE(base == "ra" || base == "ops" || base == "bs");
+    EXPECT_TRUE(technique == base || technique == base + "-" + pipeline);
     ++perTechnique[technique];
+    ++perPipeline[pipeline];
     EXPECT_EQ(row["frames"], 2);
     const double median = row["ms_median"], low = row["ms_min"], high = row["ms_max"];
     EXPECT_GT(low, 0.0);
@@ -103,6 +110,8 @@ TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
   EXPECT_EQ(perTechnique["ra"], 2);
   EXPECT_EQ(perTechnique["ops"], 2);
   EXPECT_EQ(perTechnique["bs"], 2);
+  EXPECT_EQ(perTechnique.size(), 9u);
+  for (const char* pipeline : {"fast", "paper", "tiles"}) EXPECT_EQ(perPipeline[pipeline], 6);
 }
 
 TEST_F(Nk3Run, WritesMarkdownAndPlot) {
@@ -126,7 +135,7 @@ TEST(BenchCommand, SkullIsReportedMissingWithThePaperNumbers) {
             std::string::npos)
       << result.out;
   const auto rows = nlohmann::json::parse(test::readFileBytes(dir / "skull.json"))["rows"];
-  ASSERT_EQ(rows.size(), 6u) << "256² and 512², 3 techniques";
+  ASSERT_EQ(rows.size(), 18u) << "256² and 512², 3 techniques, 3 pipelines";
   for (const auto& row : rows) {
     EXPECT_EQ(row["dataset"], "skull");
     EXPECT_TRUE(row["missing"].is_string());
@@ -141,6 +150,34 @@ TEST(BenchCommand, MissingDatasetFolderContentsAreReportedNotFatal) {
                                     " --only neghip --sizes 64 --frames 1 --warmup 0");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_NE(result.out.find("not found"), std::string::npos) << result.out;
+}
+
+// The illustrate table on the smallest dataset: RA, the plain composite, each effect, all of
+// them, every row checked by the bench itself and its ratio to the right reference.
+TEST(BenchCommand, IllustrateTableHasEveryCaseCheckedWithItsRatio) {
+  VSIL_REQUIRE_DATASETS();
+  const auto dir = test::scratchDir();
+  const auto result = test::runVsil("bench --table illustrate --datasets " + datasetsDir() +
+                                    " --only neghip --sizes 64 --frames 1 --warmup 1 --json " +
+                                    (dir / "illustrate.json").string());
+  ASSERT_EQ(result.exitCode, 0) << result.err << result.out;
+  const auto document = nlohmann::json::parse(test::readFileBytes(dir / "illustrate.json"));
+  std::vector<std::string> cases;
+  for (const auto& row : document["rows"]) {
+    SCOPED_TRACE(row.dump());
+    EXPECT_EQ(row["table"], "illustrate");
+    EXPECT_EQ(row["dataset"], "neghip");
+    EXPECT_EQ(row["check"], "ok");
+    EXPECT_GT(row["fps"].get<double>(), 0.0);
+    const std::string name = row["case"];
+    cases.push_back(name);
+    if (name != "ra") {
+      EXPECT_EQ(row["ratio_to"], name == "plain" ? "ra" : "plain");
+      EXPECT_GT(row["ratio"].get<double>(), 0.0);
+    }
+  }
+  EXPECT_EQ(cases, (std::vector<std::string>{"ra", "plain", "boundary", "silhouette", "fading",
+                                             "sketch", "distance", "halo", "tone", "all"}));
 }
 
 struct BadFlags {
@@ -163,8 +200,7 @@ INSTANTIATE_TEST_SUITE_P(
     Flags, BenchBadFlags,
     ::testing::Values(
         BadFlags{"UnknownTable", "--table nk9", "nk9"},
-        BadFlags{"Dv1NotImplemented", "--table dv1", "not implemented yet"},
-        BadFlags{"IllustrateNotImplemented", "--table illustrate", "not implemented yet"},
+        BadFlags{"SemanticNotImplemented", "--table semantic", "not implemented yet"},
         BadFlags{"UnknownDataset", "--table nk3 --only bonsia", "bonsia"},
         BadFlags{"OnlyWithoutDatasets", "--table fft --only bonsai", "--only"},
         BadFlags{"ZeroFrames", "--frames 0", "--frames"},

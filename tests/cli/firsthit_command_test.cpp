@@ -18,9 +18,10 @@ TEST(FirstHitCommand, GreyIsOneMinusTheDepthWrittenBesideIt) {
   const auto dir = test::scratchDir();
   const std::string out = (dir / "hit.png").string(), depth = (dir / "depth.png").string(),
                     meta = (dir / "meta.json").string();
-  const auto result = test::runVsil("render gen:sphere:48 --technique firsthit --iso 0.5 --ortho --zoom 2 "
-                                    "--size 80x64 --background black --out " +
-                                    out + " --depth-out " + depth + " --meta-out " + meta);
+  const auto result = test::runVsil(
+      "render gen:sphere:48 --technique firsthit --iso 0.5 --ortho --zoom 2 "
+      "--size 80x64 --background black --out " +
+      out + " --depth-out " + depth + " --meta-out " + meta);
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const cv::Mat image = cv::imread(out, cv::IMREAD_UNCHANGED);
   ASSERT_EQ(image.type(), CV_8UC3);
@@ -55,9 +56,9 @@ TEST(FirstHitCommand, GreyIsOneMinusTheDepthWrittenBesideIt) {
 
 TEST(FirstHitCommand, RefusesAStateImageBeforeAnyWork) {
   const auto dir = test::scratchDir();
-  const auto result = test::runVsil("render gen:sphere:16 --technique firsthit --out " +
-                                    (dir / "x.png").string() + " --state-out " +
-                                    (dir / "s.png").string());
+  const auto result =
+      test::runVsil("render gen:sphere:16 --technique firsthit --out " + (dir / "x.png").string() +
+                    " --state-out " + (dir / "s.png").string());
   EXPECT_EQ(result.exitCode, 2);
   EXPECT_EQ(result.err, "vsil: --state-out: technique 'firsthit' makes no state image\n");
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));

@@ -28,13 +28,13 @@ using Clock = std::chrono::steady_clock;
 
 const std::string kPrevious = "a previous good output, not a PNG";
 
-struct ChildRun {
+struct RenderRun {
   int status = 0;
   double seconds = 0;
 };
 
 // Runs the big render into `dir`; sends `signal` after `delay` seconds (never, if negative).
-ChildRun renderInto(const fs::path& dir, double delay, int signal) {
+RenderRun renderInto(const fs::path& dir, double delay, int signal) {
   const std::string binary = test::vsilBinary().string();
   const std::string out = (dir / "out.png").string(), state = (dir / "state.png").string(),
                     meta = (dir / "meta.json").string();
@@ -56,7 +56,7 @@ ChildRun renderInto(const fs::path& dir, double delay, int signal) {
     std::this_thread::sleep_for(std::chrono::duration<double>(delay));
     ::kill(pid, signal);
   }
-  ChildRun run;
+  RenderRun run;
   EXPECT_EQ(::waitpid(pid, &run.status, 0), pid);
   run.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return run;
@@ -72,7 +72,7 @@ TEST(InterruptedRender, LeavesThePreviousOutputsAndNoTemporaries) {
   const fs::path dir = test::scratchDir();
   // Uninterrupted: how long the whole run takes here, and that it replaces the outputs.
   writePrevious(dir);
-  const ChildRun full = renderInto(dir, -1, 0);
+  const RenderRun full = renderInto(dir, -1, 0);
   ASSERT_TRUE(WIFEXITED(full.status) && WEXITSTATUS(full.status) == 0) << full.status;
   EXPECT_NE(test::readFileBytes(dir / "out.png"), kPrevious);
 
@@ -81,7 +81,7 @@ TEST(InterruptedRender, LeavesThePreviousOutputsAndNoTemporaries) {
   for (double fraction : {0.1, 0.5, 0.85, 0.95, 0.99}) {
     for (int signal : {SIGTERM, SIGINT}) {
       writePrevious(dir);
-      const ChildRun run = renderInto(dir, fraction * full.seconds, signal);
+      const RenderRun run = renderInto(dir, fraction * full.seconds, signal);
       SCOPED_TRACE("signal " + std::to_string(signal) + " after " +
                    std::to_string(fraction * full.seconds) + " s");
       std::vector<std::string> names;

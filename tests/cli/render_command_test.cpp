@@ -107,38 +107,46 @@ TEST(RenderCommand, WarnsWhenTheIsoValueLiesOutsideTheData) {
   EXPECT_EQ(inside.err, "") << "no warning inside the range";
 }
 
-TEST(RenderCommand, PaperAndFastPipelinesGiveIdenticalImages) {
+TEST(RenderCommand, EveryPipelineGivesIdenticalImages) {
   const auto dir = test::scratchDir();
-  std::string images[2];
-  const char* pipelines[2] = {"fast", "paper"};
-  for (int i = 0; i < 2; ++i) {
-    const auto state = dir / (std::string(pipelines[i]) + ".png");
-    const auto result = test::runVsil(
-        "render gen:spheres:64 --size 120x100 --pipeline " + std::string(pipelines[i]) + " --out " +
-        (dir / "out.png").string() + " --state-out " + state.string());
-    ASSERT_EQ(result.exitCode, 0) << result.err;
-    images[i] = test::readFileBytes(state);
+  for (const char* technique : {"silhouette", "rightangle"}) {
+    std::string images[3];
+    const char* pipelines[3] = {"fast", "paper", "tiles"};
+    for (int i = 0; i < 3; ++i) {
+      const auto state = dir / (std::string(pipelines[i]) + ".png");
+      const auto depth = dir / (std::string(pipelines[i]) + ".depth.png");
+      const auto result = test::runVsil(
+          "render gen:spheres:64 --size 120x100 --technique " + std::string(technique) +
+          " --pipeline " + std::string(pipelines[i]) + " --out " + (dir / "out.png").string() +
+          " --state-out " + state.string() + " --depth-out " + depth.string());
+      ASSERT_EQ(result.exitCode, 0) << result.err;
+      images[i] = test::readFileBytes(state) + test::readFileBytes(depth);
+    }
+    EXPECT_EQ(images[0], images[1]) << technique << ": paper";
+    EXPECT_EQ(images[0], images[2]) << technique << ": tiles";
   }
-  EXPECT_EQ(images[0], images[1]);
 }
 
 TEST(RenderCommand, EmptySpaceSkippingChangesNoByte) {
   const auto dir = test::scratchDir();
   for (const char* technique : {"silhouette", "rightangle"}) {
-    std::string images[2];
-    for (int skipping = 0; skipping < 2; ++skipping) {
-      const auto out = dir / (std::string(technique) + std::to_string(skipping) + ".png");
-      const auto meta = dir / "meta.json";
-      const auto result =
-          test::runVsil("render gen:blobs:64 --size 120x100 --width 4 --technique " +
-                        std::string(technique) + (skipping ? "" : " --no-empty-space-skipping") +
-                        " --out " + out.string() + " --meta-out " + meta.string());
-      ASSERT_EQ(result.exitCode, 0) << result.err;
-      images[skipping] = test::readFileBytes(out);
-      const auto parameters = nlohmann::json::parse(test::readFileBytes(meta))["parameters"];
-      EXPECT_EQ(parameters["empty_space_skipping"], skipping == 1);
+    for (const char* pipeline : {"fast", "tiles"}) {
+      std::string images[2];
+      for (int skipping = 0; skipping < 2; ++skipping) {
+        const auto out = dir / (std::string(technique) + std::to_string(skipping) + ".png");
+        const auto meta = dir / "meta.json";
+        const auto result =
+            test::runVsil("render gen:blobs:64 --size 120x100 --width 4 --technique " +
+                          std::string(technique) + " --pipeline " + pipeline +
+                          (skipping ? "" : " --no-empty-space-skipping") + " --out " +
+                          out.string() + " --meta-out " + meta.string());
+        ASSERT_EQ(result.exitCode, 0) << result.err;
+        images[skipping] = test::readFileBytes(out);
+        const auto parameters = nlohmann::json::parse(test::readFileBytes(meta))["parameters"];
+        EXPECT_EQ(parameters["empty_space_skipping"], skipping == 1);
+      }
+      EXPECT_EQ(images[0], images[1]) << technique << " " << pipeline;
     }
-    EXPECT_EQ(images[0], images[1]) << technique;
   }
 }
 

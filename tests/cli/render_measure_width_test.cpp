@@ -76,8 +76,8 @@ TEST(RenderThenMeasureWidth, DepthLawStudyOnTheEngine) {
                                     " --iso 80 --view 40,25 --width-near 8 --width-far 2 --out " +
                                     out + " --depth-out " + depth);
   ASSERT_EQ(render.exitCode, 0) << render.err;
-  const auto measure = test::runVsil("measure-width " + out + " --depth " + depth +
-                                     " --plot " + plot + " --json " + json);
+  const auto measure = test::runVsil("measure-width " + out + " --depth " + depth + " --plot " +
+                                     plot + " --json " + json);
   ASSERT_EQ(measure.exitCode, 0) << measure.err;
   EXPECT_TRUE(std::filesystem::exists(plot));
 
@@ -101,9 +101,9 @@ TEST(RenderThenMeasureWidth, DepthLawStudyOnTheEngine) {
     if (count == 0) continue;
     binned += count;
     const double from = bin["depth_from"].get<double>(), to = bin["depth_to"].get<double>();
-    EXPECT_TRUE(to > lo && from <= hi) << "samples in bin " << bin.dump()
-                                       << " where no silhouette lies (silhouettes at " << lo
-                                       << ".." << hi << ")";
+    EXPECT_TRUE(to > lo && from <= hi)
+        << "samples in bin " << bin.dump() << " where no silhouette lies (silhouettes at " << lo
+        << ".." << hi << ")";
     if (count < 100) continue;  // a few samples near a bin edge say little about the law
     const double d = 0.5 * (from + to);
     const double law = nearWidth + (farWidth - nearWidth) * d;

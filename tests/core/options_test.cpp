@@ -47,13 +47,30 @@ TEST(Options, ParseChecksKindAndRangeNamingTheFlag) {
 
 TEST(Options, UnknownNamesAreReportedWithTheOwnersOptions) {
   const auto s = specs();
-  EXPECT_EQ(errorOf([&] { checkOptions(s, {{"k-os", 1.0}}, "technique 'x'"); }),
+  EXPECT_EQ(errorOf([&] {
+              checkOptions(s, {{"k-os", 1.0}}, "technique 'x'");
+            }),
             "--k-os: not an option of technique 'x' (its options: --ra-exponent, "
             "--depth-weight, --pipeline, --iso, --light)");
-  EXPECT_EQ(errorOf([&] { checkOptions(s, {{"depth-weight", 2.0}}, "technique 'x'"); }),
+  EXPECT_EQ(errorOf([&] {
+              checkOptions(s, {{"depth-weight", 2.0}}, "technique 'x'");
+            }),
             "--depth-weight: must be in [0, 1] (got 2)");
   EXPECT_NO_THROW(checkOptions(s, {{"depth-weight", 1.0}, {"pipeline", std::string("paper")}},
                                "technique 'x'"));
+}
+
+TEST(Options, RangeFractionDefaultsScaleWithTheValueRange) {
+  OptionSpec eps = OptionSpec::number("material-eps", 0, "tolerance").above(0);
+  eps.defaultValue.reset();
+  eps.derived = OptionSpec::Derived::RangeFraction;
+  eps.rangeFraction = 0.05;
+  const std::vector<OptionSpec> s{eps};
+  EXPECT_DOUBLE_EQ(OptionReader(s, {}, {.valueRangeWidth = 255.0}).number("material-eps"), 12.75);
+  EXPECT_DOUBLE_EQ(OptionReader(s, {}, {.valueRangeWidth = 1.0}).number("material-eps"), 0.05);
+  EXPECT_EQ(OptionReader(s, {{"material-eps", 3.0}}, {.valueRangeWidth = 255.0})
+                .number("material-eps"),
+            3.0);
 }
 
 TEST(Options, ReaderResolvesGivenDeclaredAndDerivedValues) {

@@ -4,6 +4,7 @@
 // draw other bytes), then compares the state, depth and illustration images byte for byte and the
 // metadata's counts. Techniques come from the table of techniques (every value of each of their
 // choice options), so a new one is covered when it lands.
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -73,10 +74,10 @@ TEST_P(BackendIdentity, OsmesaAndEglOnLlvmpipeDrawTheSameBytes) {
       const std::string outputs =
           (technique.outputs.state ? " --state-out " + prefix.string() + "-state.png" : "") +
           (technique.outputs.depth ? " --depth-out " + prefix.string() + "-depth.png" : "");
-      const auto result = test::runVsil("render " + kScenes[scene] + " --technique " +
-                                        c.technique + " " + c.flags + " --fill shaded --width 3 " +
-                                        flags[b] + " --out " + prefix.string() + ".png" + outputs +
-                                        " --meta-out " + prefix.string() + ".json");
+      const auto result =
+          test::runVsil("render " + kScenes[scene] + " --technique " + c.technique + " " + c.flags +
+                        " --fill shaded --width 3 " + flags[b] + " --out " + prefix.string() +
+                        ".png" + outputs + " --meta-out " + prefix.string() + ".json");
       ASSERT_EQ(result.exitCode, 0) << flags[b] << ": " << result.err;
       meta[b] = nlohmann::json::parse(test::readFileBytes(prefix.string() + ".json"));
     }
@@ -131,7 +132,10 @@ std::vector<Case> cases() {
 
 INSTANTIATE_TEST_SUITE_P(EveryTechnique, BackendIdentity, ::testing::ValuesIn(cases()),
                          [](const ::testing::TestParamInfo<Case>& info) {
-                           return info.param.name;
+                           std::string name = info.param.name;
+                           // Test names: letters, digits, _ (choices such as entry-plus-steps).
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
                          });
 
 }  // namespace

@@ -11,7 +11,7 @@ namespace {
 
 using test::Bytes;
 
-const glm::ivec3 kDims{5, 4, 3};
+const glm::ivec3 kVtiDims{5, 4, 3};
 
 enum class Format { Ascii, Inline, AppendedRaw, AppendedBase64 };
 
@@ -123,10 +123,10 @@ class VtiRoundTrip : public ::testing::TestWithParam<VtiCase> {};
 
 TEST_P(VtiRoundTrip, ReadsBackTheWrittenSamples) {
   const VtiCase& c = GetParam();
-  const auto values = test::testValues(kDims, c.type);
+  const auto values = test::testValues(kVtiDims, c.type);
   const Volume volume = loadVolume(writeVti(test::scratchDir(), c, values));
   EXPECT_EQ(volume.name, "image");
-  EXPECT_EQ(volume.dims, kDims);
+  EXPECT_EQ(volume.dims, kVtiDims);
   EXPECT_EQ(volume.spacing, glm::dvec3(0.5, 1, 2.25));
   EXPECT_EQ(volume.type(), c.type);
   if (c.format == Format::Ascii && c.type == SampleType::Float32) {
@@ -140,7 +140,7 @@ TEST_P(VtiRoundTrip, ReadsBackTheWrittenSamples) {
   }
 }
 
-std::vector<VtiCase> allCases() {
+std::vector<VtiCase> vtiCases() {
   std::vector<VtiCase> cases;
   for (SampleType type : kSampleTypes) {
     cases.push_back({type, Format::Ascii, false, false, false});
@@ -158,7 +158,7 @@ std::vector<VtiCase> allCases() {
   return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(Vti, VtiRoundTrip, ::testing::ValuesIn(allCases()),
+INSTANTIATE_TEST_SUITE_P(Vti, VtiRoundTrip, ::testing::ValuesIn(vtiCases()),
                          [](const auto& info) { return caseName(info.param); });
 
 }  // namespace

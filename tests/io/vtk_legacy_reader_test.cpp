@@ -9,7 +9,7 @@
 namespace vsil {
 namespace {
 
-const glm::ivec3 kDims{5, 4, 3};
+const glm::ivec3 kLegacyDims{5, 4, 3};
 
 struct LegacyCase {
   SampleType type;
@@ -39,10 +39,10 @@ class LegacyRoundTrip : public ::testing::TestWithParam<LegacyCase> {};
 
 TEST_P(LegacyRoundTrip, ReadsBackTheWrittenSamples) {
   const LegacyCase& c = GetParam();
-  const auto values = test::testValues(kDims, c.type);
+  const auto values = test::testValues(kLegacyDims, c.type);
   const Volume volume = loadVolume(writeLegacy(test::scratchDir(), c, values));
   EXPECT_EQ(volume.name, "legacy");
-  EXPECT_EQ(volume.dims, kDims);
+  EXPECT_EQ(volume.dims, kLegacyDims);
   EXPECT_EQ(volume.spacing, glm::dvec3(0.5, 1, 2.25));
   EXPECT_EQ(volume.type(), c.type);
   for (std::size_t i = 0; i < values.size(); ++i) {
@@ -51,7 +51,7 @@ TEST_P(LegacyRoundTrip, ReadsBackTheWrittenSamples) {
   }
 }
 
-std::vector<LegacyCase> allCases() {
+std::vector<LegacyCase> legacyCases() {
   const std::pair<SampleType, const char*> types[] = {{SampleType::UInt8, "unsigned_char"},
                                                       {SampleType::Int8, "char"},
                                                       {SampleType::UInt16, "unsigned_short"},
@@ -66,7 +66,7 @@ std::vector<LegacyCase> allCases() {
   return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(Legacy, LegacyRoundTrip, ::testing::ValuesIn(allCases()),
+INSTANTIATE_TEST_SUITE_P(Legacy, LegacyRoundTrip, ::testing::ValuesIn(legacyCases()),
                          [](const auto& info) {
                            return std::string(info.param.typeName) +
                                   (info.param.binary ? "_binary" : "_ascii") +
@@ -76,11 +76,11 @@ INSTANTIATE_TEST_SUITE_P(Legacy, LegacyRoundTrip, ::testing::ValuesIn(allCases()
 TEST(RawReader, ReadsEachTypeInBothByteOrders) {
   for (SampleType type : kSampleTypes) {
     for (bool big : {false, true}) {
-      const auto values = test::testValues(kDims, type);
+      const auto values = test::testValues(kLegacyDims, type);
       const auto path = test::scratchDir() / "samples.bin";
       test::writeFile(path, test::encodeSamples(values, type, big));
       LoadOptions options;
-      options.raw = RawLayout{kDims, type, {2, 2, 3}, big};
+      options.raw = RawLayout{kLegacyDims, type, {2, 2, 3}, big};
       const Volume v = loadVolume(path.string(), options);
       EXPECT_EQ(v.name, "samples");
       EXPECT_EQ(v.type(), type);

@@ -14,7 +14,7 @@ ReferenceSetup setUpReference(const Volume& volume, const RenderSettings& settin
   setup.view = makeView(settings.camera, volume.dims, volume.spacing, settings.size);
   setup.plan = planSlices(setup.view, volume.dims, volume.spacing, settings.samplesPerVoxel);
   setup.options = OptionReader(findTechnique(settings.technique).options, settings.options,
-                               {defaultIso(volume)});
+                               derivedDefaults(volume));
   return setup;
 }
 
@@ -34,8 +34,7 @@ ReferenceFrame emptyReferenceFrame(const ReferenceSetup& setup, glm::ivec2 size,
   return result;
 }
 
-FirstHitFinder::FirstHitFinder(const Volume& volume, const ReferenceSetup& setup)
-    : setup_(setup) {
+FirstHitFinder::FirstHitFinder(const Volume& volume, const ReferenceSetup& setup) : setup_(setup) {
   for (const Slice& slice : setup.plan.slices) {
     coords_.push_back(sliceTexCoords(setup.view, volume.dims, slice.eyeDistance));
   }

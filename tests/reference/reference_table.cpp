@@ -3,6 +3,8 @@
 #include <stdexcept>
 
 #include "firsthit_reference.h"
+#include "illustrate_reference.h"
+#include "mip_reference.h"
 #include "rightangle_reference.h"
 #include "silhouette_reference.h"
 
@@ -10,9 +12,21 @@ namespace vsil::reference {
 
 const std::vector<ReferenceTechnique>& referenceTable() {
   static const std::vector<ReferenceTechnique> table{
-      {"silhouette", renderSilhouette},
-      {"rightangle", renderRightAngle},
-      {"firsthit", renderFirstHit},
+      {"silhouette", renderSilhouette, 0.0f, {}},
+      {"rightangle", renderRightAngle, 0.0f, {}},
+      {"firsthit", renderFirstHit, 0.0f, {}},
+      // Greys are quotients of floats (the window), depths of the box entry come from float
+      // ray-box slabs: rounding only, far below one 8-bit step (0.004).
+      {"mip", renderMip, 1e-4f, {}},
+      // Every case tints with the colour sphere, so that it is compared too.
+      {"demip", renderDemip, 1e-4f, {{"sphere-weight", 0.4}}},
+      // LMIP on 8-bit data meets plateaus, where consecutive samples tie and float rounding
+      // decides whether a run ends there (neghip: 2.7 % of the pixels; every one flagged).
+      {"lmip", renderLmip, 1e-4f, {}, 0.05},
+      // Colours are floats in [0, 1] composited in float by both; 2/255 covers early ray
+      // termination (at most 1/255 per channel) and trilinear weights computed in a different
+      // order, and is below what a wrong formula or a misplaced sample changes.
+      {"illustrate", renderIllustrate, 2.0f / 255.0f, {}},
   };
   return table;
 }

@@ -18,6 +18,12 @@ struct ReferenceTechnique {
   // Colour techniques: the largest difference per channel (premultiplied RGBA in [0, 1]) GL
   // may show against the reference away from ambiguous pixels, with its reason.
   float colorTolerance = 0.0f;
+  // Options every GL-vs-reference case sets, beside the scene's iso value and each choice
+  // option's values (e.g. an effect that is off by default).
+  OptionValues caseOptions;
+  // The share of the pixels shown (the line pixels where a technique draws lines) that may
+  // differ where the reference marks them ambiguous, with its reason.
+  double ambiguousShare = 0.01;
 };
 
 const std::vector<ReferenceTechnique>& referenceTable();

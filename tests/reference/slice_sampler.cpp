@@ -5,6 +5,23 @@
 
 namespace vsil::reference {
 
+std::vector<float> textureTexels(const Volume& volume) {
+  return volume.visit(
+      [](auto samples) { return std::vector<float>(samples.begin(), samples.end()); });
+}
+
+LinearTaps linearTaps(float u, int n) {
+  const float t = u * float(n) - 0.5f;
+  const float base = std::floor(t);
+  const int i = int(base);
+  return {std::clamp(i, 0, n - 1), std::clamp(i + 1, 0, n - 1), t - base};
+}
+
+glm::vec4 sampleTable(const std::vector<glm::vec4>& table, float u) {
+  const LinearTaps t = linearTaps(u, int(table.size()));
+  return table[std::size_t(t.i0)] * (1 - t.f) + table[std::size_t(t.i1)] * t.f;
+}
+
 SliceSampler::SliceSampler(const Volume& volume, const View& view)
     : volume_(volume),
       view_(view),

@@ -2,6 +2,8 @@
 // The CPU twin of slicing/shaders/common.glsl: the same sample positions (pixel centres on the
 // view-aligned slice planes of slicing/slicer.h), computed in float with the same operations,
 // and trilinear interpolation as OpenGL defines it for a clamped float 3D texture.
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "core/camera.h"
@@ -9,6 +11,21 @@
 #include "slicing/slicer.h"
 
 namespace vsil::reference {
+
+// GL's linear filtering of a clamped texture along one axis: texel space u·n − 0.5.
+struct LinearTaps {
+  int i0, i1;
+  float f;
+};
+LinearTaps linearTaps(float u, int n);
+
+// A 1D RGBA texture (a transfer function's table, slicing/transfer_function_texture.h) read with
+// linear filtering at texture coordinate `u`.
+glm::vec4 sampleTable(const std::vector<glm::vec4>& table, float u);
+
+// The texels of the volume texture (slicing/volume_texture.h): every sample as a float in the
+// data's own units, x fastest. What the GL path reads back to build gradients and halo masks.
+std::vector<float> textureTexels(const Volume& volume);
 
 class SliceSampler {
  public:

@@ -16,12 +16,12 @@ bool datasetsRequired();
 
 // First in a test that reads the classic datasets: a checkout cloned alone skips the test with
 // a one-line reason; where the datasets are required (CI), it fails instead.
-#define VSIL_REQUIRE_DATASETS()                                            \
-  do {                                                                     \
-    if (const auto vsilMissing = ::vsil::test::datasetsMissing()) {        \
-      if (::vsil::test::datasetsRequired()) FAIL() << *vsilMissing;        \
-      GTEST_SKIP() << *vsilMissing;                                        \
-    }                                                                      \
+#define VSIL_REQUIRE_DATASETS()                                     \
+  do {                                                              \
+    if (const auto vsilMissing = ::vsil::test::datasetsMissing()) { \
+      if (::vsil::test::datasetsRequired()) FAIL() << *vsilMissing; \
+      GTEST_SKIP() << *vsilMissing;                                 \
+    }                                                               \
   } while (0)
 // The built `vsil` binary.
 std::filesystem::path vsilBinary();

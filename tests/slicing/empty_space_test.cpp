@@ -10,11 +10,11 @@
 
 #include <gtest/gtest.h>
 
+#include "frame_compare.h"
 #include "gl_harness.h"
 #include "slice_sampler.h"
 #include "slicing/empty_space.h"
 #include "slicing/gl_objects.h"
-#include "frame_compare.h"
 #include "slicing/renderer.h"
 #include "slicing/technique.h"
 #include "slicing/technique_table.h"
@@ -213,9 +213,13 @@ TEST_P(EntryAndExitDepth, MatchRaysThroughTheOccupiedBricks) {
   target.bindForDrawing();
   skipping.writeEntryDepth(glm::mat4(view.clipFromVoxel()));
   std::vector<float> entry(std::size_t(size.x * size.y)), exit(entry.size());
+  std::vector<float> entryImage(entry.size());
   glReadPixels(0, 0, size.x, size.y, GL_DEPTH_COMPONENT, GL_FLOAT, entry.data());
+  skipping.drawEntryDepthImage(glm::mat4(view.clipFromVoxel()));
   glBindTexture(GL_TEXTURE_2D, skipping.exitDepthTexture());
   glGetTexImage(GL_TEXTURE_2D, 0, GL_RED, GL_FLOAT, exit.data());
+  glBindTexture(GL_TEXTURE_2D, skipping.entryDepthTexture());
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_RED, GL_FLOAT, entryImage.data());
   glBindTexture(GL_TEXTURE_2D, 0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
@@ -244,14 +248,18 @@ TEST_P(EntryAndExitDepth, MatchRaysThroughTheOccupiedBricks) {
       if (surelyMiss) {
         ++misses;
         EXPECT_EQ(entry[i], 1.0f);
+        EXPECT_EQ(entryImage[i], 1.0f);
         EXPECT_EQ(exit[i], 0.0f);
         continue;
       }
       ++hits;
-      // Where the nearest grazing box decides, the depth lies between the two estimates.
+      // Where the nearest grazing box decides, the depth lies between the two estimates; the
+      // entry image (for the tile march) holds the depth buffer's depth, unquantized.
       constexpr double kDepthTolerance = 1e-5;
-      EXPECT_GE(entry[i], windowDepth(view, nearGrown) - kDepthTolerance);
-      EXPECT_LE(entry[i], windowDepth(view, nearShrunk) + kDepthTolerance);
+      for (const float entryDepth : {entry[i], entryImage[i]}) {
+        EXPECT_GE(entryDepth, windowDepth(view, nearGrown) - kDepthTolerance);
+        EXPECT_LE(entryDepth, windowDepth(view, nearShrunk) + kDepthTolerance);
+      }
       EXPECT_GE(exit[i], windowDepth(view, farShrunk) - kDepthTolerance);
       EXPECT_LE(exit[i], windowDepth(view, farGrown) + kDepthTolerance);
     }
@@ -325,12 +333,19 @@ std::vector<SceneCase> sceneCases() {
       {"Behind", camera(200, -35, false, 1.5)},
       {"Orthographic", camera(95, 60, true, 1)},
       {"ZoomedIn", camera(-20, 10, false, 2.5)}};
-  // Every technique of the table: each decides for itself what is occupied.
+  // Every technique of the table (each decides for itself what is occupied), with each of its
+  // pipelines (each skips its own way).
   std::vector<SceneCase> cases;
   for (const auto& [viewName, spec] : views) {
     for (const auto& technique : techniqueTable()) {
-      cases.push_back({technique.name + viewName, technique.name,
-                       test::isoOptions(technique, 0.2), spec});
+      const OptionSpec* pipeline = technique.option("pipeline");
+      for (const std::string& choice :
+           pipeline ? pipeline->choices : std::vector<std::string>{""}) {
+        OptionValues options = test::isoOptions(technique, 0.2);
+        if (!choice.empty()) options["pipeline"] = choice;
+        cases.push_back({technique.name + viewName + (choice.empty() ? "" : "_" + choice),
+                         technique.name, options, spec});
+      }
     }
   }
   return cases;

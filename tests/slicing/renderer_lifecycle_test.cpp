@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "generators/generators.h"
 #include "frame_compare.h"
+#include "generators/generators.h"
 #include "reference/gl_harness.h"
 #include "slicing/gl.h"
 #include "slicing/renderer.h"

@@ -7,8 +7,8 @@
 #include "core/frame.h"
 #include "gl_harness.h"
 #include "silhouette_reference.h"
-#include "slicing/gl_objects.h"
 #include "slicing/frame_uniforms.h"
+#include "slicing/gl_objects.h"
 #include "slicing/gl_state.h"
 #include "slicing/shader_program.h"
 #include "slicing/texture_units.h"
@@ -39,8 +39,8 @@ void drawScreenTriangle(const gl::RenderTarget& target) {
 TEST_F(GlTest, GlslStateConstantsEqualThePixelStateEnum) {
   gl::ScopedState restore;
   gl::RenderTarget target({4, 1}, GL_R8UI);
-  gl::Program program(gl::screenPassProgram({"shaders/hit_records.glsl"},
-                                            "shaders/state_constants.frag"));
+  gl::Program program(
+      gl::screenPassProgram({"shaders/hit_records.glsl"}, "shaders/state_constants.frag"));
   program.use();
   drawScreenTriangle(target);
   const auto values = readUint8(target);
@@ -93,9 +93,9 @@ TEST_F(GlTest, DecisionShaderMatchesThePaperInAllTwelveCases) {
 
   gl::RenderTarget target({3, 4}, GL_RGBA32F);
   // The pass as the paper pipeline runs it, with a frame's uniform blocks bound.
-  gl::Program program(gl::screenPassProgram(
-      {"shaders/hit_records.glsl", "techniques/silhouette/silhouette.glsl"},
-      "techniques/silhouette/decision.frag", {"PAPER_PIPELINE"}));
+  gl::Program program(
+      gl::screenPassProgram({"shaders/hit_records.glsl", "techniques/silhouette/silhouette.glsl"},
+                            "techniques/silhouette/decision.frag", {"PAPER_PIPELINE"}));
   const glm::ivec3 dims(4);
   const View view = makeView(CameraSpec{}, dims, glm::dvec3(1.0), {3, 4});
   FrameUniforms uniforms;

@@ -36,9 +36,8 @@ TEST_F(GlTest, EveryEmbeddedShaderIsKeyedByItsPathUnderSlicing) {
 TEST_F(GlTest, CacheBuildsEachVariantOnceAndVariantsDiffer) {
   gl::ProgramCache cache;
   const gl::ProgramSpec plain = gl::screenPassProgram({}, "shaders/mark_dead.frag");
-  const gl::ProgramSpec variant = gl::screenPassProgram({"shaders/hit_records.glsl"},
-                                                        "shaders/mark_dead.frag",
-                                                        {"NEIGHBOURS_FINAL"});
+  const gl::ProgramSpec variant = gl::screenPassProgram(
+      {"shaders/hit_records.glsl"}, "shaders/mark_dead.frag", {"NEIGHBOURS_FINAL"});
   EXPECT_NE(plain.key(), variant.key());
   // mark_dead.frag needs hit_records.glsl; listing it makes the program build.
   const gl::ProgramSpec withRecords =
@@ -59,11 +58,28 @@ TEST_F(GlTest, CompileErrorsNameTheFileAndLine) {
   EXPECT_NE(error.find("fragment"), std::string::npos) << error;
 }
 
+TEST_F(GlTest, ComputeProgramsAreBuiltFromTheirOneStage) {
+  const std::vector<std::string> shared{"shaders/hit_records.glsl", "shaders/tile_march.glsl"};
+  // Without the slice layout, tile_march.glsl stops the build and the error names it.
+  const std::string error = errorOf(gl::computeProgram(shared, "shaders/first_hit_march.comp"));
+  EXPECT_NE(error.find("shaders/tile_march.glsl:"), std::string::npos) << error;
+  EXPECT_NE(error.find("compute"), std::string::npos) << error;
+  const gl::ProgramSpec spec = gl::computeProgram(
+      shared, "shaders/first_hit_march.comp",
+      {"MARCH_GROUP_X 8", "MARCH_GROUP_Y 8", "MARCH_TILE_X 8", "MARCH_TILE_Y 8",
+       "MARCH_RANGE_SLICES 4", "SLICE_STRIDE_VEC4 4"});
+  EXPECT_TRUE(spec.vertex.empty() && spec.fragment.empty());
+  gl::Program program(spec);
+  EXPECT_NE(program.id(), 0u);
+  EXPECT_EQ(program.label().rfind("shaders/first_hit_march.comp MARCH_GROUP_X 8", 0), 0u)
+      << program.label();
+}
+
 TEST_F(GlTest, GeneratedSourcesCarryTheirLabelIntoErrorsAndTheCacheKey) {
   gl::ProgramSpec spec = gl::screenPassProgram({}, "shaders/state_constants.frag");
   spec.fragment.insert(spec.fragment.begin() + 1,
-                       gl::ShaderSource::generated("rules:focus.rules",
-                                                   "\n\nfloat broken() { return undefinedName; }\n"));
+                       gl::ShaderSource::generated(
+                           "rules:focus.rules", "\n\nfloat broken() { return undefinedName; }\n"));
   const std::string error = errorOf(spec);
   EXPECT_NE(error.find("rules:focus.rules:3("), std::string::npos) << error;
 

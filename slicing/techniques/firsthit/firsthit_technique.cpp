@@ -9,7 +9,8 @@ TechniqueInfo firstHitTechniqueInfo() {
           "the depth of the first iso-surface hit as grey (near white, far black), and as depth",
           {isoOption()},
           FrameOutputs{.state = false, .color = true, .depth = true},
-          [] { return std::make_unique<FirstHitTechnique>(); }};
+          [] { return std::make_unique<FirstHitTechnique>(); },
+          /*usesGradients=*/false, /*checkValues=*/{}};
 }
 
 BrickOccupancy FirstHitTechnique::occupancy(const FrameContext& frame) const {

@@ -17,7 +17,7 @@ class FirstHitTechnique : public Technique {
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override {
     hits_.drawSlice(frame, slice);
   }
-  void endFrame(const FrameContext&) override {}
+  void endFrame(const FrameContext& frame) override { hits_.endSlices(frame); }
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:

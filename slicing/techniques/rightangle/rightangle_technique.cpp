@@ -10,9 +10,11 @@ TechniqueInfo rightAngleTechniqueInfo() {
                               "exponent k of the line test (1 - |n.v|)^k > threshold")
                .above(0),
            OptionSpec::number("ra-threshold", 0.3,
-                              "a first hit is a line pixel where (1 - |n.v|)^k exceeds this")},
+                              "a first hit is a line pixel where (1 - |n.v|)^k exceeds this"),
+           pipelineOption()},
           FrameOutputs{.state = true, .color = false, .depth = true},
-          [] { return std::make_unique<RightAngleTechnique>(); }};
+          [] { return std::make_unique<RightAngleTechnique>(); },
+          /*usesGradients=*/false, /*checkValues=*/{}};
 }
 
 BrickOccupancy RightAngleTechnique::occupancy(const FrameContext& frame) const {
@@ -28,7 +30,7 @@ void RightAngleTechnique::beginFrame(const FrameContext& frame) {
   finish_->use();
   finish_->set("rightAngleExponent", float(frame.options->number("ra-exponent")));
   finish_->set("rightAngleThreshold", float(frame.options->number("ra-threshold")));
-  hits_.beginFrame(frame);
+  hits_.beginFrame(frame, pipelineOf(*frame.options));
 }
 
 void RightAngleTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
@@ -36,6 +38,7 @@ void RightAngleTechnique::drawSlice(const FrameContext& frame, const SliceContex
 }
 
 void RightAngleTechnique::endFrame(const FrameContext& frame) {
+  hits_.endSlices(frame);
   finishRecords(frame, *finish_, hits_.record(), *finished_);
 }
 

@@ -15,6 +15,18 @@ const uint decisionTable[16] = uint[16](
 
 uint decide(uint t, uint c) { return decisionTable[t * 4u + c]; }
 
+// The table applied to many pixels at once (the tile march, march.comp): bit j of states[t] is
+// set where pixel j's record is t, of contours[c] where its contour value is c (EMPTY, FILLED,
+// CONTOUR). With t and c constants, decide(t, c) folds away: a few bit operations in all.
+void decideBits(inout uint states[4], uint contours[3]) {
+  uint next[4] = uint[4](0u, 0u, 0u, 0u);
+  for (uint t = 0u; t < 4u; ++t) {
+    for (uint c = 0u; c < 3u; ++c) next[decide(t, c)] |= states[t] & contours[c];
+  }
+  states = next;
+}
+
+#ifndef VSIL_COMPUTE_SHADER
 // Footprints: the footprint pass writes footprintTag() where this slice is FILLED; any other
 // value is EMPTY. The fast pipeline tags each slice differently (its index + 1), so the
 // footprint never needs clearing between slices; the paper pipeline (PAPER_PIPELINE) clears
@@ -45,21 +57,29 @@ uint contourAt(usampler2D footprint, ivec2 pixel) {
   return STATE_FILLED;
 }
 
+#endif
+
 float silhouetteDepth(vec4 t) { return 0.5 * (t.g + t.a); }
 
-// Applies one slice's contour value c to the record t (the decision table, with the depths).
-vec4 decideRecord(vec4 t, uint c) {
+// Applies the contour value c of a slice at normalized depth `depth` and eye distance
+// `eyeDistance` to the record t (the decision table, with the depths).
+vec4 decideRecordAt(vec4 t, uint c, float depth, float eyeDistance) {
   uint state = uint(t.r);
   uint next = decide(state, c);
   vec4 result = vec4(float(next), t.g, t.b, t.a);
   if (state == STATE_EMPTY && next != STATE_EMPTY) {
-    result.g = sliceDepth;
-    result.b = sliceEyeDistance;
+    result.g = depth;
+    result.b = eyeDistance;
   }
-  if (next == STATE_CONTOUR) result.a = sliceDepth;
+  if (next == STATE_CONTOUR) result.a = depth;
   if (state == STATE_CONTOUR && next == STATE_SILHOUETTE) result.g = silhouetteDepth(t);
   return result;
 }
+
+#ifndef VSIL_COMPUTE_SHADER
+// The same for the slice this pass draws.
+vec4 decideRecord(vec4 t, uint c) { return decideRecordAt(t, c, sliceDepth, sliceEyeDistance); }
+#endif
 
 // For finish_hits.frag: a CONTOUR record left after the last slice met the extra empty slice
 // behind the volume and becomes SILHOUETTE (the fast pipeline applies detection lazily,

@@ -3,6 +3,7 @@
 #include "slicing/gl_state.h"
 #include "slicing/hit_records.h"
 #include "slicing/texture_units.h"
+#include "slicing/tile_march.h"
 
 namespace vsil {
 namespace {
@@ -20,17 +21,25 @@ std::vector<std::string> sources() {
   return {"shaders/hit_records.glsl", "techniques/silhouette/silhouette.glsl"};
 }
 
+// The tiles pipeline's workgroup (march.comp): a column of the tile per invocation, one apron
+// column on each side; 30 rows and their two apron rows fill a column's 32-bit mask. As many
+// slices per dispatch as one uniform block holds (1024 on llvmpipe, so one dispatch per frame
+// for the nk3 datasets): a dispatch boundary costs a barrier and a reload of the records.
+// Measured (nk3 on bonsai and neghip, 256² and 512², on a loaded 2-core machine; the table is
+// in the commit message that wrote this): tiles of 14x30, 62x30 and 30x14 were within the
+// noise of this shape, none consistently ahead; 64 slices per dispatch (7 dispatches for
+// bonsai's 427 slices) was slower on bonsai for this march and the first-hit one.
+constexpr MarchShape kMarchShape{{32, 1}, {30, 30}};
+
 }  // namespace
 
 TechniqueInfo silhouetteTechniqueInfo() {
   return {"silhouette",
           "Nagy–Klein one-pixel iso-surface silhouettes (OPS), broadened to --width",
-          {isoOption(),
-           OptionSpec::choice("pipeline", "fast", {"fast", "paper"},
-                              "fast (fused in-place passes, empty-space skipping) or paper (the "
-                              "paper's three passes); the same pixels")},
+          {isoOption(), pipelineOption()},
           FrameOutputs{.state = true, .color = false, .depth = true},
-          [] { return std::make_unique<SilhouetteTechnique>(); }};
+          [] { return std::make_unique<SilhouetteTechnique>(); },
+          /*usesGradients=*/false, /*checkValues=*/{}};
 }
 
 BrickOccupancy SilhouetteTechnique::occupancy(const FrameContext& frame) const {
@@ -49,10 +58,21 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
                 {gl::RenderTarget(size, GL_RGBA32F), gl::RenderTarget(size, GL_RGBA32F)},
                 gl::EmptyFramebuffer(size, depth)});
   }
-  pipeline_ = frame.options->text("pipeline") == "paper" ? Pipeline::Paper : Pipeline::Fast;
-  const std::vector<std::string> variant =
-      pipeline_ == Pipeline::Paper ? std::vector<std::string>{"PAPER_PIPELINE"}
-                                   : std::vector<std::string>{};
+  pipeline_ = pipelineOf(*frame.options);
+  const float iso = float(frame.options->number("iso"));
+  programs_.finish = &finishProgram(frame, {"techniques/silhouette/silhouette.glsl"});
+  if (pipeline_ == SlicingPipeline::Tiles) {
+    // The march writes every pixel's record once: nothing to clear, no depth buffer.
+    programs_.march =
+        &marchProgram(frame, sources(), "techniques/silhouette/march.comp", kMarchShape);
+    programs_.march->use();
+    programs_.march->set("isoValue", iso);
+    current_ = 0;
+    return;
+  }
+  const std::vector<std::string> variant = pipeline_ == SlicingPipeline::Paper
+                                               ? std::vector<std::string>{"PAPER_PIPELINE"}
+                                               : std::vector<std::string>{};
   gl::ProgramCache& cache = *frame.programs;
   programs_.footprint =
       &cache.get(gl::slicePassProgram(sources(), "techniques/silhouette/footprint.frag", variant));
@@ -64,8 +84,6 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
       sources(), "techniques/silhouette/decision.frag", {"PAPER_PIPELINE", "EMPTY_SLICE"}));
   programs_.decisionInPlace = &cache.get(
       gl::slicePassProgram(sources(), "techniques/silhouette/decision_inplace.frag", variant));
-  programs_.finish = &finishProgram(frame, {"techniques/silhouette/silhouette.glsl"});
-  const float iso = float(frame.options->number("iso"));
   programs_.footprint->use();
   programs_.footprint->set("isoValue", iso);
 
@@ -87,7 +105,8 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
 
 void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
   const glm::ivec2 viewport = frame.view->viewport;
-  if (pipeline_ == Pipeline::Fast) {
+  if (pipeline_ == SlicingPipeline::Tiles) return;  // endFrame marches every slice at once
+  if (pipeline_ == SlicingPipeline::Fast) {
     if (slice.vertexCount == 0) return;
     // Tagged with this slice, the footprint needs no clearing (silhouette.glsl footprintTag).
     drawFootprint(frame, slice);
@@ -99,7 +118,7 @@ void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContex
     if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // marking reads this slice's records
       markDeadPixels(frame, slice, targets_->depthOnly, targets_->records[0],
-                     /*neighboursFinal=*/true);
+                     DeadRule::NeighbourRecords);
     }
     return;
   }
@@ -121,7 +140,7 @@ void SilhouetteTechnique::drawFootprint(const FrameContext& frame, const SliceCo
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   targets_->footprint.bindForDrawing();
   programs_.footprint->use();
-  if (pipeline_ == Pipeline::Fast) {
+  if (pipeline_ == SlicingPipeline::Fast) {
     // Slices come in depth order: GREATER passes every pixel but dead ones (depth 1), early;
     // FILLED fragments (not discarded) leave this slice's depth for the decision pass.
     gl::DepthTest depthTest(GL_GREATER, /*write=*/true);
@@ -163,7 +182,13 @@ void SilhouetteTechnique::decideInPlace(const FrameContext& frame, const SliceCo
 }
 
 void SilhouetteTechnique::endFrame(const FrameContext& frame) {
-  if (pipeline_ == Pipeline::Paper) {
+  if (pipeline_ == SlicingPipeline::Tiles) {
+    runMarch(frame, *programs_.march, kMarchShape, targets_->records[0]);
+    finishRecords(frame, *programs_.finish, targets_->records[0], targets_->records[1]);
+    current_ = 1;
+    return;
+  }
+  if (pipeline_ == SlicingPipeline::Paper) {
     // The extra empty slice, over the whole image: contours at the back become silhouettes.
     decidePaper(frame, /*emptySlice=*/true, {0, 0, frame.view->viewport.x, frame.view->viewport.y});
   }

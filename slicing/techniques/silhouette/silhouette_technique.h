@@ -2,7 +2,7 @@
 // Nagy–Klein one-pixel silhouettes (OPS). Per slice a footprint pass (alpha test), the contour
 // of the footprint (8-neighbourhood) and the decision table combining it with the record
 // (silhouette.glsl); one extra empty slice after the last turns contours at the back into
-// silhouettes. Two pipelines give the same pixels (--pipeline):
+// silhouettes. Three pipelines give the same pixels (--pipeline):
 //  paper: three passes, the record in ping-pong targets, as the paper draws it.
 //  fast:  the footprint pass writes this slice's depth at FILLED pixels; one pass fuses
 //         contour and decision, runs only there (early depth test EQUAL) and updates the record
@@ -11,6 +11,9 @@
 //         buffer starts with where rays enter occupied bricks (empty_space.h); every few
 //         slices, pixels that can no longer matter get depth 1 (mark_dead.frag); the
 //         footprint pass (depth test GREATER) skips both before sampling.
+//  tiles: no passes per slice: one compute dispatch walks the slices, a workgroup per screen
+//         tile with a one-pixel apron, footprint and contour in shared memory, the record in
+//         registers (tile_march.h, march.comp); the finishing pass as in the fast pipeline.
 //  The paper pipeline samples every pixel of every slice polygon (no empty-space skipping).
 #include <array>
 #include <optional>
@@ -31,9 +34,9 @@ class SilhouetteTechnique : public Technique {
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:
-  enum class Pipeline { Fast, Paper };
   struct Programs {
-    gl::Program *footprint, *contour, *decision, *emptySliceDecision, *decisionInPlace, *finish;
+    gl::Program *footprint, *contour, *decision, *emptySliceDecision, *decisionInPlace, *finish,
+        *march;
   };
   void drawFootprint(const FrameContext& frame, const SliceContext& slice);
   // Paper pipeline: contour pass, then the decision pass into the other ping-pong target over
@@ -55,7 +58,7 @@ class SilhouetteTechnique : public Technique {
   };
   std::optional<Targets> targets_;
   Programs programs_{};
-  Pipeline pipeline_ = Pipeline::Fast;
+  SlicingPipeline pipeline_ = SlicingPipeline::Fast;
   int current_ = 0;  // the record target holding the latest record
 };
 

@@ -1,8 +1,9 @@
-#include "postfx/color.h"
+#include "core/color.h"
 
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cstdio>
 #include <utility>
 
 #include "core/error.h"
@@ -10,7 +11,7 @@
 namespace vsil {
 namespace {
 
-constexpr std::array<std::pair<const char*, Rgba>, 13> kNamedColors{{
+constexpr std::array<std::pair<const char*, Rgba>, 14> kNamedColors{{
     {"black", {0, 0, 0, 255}},
     {"white", {255, 255, 255, 255}},
     {"red", {255, 0, 0, 255}},
@@ -23,6 +24,7 @@ constexpr std::array<std::pair<const char*, Rgba>, 13> kNamedColors{{
     {"gray", {128, 128, 128, 255}},
     {"orange", {255, 165, 0, 255}},
     {"navy", {0, 0, 128, 255}},
+    {"ivory", {255, 255, 240, 255}},
     {"transparent", {0, 0, 0, 0}},
 }};
 
@@ -40,6 +42,12 @@ int hexDigit(char c) {
 }
 
 }  // namespace
+
+std::string Rgba::hex() const {
+  char text[16];
+  std::snprintf(text, sizeof text, "#%02x%02x%02x%02x", r & 255, g & 255, b & 255, a & 255);
+  return text;
+}
 
 Rgba parseColor(const std::string& text, const std::string& flagName) {
   std::string lower = text;

@@ -1,0 +1,53 @@
+#pragma once
+// Front-to-back compositing of view-aligned slices, shared by the techniques that accumulate
+// colour (illustrate; mip's DVR composite and semantic next). The target is RGBA32F holding
+// premultiplied colour and accumulated opacity: the slice pass writes (c·α, α) per pixel and the
+// blending (ONE_MINUS_DST_ALPHA, ONE) adds it behind what is there, dst += (1 − dst.α)·src.
+// Opacities are per voxel; shaders/compositing.glsl corrects them for the slice distance,
+// α = 1 − (1 − o)^(Δ/Δ₀) with Δ₀ one voxel along the view (SlicePlan::stepVoxels).
+//
+// What no sample can change is skipped before the slice shader runs, as for the first-hit
+// techniques: the depth buffer starts with where rays enter occupied bricks (empty_space.h) and
+// the slice passes test GREATER; every kMarkDeadInterval slices, pixels past their ray's exit from
+// occupied space and, with early ray termination (RenderSettings::earlyRayTermination), pixels
+// whose opacity reached 1 − 1/255 get depth 1 (mark_dead.frag, DeadRule::Opacity). What the
+// retired pixels would still have received is at most 1/255 of a colour in [0, 1].
+#include <optional>
+
+#include <opencv2/core.hpp>
+
+#include "slicing/technique.h"
+
+namespace vsil {
+
+// The opacity from which a pixel takes no more samples.
+inline constexpr float kTerminationOpacity = 1.0f - 1.0f / 255.0f;
+
+class FrontToBackCompositor {
+ public:
+  // Targets for the frame's size, cleared to transparent, entry depths written.
+  void beginFrame(const FrameContext& frame);
+  // Draws the slice's polygon with `program` (in use, its uniforms set) blended behind what is
+  // there, skipping empty space and retired pixels; marks newly retired ones every
+  // kMarkDeadInterval slices.
+  void drawSlice(const FrameContext& frame, const SliceContext& slice, gl::Program& program);
+  const gl::RenderTarget& target() const { return targets_->color; }
+  // Premultiplied RGBA in [0, 1], rows top-down.
+  cv::Mat4f readBack() const;
+
+  // Δ/Δ₀ for compositing.glsl's `opacityExponent`.
+  static float opacityExponent(const FrameContext& frame);
+
+ private:
+  struct Targets {
+    gl::RenderTarget color;          // RGBA32F with the depth-stencil buffer the passes test
+    gl::EmptyFramebuffer depthOnly;  // that depth buffer alone, for marking dead pixels
+  };
+  std::optional<Targets> targets_;
+  float deadOpacity_ = kTerminationOpacity;
+};
+
+// "shaders/compositing.glsl", to list before a compositing technique's own sources.
+inline constexpr const char* kCompositingSource = "shaders/compositing.glsl";
+
+}  // namespace vsil

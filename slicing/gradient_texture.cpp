@@ -1,0 +1,161 @@
+#include "slicing/gradient_texture.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include <glm/gtc/packing.hpp>
+
+namespace vsil {
+
+namespace {
+
+// Calls body(zBegin, zEnd) on slabs of z over the hardware's threads.
+template <typename Body>
+void forSlabs(int depth, Body body) {
+  const int threads =
+      std::clamp(int(std::thread::hardware_concurrency()), 1, std::max(1, depth / 4));
+  if (threads <= 1) {
+    body(0, depth);
+    return;
+  }
+  std::vector<std::thread> workers;
+  for (int t = 0; t < threads; ++t) {
+    const int z0 = depth * t / threads, z1 = depth * (t + 1) / threads;
+    workers.emplace_back([=] { body(z0, z1); });
+  }
+  for (auto& worker : workers) worker.join();
+}
+
+// The physical gradient at voxel (x, y, z): central differences with clamped neighbours.
+struct GradientAt {
+  const float* samples;
+  glm::ivec3 dims;
+  glm::dvec3 halfPerSpacing;  // 0.5 / spacing
+
+  glm::vec3 operator()(int x, int y, int z) const {
+    const std::size_t row = std::size_t(dims.x);
+    const std::size_t plane = row * std::size_t(dims.y);
+    const float* p = samples + std::size_t(z) * plane + std::size_t(y) * row + std::size_t(x);
+    const float dx = (x + 1 < dims.x ? p[1] : p[0]) - (x > 0 ? p[-1] : p[0]);
+    const float dy = (y + 1 < dims.y ? p[row] : p[0]) - (y > 0 ? p[-std::ptrdiff_t(row)] : p[0]);
+    const float dz =
+        (z + 1 < dims.z ? p[plane] : p[0]) - (z > 0 ? p[-std::ptrdiff_t(plane)] : p[0]);
+    return glm::vec3(dx * halfPerSpacing.x, dy * halfPerSpacing.y, dz * halfPerSpacing.z);
+  }
+};
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+}  // namespace
+
+glm::vec4 GradientTexels::at(int x, int y, int z) const {
+  const std::size_t i =
+      4 * ((std::size_t(z) * std::size_t(dims.y) + std::size_t(y)) * std::size_t(dims.x) +
+           std::size_t(x));
+  return {glm::unpackHalf1x16(halves[i]), glm::unpackHalf1x16(halves[i + 1]),
+          glm::unpackHalf1x16(halves[i + 2]), glm::unpackHalf1x16(halves[i + 3])};
+}
+
+float maxGradientMagnitude(const float* samples, glm::ivec3 dims, glm::dvec3 spacing) {
+  const GradientAt gradient{samples, dims, 0.5 / spacing};
+  std::vector<float> slabMax(std::size_t(dims.z), 0.0f);
+  forSlabs(dims.z, [&](int z0, int z1) {
+    for (int z = z0; z < z1; ++z) {
+      float largest = 0;
+      for (int y = 0; y < dims.y; ++y) {
+        for (int x = 0; x < dims.x; ++x) {
+          const glm::vec3 g = gradient(x, y, z);
+          largest = std::max(largest, glm::dot(g, g));
+        }
+      }
+      slabMax[std::size_t(z)] = largest;
+    }
+  });
+  return std::sqrt(*std::max_element(slabMax.begin(), slabMax.end()));
+}
+
+GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm::dvec3 spacing,
+                                     float maxMagnitude, int zBegin, int zEnd) {
+  GradientTexels texels;
+  texels.dims = glm::ivec3(dims.x, dims.y, zEnd - zBegin);
+  texels.maxMagnitude = maxMagnitude;
+  texels.halves.resize(4 * std::size_t(dims.x) * std::size_t(dims.y) *
+                       std::size_t(std::max(0, zEnd - zBegin)));
+  const GradientAt gradient{samples, dims, 0.5 / spacing};
+  const float toNormalized = maxMagnitude > 0 ? 1.0f / maxMagnitude : 0.0f;
+  forSlabs(zEnd - zBegin, [&](int s0, int s1) {
+    std::uint16_t* out =
+        texels.halves.data() + 4 * std::size_t(s0) * std::size_t(dims.x) * std::size_t(dims.y);
+    for (int z = zBegin + s0; z < zBegin + s1; ++z) {
+      for (int y = 0; y < dims.y; ++y) {
+        for (int x = 0; x < dims.x; ++x, out += 4) {
+          const glm::vec3 g = gradient(x, y, z);
+          const float length = std::sqrt(glm::dot(g, g));
+          const glm::vec3 n = length > 0 ? g / length : glm::vec3(0.0f);
+          out[0] = glm::packHalf1x16(n.x);
+          out[1] = glm::packHalf1x16(n.y);
+          out[2] = glm::packHalf1x16(n.z);
+          out[3] = glm::packHalf1x16(std::min(1.0f, length * toNormalized));
+        }
+      }
+    }
+  });
+  return texels;
+}
+
+GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm::dvec3 spacing) {
+  return computeGradientTexels(samples, dims, spacing, maxGradientMagnitude(samples, dims, spacing),
+                               0, dims.z);
+}
+
+GradientTexture::GradientTexture(GLuint volumeTexture, glm::ivec3 dims, glm::dvec3 spacing) {
+  const auto start = std::chrono::steady_clock::now();
+  // The volume stays bound to its unit for the frame: put back what unit 0 holds.
+  GLint bound = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_3D, &bound);
+  std::vector<float> samples(std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z));
+  VSIL_GL(glBindTexture(GL_TEXTURE_3D, volumeTexture));
+  VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
+  VSIL_GL(glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, samples.data()));
+  const float maxMagnitude = maxGradientMagnitude(samples.data(), dims, spacing);
+  texture_ = gl::createTexture();
+  VSIL_GL(glBindTexture(GL_TEXTURE_3D, texture_.id()));
+  VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
+  VSIL_GL(glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, dims.x, dims.y, dims.z, 0, GL_RGBA,
+                       GL_HALF_FLOAT, nullptr));
+  // In slabs, so that the texels never exist twice at once (memory bound: limits.h).
+  constexpr int kSlab = 16;
+  for (int z0 = 0; z0 < dims.z; z0 += kSlab) {
+    const int z1 = std::min(dims.z, z0 + kSlab);
+    const GradientTexels slab =
+        computeGradientTexels(samples.data(), dims, spacing, maxMagnitude, z0, z1);
+    VSIL_GL(glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z0, dims.x, dims.y, z1 - z0, GL_RGBA,
+                            GL_HALF_FLOAT, slab.halves.data()));
+  }
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
+    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+  }
+  VSIL_GL(glBindTexture(GL_TEXTURE_3D, GLuint(bound)));
+  buildMs_ = msSince(start);
+}
+
+void GradientTextureCache::reset(GLuint volumeTexture, glm::ivec3 dims, glm::dvec3 spacing) {
+  texture_.reset();
+  volumeTexture_ = volumeTexture;
+  dims_ = dims;
+  spacing_ = spacing;
+}
+
+GLuint GradientTextureCache::texture() {
+  if (!texture_) texture_.emplace(volumeTexture_, dims_, spacing_);
+  return texture_->id();
+}
+
+}  // namespace vsil

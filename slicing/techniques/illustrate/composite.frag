@@ -1,0 +1,126 @@
+// composite.frag: illustrate's slice pass (illustrate_technique.h). One sample per pixel on
+// this slice: classified by the transfer function, enhanced by the effects the program was
+// built with (#defines BOUNDARY, SILHOUETTE, FADING, SKETCH, DISTANCE, HALO, TONE; the
+// formulas in shaders/illustration.glsl), shaded, and written premultiplied and corrected for
+// the slice distance (shaders/compositing.glsl) for the front-to-back blending.
+// In: the volume, its gradient texture (slicing/gradient_texture.h: unit direction of ∇f in
+// world axes, |∇f| normalized), the transfer function (TRANSFER_TABLE: a 1D texture over the
+// data's range; otherwise the paper's power function over one colour), with HALO the halo mask
+// (halo_mask.h). Out: (c·α, α).
+
+layout(binding = UNIT_GRADIENT) uniform sampler3D gradientTexture;
+uniform mat3 worldFromEye;  // rotation: eye-space directions into the gradients' axes
+// Samples at or below this value are transparent (the transfer function is 0 up to it): they
+// leave before classification. llvmpipe leaves a block of fragments once all of them are
+// discarded, so transparent space costs one volume sample.
+uniform float transparentBelow;
+
+#ifdef TRANSFER_TABLE
+layout(binding = UNIT_TRANSFER_FUNCTION) uniform sampler1D transferTable;
+uniform vec2 tableCoordFromValue;  // texture coordinate = value·x + y
+#else
+uniform float valueMin, valueScale;  // v = (value − valueMin)·valueScale in [0, 1]
+uniform vec3 sampleColor;
+uniform float k_os, k_oe;
+#endif
+
+layout(location = 0) out vec4 result;
+
+// Straight colour and opacity per voxel of a sample value (data units).
+vec4 classify(float value) {
+#ifdef TRANSFER_TABLE
+  return texture(transferTable, value * tableCoordFromValue.x + tableCoordFromValue.y);
+#else
+  float v = clamp((value - valueMin) * valueScale, 0.0, 1.0);
+  return vec4(sampleColor, k_os * pow(v, k_oe));
+#endif
+}
+
+#ifdef HALO
+// Feature halos from a neighbourhood in the slice plane (halos lie mostly in planes across the
+// view): HALO_TAPS taps at offsets within k_hr voxels, the nearest texel of the gradients each.
+// A tap's potential is the paper's h_n = (n_n·d)^k_hpe·(1 − |n_n·V|)^k_hse, d the unit direction
+// from the tap to the sample and n_n its outward normal, weighted by its gradient magnitude (the
+// paper: "a large gradient in the direction of this sample"). h = Σ w_n h_n·(1 − |∇f(P_i)|),
+// w_n ∝ 1/|P_i − P_n|² summing to 1, so h is in [0, 1]. Halos surround visible features only:
+// h counts where the halo mask (halo_mask.h) marks the sample's voxel as near one, which also
+// lets the samples far from every feature leave early and keeps halos inside the occupancy
+// margin of empty-space skipping.
+layout(binding = UNIT_AUXILIARY0) uniform sampler3D haloMask;
+uniform vec3 haloOffsets[HALO_TAPS];     // texture-coordinate offsets, in the slice plane
+uniform vec3 haloDirections[HALO_TAPS];  // world, unit: from the tap towards the sample
+uniform float haloWeights[HALO_TAPS];
+uniform float k_hpe, k_hse, k_hd, k_ho;
+
+// The texel nearest to a texture coordinate (what GL_NEAREST picks), clamped to the volume.
+ivec3 nearestTexel(vec3 tex) {
+  return clamp(ivec3(floor(tex * volumeDims)), ivec3(0), ivec3(volumeDims) - 1);
+}
+
+float haloSize(vec3 tex, vec3 v, float gradientMagnitude) {
+  float h = 0.0;
+  for (int k = 0; k < HALO_TAPS; ++k) {
+    vec4 g = texelFetch(gradientTexture, nearestTexel(tex + haloOffsets[k]), 0);
+    vec3 n = -g.xyz;
+    float towards = max(dot(n, haloDirections[k]), 0.0);
+    float across = max(1.0 - abs(dot(n, v)), 0.0);
+    h += haloWeights[k] * g.a * pow(towards, k_hpe) * pow(across, k_hse);
+  }
+  return h * (1.0 - gradientMagnitude);
+}
+#endif
+
+void main() {
+  vec3 tex = sliceTexCoord();
+  if (!insideTexture(tex)) discard;
+  float value = sampleTexture(tex);
+#ifdef HALO
+  float nearFeature = texelFetch(haloMask, nearestTexel(tex), 0).r;
+  if (value <= transparentBelow && nearFeature <= 0.0) discard;
+  vec4 material = classify(value);
+  if (material.a <= 0.0 && nearFeature <= 0.0) discard;
+#else
+  // A transparent sample adds nothing (and costs no gradient).
+  if (value <= transparentBelow) discard;
+  vec4 material = classify(value);
+  if (material.a <= 0.0) discard;
+#endif
+  vec4 g = texture(gradientTexture, tex);
+  float length2 = dot(g.xyz, g.xyz);
+  vec3 n = length2 > 0.0 ? g.xyz * -inversesqrt(length2) : vec3(0.0);
+  float gradientMagnitude = g.a;
+  vec3 toViewerEye = orthographic != 0 ? vec3(0.0, 0.0, 1.0)
+                                       : -normalize(eyePointAt(sliceEyeDistance));
+  vec3 v = worldFromEye * toViewerEye;
+  // A vanishing gradient has no direction: it counts as facing the viewer (as in common.glsl),
+  // so flat regions get no silhouette, sketch or fading of their own.
+  float facing = length2 > 0.0 ? abs(dot(n, v)) : 1.0;
+
+  float opacity = material.a;
+  vec3 base = material.rgb;
+#ifdef BOUNDARY
+  opacity = boundaryOpacity(opacity, gradientMagnitude);
+#endif
+#ifdef SILHOUETTE
+  opacity = silhouetteOpacity(opacity, facing);
+#endif
+#ifdef FADING
+  orientedFading(base, opacity, facing);
+#endif
+  vec3 color = litColor(base, n);
+#ifdef TONE
+  color = toneShade(color, base, n);
+#endif
+#ifdef SKETCH
+  sketchLines(color, opacity, facing);
+#endif
+#ifdef DISTANCE
+  color = distanceBlend(color, sliceDepth);
+#endif
+#ifdef HALO
+  float h = haloSize(tex, v, gradientMagnitude) * nearFeature;
+  color *= max(1.0 - k_hd * h, 0.0);
+  opacity += k_ho * h;
+#endif
+  result = compositedSample(color, opacity);
+}

@@ -1,0 +1,212 @@
+#include "slicing/techniques/illustrate/illustrate_technique.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+
+#include "slicing/illustration_options.h"
+#include "slicing/texture_units.h"
+
+namespace vsil {
+
+namespace {
+
+const std::vector<OptionSpec>& illustrateOptions() {
+  static const std::vector<OptionSpec> options{
+      effectsOption(), parameterOption(),   styleOption(), transferFunctionOption(),
+      colorOption(),   sketchColorOption(), lightOption()};
+  return options;
+}
+
+std::string upper(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return char(std::toupper(c)); });
+  return text;
+}
+
+// The rotation taking eye-space directions into world (= the gradients' physical) axes.
+glm::mat3 worldFromEye(const View& view) {
+  return glm::mat3(glm::transpose(glm::dmat3(view.eyeFromWorld)));
+}
+
+}  // namespace
+
+TechniqueInfo illustrateTechniqueInfo() {
+  return {"illustrate",
+          "Ebert–Rheingans volume illustration: front-to-back compositing with "
+          "boundary, silhouette, fading, sketch, distance, halo and tone effects",
+          illustrateOptions(),
+          FrameOutputs{.state = false, .color = true, .depth = false},
+          [] { return std::make_unique<IllustrateTechnique>(); },
+          /*usesGradients=*/true,
+          /*checkValues=*/{}};
+}
+
+std::vector<std::string> illustrateDefines(const Illustration& illustration) {
+  std::vector<std::string> defines;
+  for (const auto& name : illustration.effects.names()) defines.push_back(upper(name));
+  if (illustration.effects.has(Effect::Halo)) {
+    defines.push_back("HALO_TAPS " + std::to_string(kHaloTaps));
+  }
+  if (illustration.transferFunction) defines.emplace_back("TRANSFER_TABLE");
+  return defines;
+}
+
+std::vector<HaloTap> haloTaps(double radiusVoxels) {
+  std::vector<HaloTap> taps;
+  const double diagonal = std::sqrt(0.5);
+  for (int k = 0; k < 4; ++k) {
+    const glm::dvec2 axis = k == 0   ? glm::dvec2(1, 0)
+                            : k == 1 ? glm::dvec2(0, 1)
+                            : k == 2 ? glm::dvec2(-1, 0)
+                                     : glm::dvec2(0, -1);
+    taps.push_back({axis, 0.5 * radiusVoxels, 0});
+    const glm::dvec2 corner(k == 0 || k == 3 ? diagonal : -diagonal, k < 2 ? diagonal : -diagonal);
+    taps.push_back({corner, radiusVoxels, 0});
+  }
+  double sum = 0;
+  for (auto& tap : taps) sum += tap.weight = 1.0 / (tap.distanceVoxels * tap.distanceVoxels);
+  for (auto& tap : taps) tap.weight /= sum;
+  return taps;
+}
+
+ResolvedOptions IllustrateTechnique::resolve(const FrameContext& frame) {
+  illustration_ = illustrationFromOptions(illustrateOptions(), *frame.options);
+  table_.clear();
+  if (illustration_.transferFunction) {
+    table_ =
+        illustration_.transferFunction->table(frame.valueRange, TransferFunctionTexture::kEntries);
+  }
+  ResolvedOptions resolved;
+  resolved.background = illustration_.background;
+  resolved.details["illustration"] = illustration_.toJson();
+  return resolved;
+}
+
+std::function<bool(float)> visibleValues(const Illustration& illustration,
+                                         const std::vector<glm::vec4>& table, ValueRange range) {
+  if (illustration.transferFunction) {
+    return [&table, range](float value) {
+      return TransferFunctionTexture::opaqueSomewhere(table, range, value, value);
+    };
+  }
+  const bool opaque = illustration["k_os"] > 0;
+  return [opaque, range](float value) { return opaque && value > range.min; };
+}
+
+float transparentBelow(const Illustration& illustration, const std::vector<glm::vec4>& table,
+                       ValueRange range) {
+  if (!illustration.transferFunction) return range.min;
+  // Entries before the first opaque one are 0: values up to the entry before it read 0 (a
+  // sample just above interpolates towards the opaque entry).
+  const auto first =
+      std::find_if(table.begin(), table.end(), [](const glm::vec4& e) { return e.a > 0; });
+  if (first == table.begin()) return -std::numeric_limits<float>::infinity();
+  if (first == table.end()) return range.max;
+  const double before = double(first - table.begin() - 1);
+  return float(double(range.min) +
+               (double(range.max) - double(range.min)) * before / double(table.size() - 1));
+}
+
+BrickOccupancy IllustrateTechnique::occupancy(const FrameContext& frame) const {
+  const ValueRange range = frame.valueRange;
+  if (illustration_.transferFunction) {
+    return [table = table_, range](ValueRange brick) {
+      return TransferFunctionTexture::opaqueSomewhere(table, range, brick.min, brick.max);
+    };
+  }
+  // o_v = k_os·v^k_oe is above 0 exactly where v is: anywhere above the value range's minimum.
+  const bool opaque = illustration_["k_os"] > 0;
+  return [opaque, range](ValueRange brick) { return opaque && brick.max > range.min; };
+}
+
+int IllustrateTechnique::occupancyMargin(const FrameContext&) const {
+  if (!illustration_.effects.has(Effect::Halo) || !(illustration_["k_ho"] > 0)) return 0;
+  // Halo opacity appears only where the halo mask is 1: within its reach of a visible voxel
+  // (which lies in an occupied brick), the sample half a voxel from its nearest texel, and one
+  // voxel more for rounding.
+  const int reach = haloMaskReach(illustration_["k_hr"]) + 2;
+  return (reach + BrickRanges::kBrickSize - 1) / BrickRanges::kBrickSize;
+}
+
+void IllustrateTechnique::beginFrame(const FrameContext& frame) {
+  program_ = &frame.programs->get(gl::slicePassProgram(
+      {kCompositingSource, "shaders/illustration.glsl"}, "techniques/illustrate/composite.frag",
+      illustrateDefines(illustration_)));
+  if (illustration_.transferFunction) {
+    if (!transferTexture_) transferTexture_.emplace();
+    transferTexture_->upload(*illustration_.transferFunction, frame.valueRange);
+    gl::bindTexture(gl::TextureUnit::TransferFunction, GL_TEXTURE_1D, transferTexture_->id());
+  }
+  gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D, frame.gradients->texture());
+  if (illustration_.effects.has(Effect::Halo)) {
+    const int reach = haloMaskReach(illustration_["k_hr"]);
+    std::vector<double> key{double(frame.volumeGeneration), double(reach),
+                            illustration_.transferFunction ? 1.0 : 0.0,
+                            illustration_["k_os"] > 0 ? 1.0 : 0.0};
+    for (const auto& entry : table_) key.push_back(entry.a > 0 ? 1.0 : 0.0);
+    haloMask_.update(key, frame.volumeTexture, frame.dims,
+                     visibleValues(illustration_, table_, frame.valueRange), reach);
+    gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_3D, haloMask_.id());
+  }
+  setUniforms(frame);
+  compositor_.beginFrame(frame);
+}
+
+void IllustrateTechnique::setUniforms(const FrameContext& frame) {
+  gl::Program& program = *program_;
+  program.use();
+  for (const auto& [name, value] : illustration_.parameters)
+    program.set(name.c_str(), float(value));
+  const glm::mat3 rotation = worldFromEye(*frame.view);
+  program.set("worldFromEye", rotation);
+  std::vector<glm::vec3> lights;
+  for (const Light& light : illustration_.lights) {
+    lights.push_back(rotation * glm::vec3(light.directionEye()));
+  }
+  program.set("lightCount", int(lights.size()));
+  program.set("lightDirections", lights.data(), int(lights.size()));
+  program.set("sketchColor", illustration_.sketchColor.rgb01());
+  program.set("backgroundColor", frame.background.rgb01());
+  program.set("opacityExponent", FrontToBackCompositor::opacityExponent(frame));
+  program.set("transparentBelow", transparentBelow(illustration_, table_, frame.valueRange));
+  const ValueRange range = frame.valueRange;
+  if (illustration_.transferFunction) {
+    program.set("tableCoordFromValue", TransferFunctionTexture::coordinateFromValue(range));
+  } else {
+    const double span = double(range.max) - double(range.min);
+    program.set("valueMin", range.min);
+    program.set("valueScale", span > 0 ? float(1.0 / span) : 0.0f);
+    program.set("sampleColor", illustration_.color.rgb01());
+  }
+  if (illustration_.effects.has(Effect::Halo)) {
+    // Offsets in texture coordinates: a unit step in voxel index space along the view's x and y.
+    const glm::dmat3 voxelFromEye = glm::inverse(glm::dmat3(frame.view->eyeFromVoxel));
+    const glm::dvec3 dims(frame.dims);
+    std::vector<glm::vec3> offsets, directions;
+    std::vector<float> weights;
+    for (const HaloTap& tap : haloTaps(illustration_["k_hr"])) {
+      const glm::dvec3 eye(tap.offsetEye, 0.0);
+      const glm::dvec3 voxel = glm::normalize(voxelFromEye * eye) * tap.distanceVoxels;
+      offsets.emplace_back(voxel / dims);
+      directions.push_back(rotation * glm::vec3(-eye));
+      weights.push_back(float(tap.weight));
+    }
+    program.set("haloOffsets", offsets.data(), int(offsets.size()));
+    program.set("haloDirections", directions.data(), int(directions.size()));
+    program.set("haloWeights", weights.data(), int(weights.size()));
+  }
+}
+
+void IllustrateTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
+  compositor_.drawSlice(frame, slice, *program_);
+}
+
+FrameBuffers IllustrateTechnique::readBack(const FrameContext&) {
+  FrameBuffers frame;
+  frame.color = compositor_.readBack();
+  return frame;
+}
+
+}  // namespace vsil

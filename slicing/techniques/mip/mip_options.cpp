@@ -1,0 +1,154 @@
+#include "slicing/techniques/mip/mip_options.h"
+
+#include <cmath>
+#include <variant>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+#include "core/number_pair.h"
+#include "slicing/illustration_options.h"
+
+namespace vsil {
+
+namespace {
+
+// Options given as text, when given.
+const std::string* givenText(const OptionValues& given, const std::string& name) {
+  const auto it = given.find(name);
+  return it == given.end() ? nullptr : std::get_if<std::string>(&it->second);
+}
+
+// Turns +z by AZ about +y, then by EL towards +y (as --view orbits the camera).
+glm::dvec3 turnedFront(glm::dvec2 azimuthElevationDeg) {
+  const double az = glm::radians(azimuthElevationDeg.x), el = glm::radians(azimuthElevationDeg.y);
+  return {std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)};
+}
+
+}  // namespace
+
+OptionSpec windowOption() {
+  OptionSpec spec = OptionSpec::text(
+      "window", "LO,HI in data units mapped to black..white; values at or below LO show nothing");
+  spec.defaultNote = "the volume's value range";
+  return spec;
+}
+
+IntensityWindow intensityWindow(const OptionReader& options, ValueRange volumeRange) {
+  const std::string& text = options.text("window");
+  if (text.empty()) return {volumeRange.min, volumeRange.max};
+  const glm::dvec2 pair = parseNumberPair("--window", text);
+  return {float(pair.x), float(pair.y)};
+}
+
+std::optional<TransferFunction> mipTransferFunction(const OptionReader& options) {
+  const std::string& path = options.text("tf");
+  if (path.empty()) return std::nullopt;
+  return loadTransferFunction(path);
+}
+
+void checkWindowOrTf(const OptionValues& given) {
+  const std::string* tf = givenText(given, "tf");
+  if (tf && !tf->empty()) loadTransferFunction(*tf);  // InputError naming the file
+  const std::string* text = givenText(given, "window");
+  if (!text || text->empty()) return;
+  const glm::dvec2 pair = parseNumberPair("--window", *text);
+  if (!(pair.x < pair.y)) {
+    throwInputError("--window", "'" + *text + "' needs LO < HI");
+  }
+  if (tf && !tf->empty()) {
+    throwInputError("--tf",
+                    "give --window or --tf, not both (the transfer function replaces the "
+                    "window's grey ramp)");
+  }
+}
+
+OptionSpec lmipThresholdOption() {
+  OptionSpec spec = OptionSpec::number(
+      "lmip-threshold", 0,
+      "LMIP shows the first local maximum at or above this value along each ray (data units)");
+  spec.defaultValue.reset();
+  spec.derived = OptionSpec::Derived::VolumeIso;
+  spec.defaultNote = "the middle of the value range";
+  return spec;
+}
+
+std::vector<OptionSpec> demipOptions() {
+  OptionSpec eps = OptionSpec::number(
+      "material-eps", 0,
+      "the same material: samples within this of the pixel's maximum (data units)");
+  eps.above(0);
+  eps.defaultValue.reset();
+  eps.derived = OptionSpec::Derived::RangeFraction;
+  eps.rangeFraction = 0.05;
+  eps.defaultNote = "5 % of the value range";
+  OptionSpec map =
+      OptionSpec::text("sphere-map", "colour sphere: red-blue, green-red or green-blue");
+  map.defaultValue = std::string("red-blue");
+  OptionSpec rotate =
+      OptionSpec::text("sphere-rotate", "AZ,EL degrees: turns the colour sphere (180,0 swaps)");
+  rotate.defaultValue = std::string("0,0");
+  return {
+      windowOption(),
+      transferFunctionOption(),
+      eps,
+      OptionSpec::number("depth-weight", 0.15,
+                         "d_w in color = MIP*(1 - d_w) + 2*d_w*(1 - depth); 0 is plain MIP")
+          .atLeast(0)
+          .atMost(1),
+      OptionSpec::choice("depth-mode", "exact", {"exact", "steps", "entry-plus-steps"},
+                         "depth of the first hit: exact eye distance, ray steps inside the box, "
+                         "or the box entry's window depth plus the steps (paper Fig. 3)"),
+      OptionSpec::number("sphere-weight", 0.0, "weight of the colour sphere (0 = off)")
+          .atLeast(0)
+          .atMost(1),
+      map,
+      rotate,
+      OptionSpec::choice("sphere-frame", "view", {"view", "volume"},
+                         "the colour sphere fixed to the view, or to the volume"),
+      OptionSpec::flag("legend", "draw the colour sphere, as used, in the bottom-right corner"),
+  };
+}
+
+void checkDemipValues(const OptionValues& given) {
+  checkWindowOrTf(given);
+  if (const std::string* name = givenText(given, "sphere-map")) sphereMap(*name);
+  if (const std::string* text = givenText(given, "sphere-rotate")) {
+    parseNumberPair("--sphere-rotate", *text);
+  }
+}
+
+const std::vector<SphereMap>& sphereMaps() {
+  static const std::vector<SphereMap> maps{
+      {"red-blue", {1, 0, 0}, {0, 0, 1}},
+      {"green-red", {0, 1, 0}, {1, 0, 0}},
+      {"green-blue", {0, 1, 0}, {0, 0, 1}},
+  };
+  return maps;
+}
+
+const SphereMap& sphereMap(const std::string& name) {
+  std::string known;
+  for (const auto& map : sphereMaps()) {
+    if (map.name == name) return map;
+    known += (known.empty() ? "" : ", ") + map.name;
+  }
+  throwInputError("--sphere-map", "unknown map '" + name + "' (known: " + known + ")");
+}
+
+glm::vec3 sphereFrontEye(const OptionReader& options, const View& view) {
+  const glm::dvec3 front =
+      turnedFront(parseNumberPair("--sphere-rotate", options.text("sphere-rotate")));
+  if (options.text("sphere-frame") == "view") return glm::vec3(front);
+  // The volume's frame is world space (camera.h: worldFromVoxel scales by the spacing only).
+  return glm::vec3(glm::normalize(glm::dmat3(view.eyeFromWorld) * front));
+}
+
+DepthMode depthMode(const OptionReader& options) {
+  const std::string& mode = options.text("depth-mode");
+  if (mode == "steps") return DepthMode::Steps;
+  if (mode == "entry-plus-steps") return DepthMode::EntryPlusSteps;
+  return DepthMode::Exact;
+}
+
+}  // namespace vsil

@@ -1,0 +1,60 @@
+#pragma once
+// The options of mip, lmip and demip, declared once here (a flag two techniques share must mean
+// the same), and the text values they parse themselves.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/camera.h"
+#include "core/options.h"
+#include "core/transfer_function.h"
+#include "core/volume.h"
+
+namespace vsil {
+
+// --window LO,HI: data values mapped linearly to grey 0..1. A pixel shows something only where
+// its value exceeds LO, so bricks whose maximum is at most LO cannot change a pixel.
+struct IntensityWindow {
+  float low = 0.0f;
+  float high = 1.0f;
+};
+OptionSpec windowOption();
+// The given window, else the volume's value range.
+IntensityWindow intensityWindow(const OptionReader& options, ValueRange volumeRange);
+
+// --tf FILE instead of the window (illustration_options.h transferFunctionOption, the file
+// illustrate reads): each pixel's value takes the function's colour and opacity (premultiplied;
+// mip_finish.frag), so a pixel shows something only where the opacity at its value is above 0.
+std::optional<TransferFunction> mipTransferFunction(const OptionReader& options);  // if given
+
+// --window LO < HI, a readable --tf, and not both.
+void checkWindowOrTf(const OptionValues& given);
+
+OptionSpec lmipThresholdOption();
+
+// demip's own options: material tolerance, depth weighting, colour sphere, legend.
+std::vector<OptionSpec> demipOptions();
+void checkDemipValues(const OptionValues& given);
+
+// The sphere maps of the paper's Figure 7: `front` toward the viewer, `back` away from it.
+struct SphereMap {
+  std::string name;
+  glm::vec3 front;
+  glm::vec3 back;
+};
+const std::vector<SphereMap>& sphereMaps();
+const SphereMap& sphereMap(const std::string& name);  // InputError naming --sphere-map
+
+// The direction, in eye space, that the sphere map's front colour marks: toward the viewer
+// (+z eye) turned by --sphere-rotate AZ,EL, in the view's frame (`view`) or the volume's
+// (`volume`: the volume's +z, turned, then seen through the camera, so colours stay on the
+// structures while the view orbits).
+glm::vec3 sphereFrontEye(const OptionReader& options, const View& view);
+
+// Depth estimates of the paper's Figure 3 (--depth-mode).
+enum class DepthMode { Exact, Steps, EntryPlusSteps };
+DepthMode depthMode(const OptionReader& options);
+
+}  // namespace vsil

@@ -1,0 +1,172 @@
+#include "slicing/techniques/mip/mip_technique.h"
+
+#include <limits>
+
+#include "slicing/gl_state.h"
+#include "slicing/illustration_options.h"
+#include "slicing/techniques/mip/mip_options.h"
+#include "slicing/techniques/mip/sphere_legend.h"
+#include "slicing/texture_units.h"
+
+namespace vsil {
+
+TechniqueInfo mipTechniqueInfo() {
+  return {"mip",
+          "maximum intensity projection through a grey window",
+          {windowOption(), transferFunctionOption()},
+          FrameOutputs{.state = false, .color = true, .depth = false},
+          [] { return std::make_unique<MipTechnique>(false); },
+          /*usesGradients=*/false,
+          /*checkValues=*/checkWindowOrTf};
+}
+
+TechniqueInfo demipTechniqueInfo() {
+  return {"demip",
+          "depth-enhanced MIP: the maximum shaded by the depth of the nearest sample "
+          "of its material, tinted by a colour sphere (Díaz & Vázquez)",
+          demipOptions(),
+          FrameOutputs{.state = false, .color = true, .depth = true},
+          [] { return std::make_unique<MipTechnique>(true); },
+          /*usesGradients=*/false,
+          /*checkValues=*/checkDemipValues};
+}
+
+BrickOccupancy MipTechnique::occupancy(const FrameContext& frame) const {
+  // demip's second sweep looks for samples within eps of a shown maximum.
+  const float eps = depthEnhanced_ ? float(frame.options->number("material-eps")) : 0.0f;
+  const ValueRange range = frame.valueRange;
+  if (const auto tf = mipTransferFunction(*frame.options)) {
+    // A brick whose values are all transparent, with every value below them, cannot hold a
+    // shown maximum, and a ray whose maximum it would hold shows nothing with it or without.
+    return [table = tf->table(range, TransferFunctionTexture::kEntries), range,
+            eps](ValueRange brick) {
+      return TransferFunctionTexture::opaqueSomewhere(table, range, range.min, brick.max + eps);
+    };
+  }
+  // mip shows only maxima above the window's low end; demip's second sweep needs the bricks
+  // reaching low - eps.
+  const IntensityWindow window = intensityWindow(*frame.options, range);
+  return reachesIso(window.low - eps);
+}
+
+void MipTechnique::beginFrame(const FrameContext& frame) {
+  const glm::ivec2 size = frame.view->viewport;
+  if (!targets_ || targets_->maximum.size() != size) {
+    targets_.reset();
+    targets_.emplace(Targets{gl::RenderTarget(size, GL_R32F, /*withDepthStencil=*/true),
+                             gl::RenderTarget(size, GL_RGBA32F)});
+  }
+  maximumPass_ = &frame.programs->get(gl::slicePassProgram({}, "techniques/mip/max_sample.frag"));
+  gl::Capability noScissor(GL_SCISSOR_TEST, false);
+  const GLfloat noSample[4] = {kNoSample, 0, 0, 0};
+  targets_->maximum.bindForDrawing();
+  VSIL_GL(glClearBufferfv(GL_COLOR, 0, noSample));
+  frame.emptySpace->writeEntryDepth(glm::mat4(frame.view->clipFromVoxel()));
+}
+
+void MipTechnique::beginSweep(const FrameContext& frame) {
+  if (frame.sweep != 1) return;
+  hits_.beginFrame(frame, SlicingPipeline::Fast,
+                   FirstHitRecorder::MaterialThreshold{
+                       targets_->maximum.texture(), float(frame.options->number("material-eps"))});
+}
+
+void MipTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
+  if (frame.sweep == 1) {
+    hits_.drawSlice(frame, slice);
+    return;
+  }
+  if (slice.vertexCount == 0) return;
+  targets_->maximum.bindForDrawing();
+  gl::DepthTest skipEmpty(GL_GREATER, /*write=*/false);
+  gl::Blending keepMaximum(GL_MAX, GL_ONE, GL_ONE);
+  maximumPass_->use();
+  drawSlicePolygon(frame, slice);
+}
+
+gl::Program& useMipFinish(const FrameContext& frame, std::vector<std::string> defines,
+                          GLuint values, const gl::RenderTarget& colour,
+                          std::optional<TransferFunctionTexture>& transferTable) {
+  const std::optional<TransferFunction> tf = mipTransferFunction(*frame.options);
+  if (tf) defines.emplace_back("TRANSFER_TABLE");
+  gl::Program& finish =
+      frame.programs->get(gl::screenPassProgram({}, "techniques/mip/mip_finish.frag", defines));
+  colour.bindForDrawing();
+  finish.use();
+  if (tf) {
+    if (!transferTable) transferTable.emplace();
+    transferTable->upload(*tf, frame.valueRange);
+    gl::bindTexture(gl::TextureUnit::TransferFunction, GL_TEXTURE_1D, transferTable->id());
+    finish.set("tableCoordFromValue",
+               TransferFunctionTexture::coordinateFromValue(frame.valueRange));
+  } else {
+    const IntensityWindow window = intensityWindow(*frame.options, frame.valueRange);
+    finish.set("window", glm::vec2(window.low, window.high));
+  }
+  gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_2D, values);
+  return finish;
+}
+
+FrameBuffers colourWithDepth(const gl::RenderTarget& colour, const gl::RenderTarget& record,
+                             int depthChannel,
+                             const std::function<bool(const cv::Vec4f&)>& hasDepth) {
+  FrameBuffers frame;
+  frame.color = readTargetFlipped(colour, 4);
+  const cv::Mat records = readTargetFlipped(record, 4);
+  frame.depth.create(records.rows, records.cols);
+  for (int y = 0; y < records.rows; ++y) {
+    for (int x = 0; x < records.cols; ++x) {
+      const cv::Vec4f& r = records.at<cv::Vec4f>(y, x);
+      const bool shown = frame.color(y, x)[3] > 0.0f;
+      frame.depth(y, x) =
+          shown && hasDepth(r) ? r[depthChannel] : std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+  return frame;
+}
+
+void MipTechnique::endFrame(const FrameContext& frame) {
+  const OptionReader& options = *frame.options;
+  std::vector<std::string> defines;
+  if (depthEnhanced_) {
+    defines.push_back("DEMIP");
+    const DepthMode mode = depthMode(options);
+    if (mode == DepthMode::Steps) defines.push_back("DEPTH_STEPS");
+    if (mode == DepthMode::EntryPlusSteps) defines.push_back("DEPTH_ENTRY_PLUS_STEPS");
+  }
+  gl::Capability noScissor(GL_SCISSOR_TEST, false);
+  gl::Program& finish =
+      useMipFinish(frame, defines, targets_->maximum.texture(), targets_->colour, transferTable_);
+  if (depthEnhanced_) {
+    const View& view = *frame.view;
+    const SphereMap& map = sphereMap(options.text("sphere-map"));
+    finish.set("depthWeight", float(options.number("depth-weight")));
+    finish.set("sphereWeight", float(options.number("sphere-weight")));
+    finish.set("sphereFrontEye", sphereFrontEye(options, view));
+    finish.set("sphereFrontColour", map.front);
+    finish.set("sphereBackColour", map.back);
+    finish.set("volumeCentreEye", glm::vec3(view.eyeFromWorld * glm::dvec4(0, 0, 0, 1)));
+    finish.set("depthRangeEye", glm::vec2(float(view.nearEye), float(view.farEye)));
+    gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, hits_.record().texture());
+  }
+  drawScreen(frame);
+}
+
+FrameBuffers MipTechnique::readBack(const FrameContext& frame) {
+  if (!depthEnhanced_) {
+    FrameBuffers frame;
+    frame.color = readTargetFlipped(targets_->colour, 4);
+    return frame;
+  }
+  // Every shown pixel has its hit: its maximum's own sample qualifies.
+  FrameBuffers result =
+      colourWithDepth(targets_->colour, hits_.record(), 1, [](const cv::Vec4f&) { return true; });
+  const OptionReader& options = *frame.options;
+  if (options.enabled("legend")) {
+    drawSphereLegend(result.color, sphereMap(options.text("sphere-map")),
+                     sphereFrontEye(options, *frame.view));
+  }
+  return result;
+}
+
+}  // namespace vsil

@@ -1,0 +1,62 @@
+#pragma once
+// mip and demip (Díaz & Vázquez, Depth-Enhanced Maximum Intensity Projection, VG 2010).
+// mip: one sweep, MAX blending keeps each pixel's maximum (max_sample.frag); a finishing pass
+// maps it through the window (mip_finish.frag). demip: the same first sweep, then a second one
+// that records, per pixel, the first sample within --material-eps of that maximum (the engine's
+// first-hit pass with a per-pixel threshold, hit_records.h, so its dead-pixel marking stops each
+// ray at its hit), and the finishing pass weights the grey by that sample's depth and tints it
+// from the colour sphere. With both weights 0, demip draws mip's bytes.
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "slicing/hit_records.h"
+#include "slicing/technique_table.h"
+#include "slicing/transfer_function_texture.h"
+
+namespace vsil {
+
+TechniqueInfo mipTechniqueInfo();
+TechniqueInfo demipTechniqueInfo();
+
+class MipTechnique : public Technique {
+ public:
+  explicit MipTechnique(bool depthEnhanced) : depthEnhanced_(depthEnhanced) {}
+  int sweepCount(const FrameContext&) const override { return depthEnhanced_ ? 2 : 1; }
+  BrickOccupancy occupancy(const FrameContext& frame) const override;
+  void beginFrame(const FrameContext& frame) override;
+  void beginSweep(const FrameContext& frame) override;
+  void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
+  void endFrame(const FrameContext& frame) override;
+  FrameBuffers readBack(const FrameContext& frame) override;
+
+ private:
+  struct Targets {
+    gl::RenderTarget maximum;  // R32F with the entry depth of empty-space skipping
+    gl::RenderTarget colour;   // RGBA32F, premultiplied
+  };
+  bool depthEnhanced_;
+  std::optional<Targets> targets_;
+  FirstHitRecorder hits_;  // demip's second sweep
+  gl::Program* maximumPass_ = nullptr;
+  std::optional<TransferFunctionTexture> transferTable_;  // --tf
+};
+
+// What a pixel's maximum holds where no slice sampled it (mip_finish.frag shows nothing there).
+constexpr float kNoSample = -3.4e38f;
+
+// The finishing pass of mip, lmip and demip (mip_finish.frag with `defines`) made current, with
+// its window set, or with --tf its table uploaded into `transferTable` (made on first use) and
+// bound, `values` bound where it reads the pixels' values and `colour` bound for drawing; the
+// caller sets its variant's uniforms and draws the screen.
+gl::Program& useMipFinish(const FrameContext& frame, std::vector<std::string> defines,
+                          GLuint values, const gl::RenderTarget& colour,
+                          std::optional<TransferFunctionTexture>& transferTable);
+// The colour target as the frame's colour, and channel `depthChannel` of `record` as its depth
+// where a pixel shows something and `hasDepth` holds for its record (NaN elsewhere).
+FrameBuffers colourWithDepth(const gl::RenderTarget& colour, const gl::RenderTarget& record,
+                             int depthChannel,
+                             const std::function<bool(const cv::Vec4f&)>& hasDepth);
+
+}  // namespace vsil

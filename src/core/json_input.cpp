@@ -1,0 +1,77 @@
+#include "core/json_input.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/limits.h"
+#include "io/file_access.h"
+
+namespace vsil {
+
+namespace {
+
+// nlohmann's messages name the position and what went wrong after a fixed prefix; control
+// characters of the input come escaped (<U+000A>), but a long token may be quoted whole.
+std::string conciseReason(const std::string& what) {
+  std::string reason = what;
+  const std::string marker = "parse error at ";
+  if (const auto at = reason.find(marker); at != std::string::npos) {
+    reason = reason.substr(at + marker.size());
+  } else if (const auto bracket = reason.find("] "); bracket != std::string::npos) {
+    reason = reason.substr(bracket + 2);
+  }
+  std::replace_if(
+      reason.begin(), reason.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  constexpr std::size_t kMaxReason = 160;
+  if (reason.size() > kMaxReason) reason = reason.substr(0, kMaxReason) + "...";
+  return reason;
+}
+
+}  // namespace
+
+nlohmann::json parseJsonText(std::string_view text, const std::string& source) {
+  try {
+    return nlohmann::json::parse(text.begin(), text.end());
+  } catch (const nlohmann::json::exception& e) {
+    throwInputError(source, "not valid JSON (" + conciseReason(e.what()) + ")");
+  }
+}
+
+nlohmann::json readJsonFile(const std::string& path) {
+  return parseJsonText(io::readWholeFile(path, limits::kMaxHeaderBytes), path);
+}
+
+std::string jsonSnippet(const nlohmann::json& value) {
+  std::string text =
+      value.dump(-1, ' ', /*ensure_ascii=*/true, nlohmann::json::error_handler_t::replace);
+  constexpr std::size_t kMax = 40;
+  if (text.size() > kMax) text = text.substr(0, kMax) + "...";
+  return text;
+}
+
+double jsonNumber(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_number())
+    throwInputError(where, "must be a number (got " + jsonSnippet(value) + ")");
+  const double number = value.get<double>();
+  if (!std::isfinite(number)) throwInputError(where, "must be a finite number");
+  return number;
+}
+
+const std::string& jsonString(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_string())
+    throwInputError(where, "must be a string (got " + jsonSnippet(value) + ")");
+  return value.get_ref<const std::string&>();
+}
+
+void checkJsonKeys(const nlohmann::json& object, const std::vector<std::string>& known,
+                   const std::string& where) {
+  for (const auto& item : object.items()) {
+    if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
+    std::string list;
+    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+    throwInputError(where, "unknown key " + jsonSnippet(item.key()) + " (known: " + list + ")");
+  }
+}
+
+}  // namespace vsil

@@ -1,0 +1,83 @@
+// mip and demip through the built binary: demip with both weights 0 writes mip's PNG byte for
+// byte; demip's depth image and metadata; mip makes no depth image.
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/depth_image.h"
+#include "core/image_file.h"
+#include "test_support.h"
+
+namespace vsil {
+namespace {
+
+TEST(MipCommand, DemipWithoutWeightsWritesMipsBytes) {
+  const auto dir = test::scratchDir();
+  const std::string common = " --size 96x80 --view 30,20 --background black";
+  for (const std::string input : {"gen:blobs:64", "gen:spheres:48"}) {
+    const std::string mip = (dir / "mip.png").string(), demip = (dir / "demip.png").string();
+    const auto a = test::runVsil("render " + input + " --technique mip" + common + " --out " + mip);
+    ASSERT_EQ(a.exitCode, 0) << a.err;
+    const auto b = test::runVsil("render " + input + " --technique demip --depth-weight 0 " +
+                                 "--sphere-weight 0" + common + " --out " + demip);
+    ASSERT_EQ(b.exitCode, 0) << b.err;
+    const std::string mipBytes = test::readFileBytes(mip);
+    EXPECT_GT(mipBytes.size(), 100u);
+    EXPECT_EQ(mipBytes, test::readFileBytes(demip)) << input;
+    // The default weight changes the picture: the comparison above can fail.
+    const auto c =
+        test::runVsil("render " + input + " --technique demip" + common + " --out " + demip);
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    EXPECT_NE(mipBytes, test::readFileBytes(demip)) << input;
+  }
+}
+
+TEST(MipCommand, DemipWritesTheFirstHitDepthAndEveryParameter) {
+  const auto dir = test::scratchDir();
+  const std::string out = (dir / "d.png").string(), depth = (dir / "depth.png").string(),
+                    meta = (dir / "meta.json").string();
+  const auto result = test::runVsil(
+      "render gen:blobs:48 --technique demip --sphere-weight 0.5 --sphere-map green-blue "
+      "--size 64x64 --out " +
+      out + " --depth-out " + depth + " --meta-out " + meta);
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const cv::Mat1f d = decodeDepthImage(readImage(depth), depth);
+  int withDepth = 0;
+  for (auto it = d.begin(); it != d.end(); ++it) {
+    if (std::isnan(*it)) continue;
+    ++withDepth;
+    EXPECT_GE(*it, 0.0f);
+    EXPECT_LE(*it, 1.0f);
+  }
+  const auto json = nlohmann::json::parse(test::readFileBytes(meta));
+  const auto& p = json["parameters"];
+  EXPECT_EQ(p["technique"], "demip");
+  EXPECT_EQ(p["depth_weight"], 0.15);
+  EXPECT_EQ(p["depth_mode"], "exact");
+  EXPECT_EQ(p["sphere_weight"], 0.5);
+  EXPECT_EQ(p["sphere_map"], "green-blue");
+  EXPECT_EQ(p["sphere_rotate"], "0,0");
+  EXPECT_EQ(p["sphere_frame"], "view");
+  EXPECT_EQ(p["window"], "") << "not given: the value range";
+  // Not given: 5 % of the value range.
+  const auto range = json["dataset"]["value_range"];
+  EXPECT_NEAR(p["material_eps"].get<double>(),
+              0.05 * (range[1].get<double>() - range[0].get<double>()), 1e-9);
+  EXPECT_EQ(json["pixels"]["covered"], withDepth) << "every pixel shown has its first hit";
+  EXPECT_GT(withDepth, 100);
+}
+
+TEST(MipCommand, MipRefusesADepthImageBeforeAnyWork) {
+  const auto dir = test::scratchDir();
+  const auto result =
+      test::runVsil("render gen:sphere:16 --technique mip --out " + (dir / "x.png").string() +
+                    " --depth-out " + (dir / "d.png").string());
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_EQ(result.err, "vsil: --depth-out: technique 'mip' makes no depth image\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
+}
+
+}  // namespace
+}  // namespace vsil

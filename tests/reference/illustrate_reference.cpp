@@ -1,0 +1,230 @@
+#include "illustrate_reference.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/illustration.h"
+#include "slice_sampler.h"
+#include "slicing/gradient_texture.h"
+#include "slicing/illustration_options.h"
+#include "slicing/technique_table.h"
+#include "slicing/techniques/illustrate/halo_mask.h"
+#include "slicing/techniques/illustrate/illustrate_technique.h"
+#include "slicing/transfer_function_texture.h"
+
+namespace vsil::reference {
+namespace {
+
+// The gradient texture sampled trilinearly at texture coordinate `tex` (what texture() returns
+// from the RGBA16F texels).
+glm::vec4 sampleGradient(const GradientTexels& texels, glm::vec3 tex) {
+  const LinearTaps tx = linearTaps(tex.x, texels.dims.x), ty = linearTaps(tex.y, texels.dims.y),
+                   tz = linearTaps(tex.z, texels.dims.z);
+  glm::vec4 result(0.0f);
+  for (int dz = 0; dz < 2; ++dz) {
+    for (int dy = 0; dy < 2; ++dy) {
+      for (int dx = 0; dx < 2; ++dx) {
+        const float w = (dx ? tx.f : 1 - tx.f) * (dy ? ty.f : 1 - ty.f) * (dz ? tz.f : 1 - tz.f);
+        result += w * texels.at(dx ? tx.i1 : tx.i0, dy ? ty.i1 : ty.i0, dz ? tz.i1 : tz.i0);
+      }
+    }
+  }
+  return result;
+}
+
+// The texel GL_NEAREST picks for `tex`, clamped to the volume.
+glm::ivec3 nearestTexel(glm::vec3 tex, glm::ivec3 dims) {
+  return glm::clamp(glm::ivec3(glm::floor(tex * glm::vec3(dims))), glm::ivec3(0), dims - 1);
+}
+
+// The paper's formulas, one function each (Ebert–Rheingans 2000; ../shared/papers/README.md).
+struct Formulas {
+  const Illustration& ill;
+  std::vector<glm::vec3> lights;  // towards the lights, world axes
+  glm::vec3 sketch, background;
+
+  float p(const char* name) const { return float(ill[name]); }
+
+  // I_G: ambient plus diffuse from every light.
+  glm::vec3 lit(glm::vec3 c, glm::vec3 n) const {
+    float diffuse = 0;
+    for (const glm::vec3& l : lights) diffuse += std::max(glm::dot(n, l), 0.0f);
+    return c * (p("k_a") + p("k_d") * diffuse);
+  }
+  // o_g = o_v·(k_gc + k_gs·|∇f|^k_ge)
+  float boundary(float o, float m) const {
+    return o * (p("k_gc") + p("k_gs") * std::pow(m, p("k_ge")));
+  }
+  // o_s = o·(k_sc + k_ss·(1 − |∇f_n·V|)^k_se)
+  float silhouette(float o, float facing) const {
+    return o * (p("k_sc") + p("k_ss") * std::pow(std::max(1.0f - facing, 0.0f), p("k_se")));
+  }
+  // Oriented fading in HSV: saturation ×(1 − k_fs·f), value ×(1 − k_fv·(1 − f)), opacity
+  // ×(1 − k_fo·f), f = |n·v|^k_fe. Done through HSV here (the shader stays in RGB).
+  void fading(glm::vec3& c, float& o, float facing) const {
+    const float f = std::pow(facing, p("k_fe"));
+    const float value = std::max({c.r, c.g, c.b});
+    const float lowest = std::min({c.r, c.g, c.b});
+    const float saturation = value > 0 ? (value - lowest) / value : 0.0f;
+    const float newSaturation = saturation * (1.0f - p("k_fs") * f);
+    const float newValue = value * (1.0f - p("k_fv") * (1.0f - f));
+    // Hue kept: each channel keeps its position between the lowest and the highest.
+    glm::vec3 out(newValue);
+    if (value > lowest) {
+      const glm::vec3 position = (c - lowest) / (value - lowest);  // 0 at the lowest, 1 at V
+      const float newLowest = newValue * (1.0f - newSaturation);
+      out = newLowest + position * (newValue - newLowest);
+    }
+    c = out;
+    o *= 1.0f - p("k_fo") * f;
+  }
+  void sketchLines(glm::vec3& c, float& o, float facing) const {
+    c = sketch;
+    o *= std::min(1.0f, p("k_ls") * std::pow(std::max(1.0f - facing, 0.0f), p("k_le")));
+  }
+  // c_d = (1 − k_ds·d^k_de)·c + k_ds·d^k_de·c_b
+  glm::vec3 distance(glm::vec3 c, float d) const {
+    const float w = p("k_ds") * std::pow(d, p("k_de"));
+    return c * (1.0f - w) + background * w;
+  }
+  // I = k_ta·I_G + Σ (t·(k_ty, k_ty, 0) + (1 − t)·(0, 0, k_tb) + k_td·c_o·max(n·L, 0)),
+  // t = (1 + n·L)/2.
+  glm::vec3 tone(glm::vec3 litColor, glm::vec3 object, glm::vec3 n) const {
+    glm::vec3 sum(0.0f);
+    for (const glm::vec3& l : lights) {
+      const float nl = glm::dot(n, l);
+      const float t = (1.0f + nl) * 0.5f;
+      sum += glm::vec3(p("k_ty"), p("k_ty"), 0) * t + glm::vec3(0, 0, p("k_tb")) * (1 - t) +
+             object * (p("k_td") * std::max(nl, 0.0f));
+    }
+    return litColor * p("k_ta") + sum;
+  }
+};
+
+}  // namespace
+
+ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& settings, float) {
+  const ReferenceSetup setup = setUpReference(volume, settings);
+  const TechniqueInfo& technique = findTechnique("illustrate");
+  const Illustration ill = illustrationFromOptions(technique.options, setup.options);
+  const View& view = setup.view;
+  const ValueRange range = valueRange(volume);
+  const SliceSampler sampler(volume, view);
+  const std::vector<float> texels = textureTexels(volume);
+  const GradientTexels gradients =
+      computeGradientTexels(texels.data(), volume.dims, volume.spacing);
+  const Rgba background = settings.background.value_or(ill.background.value_or(kDefaultBackground));
+
+  const glm::mat3 worldFromEye(glm::transpose(glm::dmat3(view.eyeFromWorld)));
+  Formulas formulas{ill, {}, ill.sketchColor.rgb01(), background.rgb01()};
+  for (const Light& light : ill.lights) {
+    formulas.lights.push_back(worldFromEye * glm::vec3(light.directionEye()));
+  }
+  const auto has = [&](Effect e) { return ill.effects.has(e); };
+
+  // Classification: the transfer function's table sampled linearly, or o_v = k_os·v^k_oe.
+  std::vector<glm::vec4> table;
+  glm::vec2 tableCoord(0.0f);
+  if (ill.transferFunction) {
+    table = ill.transferFunction->table(range, TransferFunctionTexture::kEntries);
+    tableCoord = TransferFunctionTexture::coordinateFromValue(range);
+  }
+  const float span = range.max - range.min;
+  const auto classify = [&](float value) -> glm::vec4 {
+    if (ill.transferFunction) {
+      return sampleTable(table, value * tableCoord.x + tableCoord.y);
+    }
+    const float v = std::clamp((value - range.min) * (span > 0 ? 1.0f / span : 0.0f), 0.0f, 1.0f);
+    return glm::vec4(ill.color.rgb01(), float(ill["k_os"]) * std::pow(v, float(ill["k_oe"])));
+  };
+
+  // Halos: taps in the slice plane, the mask of where they may appear.
+  struct Tap {
+    glm::vec3 offset, direction;
+    float weight;
+  };
+  std::vector<Tap> taps;
+  std::vector<std::uint8_t> mask;
+  if (has(Effect::Halo)) {
+    const glm::dmat3 voxelFromEye = glm::inverse(glm::dmat3(view.eyeFromVoxel));
+    for (const HaloTap& tap : haloTaps(ill["k_hr"])) {
+      const glm::dvec3 eye(tap.offsetEye, 0.0);
+      const glm::dvec3 voxel = glm::normalize(voxelFromEye * eye) * tap.distanceVoxels;
+      taps.push_back({glm::vec3(voxel / glm::dvec3(volume.dims)), worldFromEye * glm::vec3(-eye),
+                      float(tap.weight)});
+    }
+    mask = haloMaskVoxels(texels.data(), volume.dims, visibleValues(ill, table, range),
+                          haloMaskReach(ill["k_hr"]));
+  }
+  const auto maskAt = [&](glm::ivec3 t) {
+    return float(mask[(std::size_t(t.z) * std::size_t(volume.dims.y) + std::size_t(t.y)) *
+                          std::size_t(volume.dims.x) +
+                      std::size_t(t.x)]);
+  };
+
+  const float exponent = float(setup.plan.stepVoxels);
+  std::vector<SliceTexCoords> coords;
+  for (const Slice& slice : setup.plan.slices) {
+    coords.push_back(sliceTexCoords(view, volume.dims, slice.eyeDistance));
+  }
+  ReferenceFrame result = emptyReferenceFrame(setup, settings.size, /*color=*/true);
+  for (int y = 0; y < settings.size.y; ++y) {
+    for (int x = 0; x < settings.size.x; ++x) {
+      glm::vec4 dst(0.0f);
+      for (std::size_t k = 0; k < setup.plan.slices.size(); ++k) {
+        const Slice& slice = setup.plan.slices[k];
+        if (slice.polygonVoxel.empty()) continue;
+        const glm::vec3 tex = sampler.sliceTexCoord(x, y, coords[k]);
+        if (!sampler.insideTexture(tex)) continue;
+        const glm::vec4 material = classify(sampler.sampleTexture(tex));
+        const float nearFeature = has(Effect::Halo) ? maskAt(nearestTexel(tex, volume.dims)) : 0;
+        if (material.a <= 0 && nearFeature <= 0) continue;  // adds nothing
+
+        const glm::vec4 g = sampleGradient(gradients, tex);
+        const glm::vec3 direction(g);
+        const float length2 = glm::dot(direction, direction);
+        const glm::vec3 n = length2 > 0 ? -direction / std::sqrt(length2) : glm::vec3(0.0f);
+        const float magnitude = g.a;
+        const glm::vec3 toViewer =
+            view.orthographic ? glm::vec3(0, 0, 1)
+                              : -glm::normalize(sampler.eyePoint(x, y, float(slice.eyeDistance)));
+        const glm::vec3 v = worldFromEye * toViewer;
+        const float facing = length2 > 0 ? std::abs(glm::dot(n, v)) : 1.0f;  // none: facing
+
+        float opacity = material.a;
+        glm::vec3 base(material);
+        if (has(Effect::Boundary)) opacity = formulas.boundary(opacity, magnitude);
+        if (has(Effect::Silhouette)) opacity = formulas.silhouette(opacity, facing);
+        if (has(Effect::Fading)) formulas.fading(base, opacity, facing);
+        glm::vec3 color = formulas.lit(base, n);
+        if (has(Effect::Tone)) color = formulas.tone(color, base, n);
+        if (has(Effect::Sketch)) formulas.sketchLines(color, opacity, facing);
+        if (has(Effect::Distance)) color = formulas.distance(color, float(slice.depth));
+        if (has(Effect::Halo)) {
+          // h = Σ w_n·|∇f_n|·(n_n·d)^k_hpe·(1 − |n_n·V|)^k_hse, times (1 − |∇f|) here.
+          float h = 0;
+          for (const Tap& tap : taps) {
+            const glm::ivec3 t = nearestTexel(tex + tap.offset, volume.dims);
+            const glm::vec4 gn = gradients.at(t.x, t.y, t.z);
+            const glm::vec3 nn = -glm::vec3(gn);
+            const float towards = std::max(glm::dot(nn, tap.direction), 0.0f);
+            const float across = std::max(1.0f - std::abs(glm::dot(nn, v)), 0.0f);
+            h += tap.weight * gn.a * std::pow(towards, formulas.p("k_hpe")) *
+                 std::pow(across, formulas.p("k_hse"));
+          }
+          h *= (1.0f - magnitude) * nearFeature;
+          color *= std::max(1.0f - formulas.p("k_hd") * h, 0.0f);
+          opacity += formulas.p("k_ho") * h;
+        }
+        // α = 1 − (1 − o)^(Δ/Δ₀), premultiplied, behind what is there.
+        const float alpha = 1.0f - std::pow(1.0f - std::clamp(opacity, 0.0f, 1.0f), exponent);
+        const glm::vec4 src(glm::clamp(color, 0.0f, 1.0f) * alpha, alpha);
+        dst += (1.0f - dst.a) * src;
+      }
+      result.frame.color(y, x) = cv::Vec4f(dst.r, dst.g, dst.b, dst.a);
+    }
+  }
+  return result;
+}
+
+}  // namespace vsil::reference
