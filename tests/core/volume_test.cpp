@@ -200,6 +200,9 @@ TEST(Limits, RenderVolumeBytesCountSamplesTextureRangesAndSlabs) {
   EXPECT_EQ(limits::renderVolumeBytes(dims, 1), voxels * 3 + ranges + slabs);
   EXPECT_EQ(limits::renderVolumeBytes(dims, 2), voxels * 6 + ranges + slabs);
   EXPECT_EQ(limits::renderVolumeBytes(dims, 4), voxels * 8 + ranges + slabs);
+  // Gradient shading: the RGBA16F gradient texture and the float readback it is built from.
+  EXPECT_EQ(limits::renderVolumeBytes(dims, 1, /*gradients=*/true),
+            voxels * (3 + limits::kGradientBytesPerVoxel) + ranges + slabs);
   // About 3.2 bytes per voxel for 8-bit data (3.6 with ranges built for the whole volume at
   // once), against 8 when every volume was floats.
   EXPECT_LT(double(limits::renderVolumeBytes(dims, 1)) / double(voxels), 3.2);
