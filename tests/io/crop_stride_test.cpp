@@ -17,9 +17,9 @@ namespace {
 
 using test::Bytes;
 
-constexpr glm::ivec3 kDims{23, 17, 11};
+constexpr glm::ivec3 kFileDims{23, 17, 11};
 
-enum class Format {
+enum class FileFormat {
   Raw,
   NrrdRaw,
   NrrdGzip,
@@ -33,7 +33,7 @@ enum class Format {
   VtkAscii
 };
 
-const char* formatName(Format f) {
+const char* formatName(FileFormat f) {
   static const char* names[] = {
       "Raw",        "NrrdRaw",         "NrrdGzip", "NrrdAscii", "VtiAppendedRaw", "VtiAppendedZlib",
       "VtiOddZlib", "VtiInlineBase64", "VtiAscii", "VtkBinary", "VtkAscii"};
@@ -66,11 +66,12 @@ Bytes zlibBlocks(const Bytes& data, std::size_t blockSize) {
 
 // Writes `values` (uint16 samples, spacing 0.5 1 2) in `format`; returns the path and how
 // loadVolume must be told to read it.
-std::pair<std::string, LoadOptions> writeVolume(Format format, const std::vector<float>& values) {
+std::pair<std::string, LoadOptions> writeVolume(FileFormat format,
+                                                const std::vector<float>& values) {
   const auto dir = test::scratchDir();
   const Bytes little = test::encodeSamples(values, SampleType::UInt16, false);
-  const std::string dims =
-      std::to_string(kDims.x) + " " + std::to_string(kDims.y) + " " + std::to_string(kDims.z);
+  const std::string dims = std::to_string(kFileDims.x) + " " + std::to_string(kFileDims.y) + " " +
+                           std::to_string(kFileDims.z);
   LoadOptions options;
   auto nrrd = [&](const std::string& encoding, const std::string& payload) {
     const auto path = dir / "v.nrrd";
@@ -85,8 +86,9 @@ std::pair<std::string, LoadOptions> writeVolume(Format format, const std::vector
     test::writeFile(path,
                     "<VTKFile type=\"ImageData\" byte_order=\"LittleEndian\" "
                     "header_type=\"UInt32\"" +
-                        attributes + "><ImageData WholeExtent=\"0 " + std::to_string(kDims.x - 1) +
-                        " 0 " + std::to_string(kDims.y - 1) + " 0 " + std::to_string(kDims.z - 1) +
+                        attributes + "><ImageData WholeExtent=\"0 " +
+                        std::to_string(kFileDims.x - 1) + " 0 " + std::to_string(kFileDims.y - 1) +
+                        " 0 " + std::to_string(kFileDims.z - 1) +
                         "\" Spacing=\"0.5 1 2\"><Piece><PointData>" + array +
                         "</PointData></Piece></ImageData>" + appended + "</VTKFile>\n");
     return path.string();
@@ -95,19 +97,19 @@ std::pair<std::string, LoadOptions> writeVolume(Format format, const std::vector
   const std::string appendedArray =
       "<DataArray type=\"UInt16\" Name=\"v\" format=\"appended\" offset=\"0\"/>";
   switch (format) {
-    case Format::Raw: {
+    case FileFormat::Raw: {
       const auto path = dir / "v.raw";
       test::writeFile(path, little);
-      options.raw = RawLayout{kDims, SampleType::UInt16, {0.5, 1, 2}, false};
+      options.raw = RawLayout{kFileDims, SampleType::UInt16, {0.5, 1, 2}, false};
       return {path.string(), options};
     }
-    case Format::NrrdRaw:
+    case FileFormat::NrrdRaw:
       return {nrrd("raw", test::asText(little)), options};
-    case Format::NrrdGzip:
+    case FileFormat::NrrdGzip:
       return {nrrd("gzip", test::asText(test::deflateBytes(little, true))), options};
-    case Format::NrrdAscii:
+    case FileFormat::NrrdAscii:
       return {nrrd("ascii", asciiValues(values)), options};
-    case Format::VtiAppendedRaw: {
+    case FileFormat::VtiAppendedRaw: {
       Bytes block;
       test::appendWord(block, little.size(), 4, false);
       block.insert(block.end(), little.begin(), little.end());
@@ -115,17 +117,17 @@ std::pair<std::string, LoadOptions> writeVolume(Format format, const std::vector
                   "<AppendedData encoding=\"raw\">_" + test::asText(block) + "</AppendedData>"),
               options};
     }
-    case Format::VtiAppendedZlib:
-    case Format::VtiAppendedZlibOddBlocks: {
+    case FileFormat::VtiAppendedZlib:
+    case FileFormat::VtiAppendedZlibOddBlocks: {
       // 512-byte blocks: 16 of them, inflated on every core; 1001 bytes: blocks that start
       // within a uint16 sample, read in order.
-      const std::size_t blockSize = format == Format::VtiAppendedZlib ? 512 : 1001;
+      const std::size_t blockSize = format == FileFormat::VtiAppendedZlib ? 512 : 1001;
       return {vti(zlib, appendedArray,
                   "<AppendedData encoding=\"raw\">_" + test::asText(zlibBlocks(little, blockSize)) +
                       "</AppendedData>"),
               options};
     }
-    case Format::VtiInlineBase64Zlib: {
+    case FileFormat::VtiInlineBase64Zlib: {
       // VTK encodes the header and the data separately.
       const Bytes blocks = zlibBlocks(little, 700);
       const std::size_t headerBytes = 4 * (3 + (little.size() + 699) / 700);
@@ -138,15 +140,15 @@ std::pair<std::string, LoadOptions> writeVolume(Format format, const std::vector
               ""),
           options};
     }
-    case Format::VtiAscii:
+    case FileFormat::VtiAscii:
       return {vti("",
                   "<DataArray type=\"UInt16\" Name=\"v\" format=\"ascii\">" + asciiValues(values) +
                       "</DataArray>",
                   ""),
               options};
-    case Format::VtkBinary:
-    case Format::VtkAscii: {
-      const bool binary = format == Format::VtkBinary;
+    case FileFormat::VtkBinary:
+    case FileFormat::VtkAscii: {
+      const bool binary = format == FileFormat::VtkBinary;
       const auto path = dir / "v.vtk";
       test::writeFile(
           path, std::string("# vtk DataFile Version 3.0\ncropped\n") +
@@ -192,10 +194,10 @@ const Region kRegions[] = {
     {":,:,:", 1}, {"4:5,:,10:", 4},  {"0:2,16:,1:3", 7},
 };
 
-class CropStrideRead : public ::testing::TestWithParam<Format> {};
+class CropStrideRead : public ::testing::TestWithParam<FileFormat> {};
 
 TEST_P(CropStrideRead, KeepsExactlyTheSubsetOfTheWholeVolume) {
-  std::vector<float> values(std::size_t(kDims.x) * kDims.y * kDims.z);
+  std::vector<float> values(std::size_t(kFileDims.x) * kFileDims.y * kFileDims.z);
   for (std::size_t i = 0; i < values.size(); ++i) values[i] = float((i * 7919) % 65536);
   const auto [path, options] = writeVolume(GetParam(), values);
   const Volume whole = loadVolume(path, options);
@@ -207,7 +209,7 @@ TEST_P(CropStrideRead, KeepsExactlyTheSubsetOfTheWholeVolume) {
     LoadOptions cropped = options;
     cropped.region = regionOf(r.crop, r.stride);
     const Volume volume = loadVolume(path, cropped);
-    const VolumeSubset subset = resolveRegion(path, kDims, cropped.region);
+    const VolumeSubset subset = resolveRegion(path, kFileDims, cropped.region);
     EXPECT_EQ(volume.type(), SampleType::UInt16);
     ASSERT_EQ(volume.dims, subset.dims());
     EXPECT_EQ(volume.spacing, glm::dvec3(0.5, 1, 2) * double(r.stride));
@@ -216,7 +218,7 @@ TEST_P(CropStrideRead, KeepsExactlyTheSubsetOfTheWholeVolume) {
       EXPECT_EQ(volume.subset->lo, subset.lo);
       EXPECT_EQ(volume.subset->hi, subset.hi);
       EXPECT_EQ(volume.subset->stride, r.stride);
-      EXPECT_EQ(volume.subset->fileDims, kDims);
+      EXPECT_EQ(volume.subset->fileDims, kFileDims);
     }
     for (int z = 0; z < volume.dims.z; ++z) {
       for (int y = 0; y < volume.dims.y; ++y) {
@@ -231,12 +233,12 @@ TEST_P(CropStrideRead, KeepsExactlyTheSubsetOfTheWholeVolume) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryReader, CropStrideRead,
-                         ::testing::Values(Format::Raw, Format::NrrdRaw, Format::NrrdGzip,
-                                           Format::NrrdAscii, Format::VtiAppendedRaw,
-                                           Format::VtiAppendedZlib,
-                                           Format::VtiAppendedZlibOddBlocks,
-                                           Format::VtiInlineBase64Zlib, Format::VtiAscii,
-                                           Format::VtkBinary, Format::VtkAscii),
+                         ::testing::Values(FileFormat::Raw, FileFormat::NrrdRaw,
+                                           FileFormat::NrrdGzip, FileFormat::NrrdAscii,
+                                           FileFormat::VtiAppendedRaw, FileFormat::VtiAppendedZlib,
+                                           FileFormat::VtiAppendedZlibOddBlocks,
+                                           FileFormat::VtiInlineBase64Zlib, FileFormat::VtiAscii,
+                                           FileFormat::VtkBinary, FileFormat::VtkAscii),
                          [](const auto& info) { return std::string(formatName(info.param)); });
 
 // Float samples are checked for NaN as they are decoded: a NaN outside the crop is never
