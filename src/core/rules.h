@@ -1,10 +1,10 @@
 #pragma once
 // Fuzzy rule bases (Rautek, Bruckner & Gröller, EuroVis 2008), the CPU side of technique
 // `semantic`: the `.rules` file format, membership functions, and the paper's precomputed
-// defuzzification tables. No GL here; the rule compiler and the slice shaders are in
-// slicing/techniques/semantic/, the CPU reference of the whole fuzzy pipeline (direct centroid
-// integration) in tests/reference/semantic_reference.h. The parser is a fuzz target
-// (tests/fuzz/fuzz_rules.cpp). Examples: src/core/rules/*.rules.
+// defuzzification tables. No GL here; the rule compiler and the slice shaders belong in
+// slicing/techniques/semantic/ (not written yet), the CPU reference of the whole fuzzy pipeline
+// (direct centroid integration) in tests/reference/semantic_reference.h. The parser is a fuzz
+// target (tests/fuzz/fuzz_rules.cpp). Examples: src/core/rules/*.rules.
 //
 // The format, by example:
 //
@@ -37,8 +37,9 @@
 //   gauss(mean, sd)        exp(-(x - mean)² / (2 sd²)), sd > 0
 //   points((x, y), ...)    2 to 64 points, x strictly increasing, y in [0, 1]; linear between
 //                          them, constant beyond the first and the last
-// A shape must not be zero (almost) everywhere on [0, 1]: its integral there is what the
-// centroid divides by.
+// An attribute's value must not be zero everywhere on [0, 1] (the term could never hold); a
+// style's or the flatness' value needs an integral of at least 0.001 on [0, 1] (the centroid
+// divides by it), and a Gaussian an sd of at least 0.001 (the integration's resolution).
 //
 // Antecedents: `and` = min, `or` = max, `not` = 1 − x, parentheses; `not` binds tightest, then
 // `and`, then `or`. Implication truncates the consequent's membership function at the
@@ -196,6 +197,12 @@ RuleBase loadRules(const std::string& path);
 // N_j and D_j are tabulated over the degree; the shader does two lookups per rule, sums and one
 // division. A consequent no rule fires at a sample (every a_i = 0) has no centroid: its weight
 // (the largest a_i, see tests/reference/semantic_reference.h) is 0 and it contributes nothing.
+//
+// Accuracy (tests/core/semantic_defuzz_test.cpp): with 256 entries the table centroid is within
+// 1/255 of the directly integrated one wherever the consequent's weight is at least 2/255. Below
+// that the tables cannot resolve the degree: between degree 0 and the first entry interpolation
+// scales N and D alike, so a lone rule gets its value's centroid truncated at 1/255, which for a
+// Gaussian's tails can be far (measured up to 83/255) from the centroid at its own tiny degree.
 struct DefuzzTables {
   int size = 0;                  // entries per row; entry k at degree k / (size − 1)
   int rows = 0;                  // one per semantic value: the styles' in order, then the flatness'
