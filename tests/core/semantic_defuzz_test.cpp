@@ -53,7 +53,8 @@ TEST(SemanticReference, HandComputedSample) {
   EXPECT_NEAR(sample.styles[0].value, moment / area, 1e-6);
   EXPECT_DOUBLE_EQ(sample.styles[0].weight, 0.5);
   // skin: transparent = triangle(0, 0, 0.3) truncated at 0.5: a trapezoid with corners
-  // 0, 0, 0.15, 0.3; its centroid is (0.15² + 0.15·0.3 + 0.3²... ) computed as moments here.
+  // 0, 0, 0.15, 0.3 at height 0.5: a box [0, 0.15] (centroid 0.075) and a falling triangle on
+  // [0.15, 0.3] (centroid a third of the way in, 0.2).
   const double skinArea = 0.5 * 0.15 + 0.5 * 0.15 / 2;
   const double skinMoment = 0.5 * 0.15 * 0.15 / 2 + 0.5 * 0.15 / 2 * (0.15 + 0.15 / 3);
   EXPECT_NEAR(sample.styles[1].value, skinMoment / skinArea, 1e-6);
