@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/json_input.h"
+#include "core/options.h"
 
 namespace vsil {
 
@@ -53,12 +54,6 @@ std::string quotedText(std::string_view text) {
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
   }
   return "'" + shown + (text.size() > kMax ? "...'" : "'");
-}
-
-std::string formatNumber(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
 }
 
 // A whole text as a finite double, or nothing.

@@ -15,12 +15,6 @@ namespace vsil {
 
 namespace {
 
-std::string formatNumber(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 std::string joined(const std::vector<std::string>& items, const std::string& separator) {
   std::string text;
   for (const auto& item : items) text += (text.empty() ? "" : separator) + item;
@@ -90,13 +84,15 @@ std::optional<std::vector<double>> parseNumberList(std::string_view text, int co
   return numbers;
 }
 
+std::string formatNumber(double number) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, number);
+  return std::string(buffer, end);  // 32 chars hold any double's shortest form
+}
+
 std::string formatNumberList(const std::vector<double>& numbers) {
   std::string text;
-  for (double number : numbers) {
-    char buffer[32];
-    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, number);
-    text += (text.empty() ? "" : ",") + std::string(buffer, end);
-  }
+  for (double number : numbers) text += (text.empty() ? "" : ",") + formatNumber(number);
   return text;
 }
 

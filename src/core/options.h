@@ -85,6 +85,8 @@ struct OptionSpec {
 // to the same doubles.
 std::optional<std::vector<double>> parseNumberList(std::string_view text, int count = 0);
 std::string formatNumberList(const std::vector<double>& numbers);
+// The shortest text that reads back to the same double (what error messages quote).
+std::string formatNumber(double number);
 
 // Option values by name, as given (defaults are not stored here).
 using OptionValues = std::map<std::string, OptionValue, std::less<>>;
@@ -97,7 +99,7 @@ void checkOptions(const std::vector<OptionSpec>& specs, const OptionValues& valu
 // What a technique reads: its declared options, the given values, and the facts derived
 // defaults come from.
 struct DerivedDefaults {
-  double iso = 0.5;  // the volume's default iso value (core/volume.h defaultIso)
+  double iso = 0.5;              // the volume's default iso value (core/volume.h defaultIso)
   double valueRangeWidth = 1.0;  // max − min of the volume's samples
 };
 

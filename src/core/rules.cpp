@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/options.h"
 #include "io/file_access.h"
 
 namespace vsil {
@@ -29,13 +30,6 @@ constexpr std::array<const char*, 13> kKeywords = {
 
 bool isKeyword(std::string_view word) {
   return std::find(kKeywords.begin(), kKeywords.end(), word) != kKeywords.end();
-}
-
-// Shortest text that reads back as the same double.
-std::string formatNumber(double value) {
-  char buffer[32];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return ec == std::errc() ? std::string(buffer, end) : std::to_string(value);
 }
 
 std::string joinNames(const std::vector<std::string>& names) {
