@@ -103,3 +103,17 @@ if(VSIL_BUILD_BENCH)
   find_package(benchmark QUIET)
   vsil_require(benchmark_FOUND "Google Benchmark" libbenchmark-dev)
 endif()
+
+# The Python module (src/python): pybind11 and the interpreter's headers; numpy and pytest only
+# at test time (tests/python).
+if(VSIL_PYTHON)
+  # Debian's interpreter, for which python3-numpy and pybind11-dev are built, before any other
+  # python3 on the PATH (pyenv, a virtualenv); -DPython3_EXECUTABLE=... chooses another.
+  if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "the Python the module is built for")
+  endif()
+  find_package(Python3 QUIET COMPONENTS Interpreter Development.Module)
+  vsil_require(Python3_Development.Module_FOUND "the Python headers (VSIL_PYTHON=ON)" python3-dev)
+  find_package(pybind11 CONFIG QUIET)
+  vsil_require(pybind11_FOUND "pybind11 (VSIL_PYTHON=ON)" pybind11-dev)
+endif()

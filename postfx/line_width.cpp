@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
@@ -202,6 +203,32 @@ cv::Mat3b plotWidthAgainstDepth(const std::vector<LineWidthSample>& samples, con
     previous = p;
   }
   return plot;
+}
+
+nlohmann::json widthStatisticsJson(const WidthStatistics& stats) {
+  return {{"count", stats.count},
+          {"mean", stats.mean},
+          {"median", stats.median},
+          {"min", stats.min},
+          {"max", stats.max},
+          {"p05", stats.p05},
+          {"p25", stats.p25},
+          {"p75", stats.p75},
+          {"p95", stats.p95},
+          {"bin_width", stats.binWidth},
+          {"histogram", stats.histogram}};
+}
+
+nlohmann::json depthBinsJson(const std::vector<DepthBin>& bins) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const DepthBin& bin : bins) {
+    rows.push_back({{"depth_from", bin.depthFrom},
+                    {"depth_to", bin.depthTo},
+                    {"count", bin.count},
+                    {"mean_width", bin.meanWidth},
+                    {"median_width", bin.medianWidth}});
+  }
+  return rows;
 }
 
 }  // namespace vsil

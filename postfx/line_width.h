@@ -17,6 +17,7 @@
 #include <optional>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
 #include <opencv2/core.hpp>
 
 #include "core/color.h"
@@ -56,6 +57,12 @@ WidthStatistics summarizeWidths(std::vector<double> widths, double binWidth = 1.
 // samples without are left out.
 std::vector<DepthBin> widthAgainstDepth(const std::vector<LineWidthSample>& samples,
                                         const cv::Mat1f& depth, int binCount = 10);
+
+// The report's parts as `vsil measure-width --json` writes them and vsil.measure_width returns
+// them: {"count", "mean", ..., "histogram"} and [{"depth_from", "depth_to", "count",
+// "mean_width", "median_width"}, ...].
+nlohmann::json widthStatisticsJson(const WidthStatistics& stats);
+nlohmann::json depthBinsJson(const std::vector<DepthBin>& bins);
 
 // Scatter of width against depth (points) with the bins' means (line), axes and labels.
 cv::Mat3b plotWidthAgainstDepth(const std::vector<LineWidthSample>& samples, const cv::Mat1f& depth,

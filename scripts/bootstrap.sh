@@ -21,6 +21,8 @@ packages=(
   libcli11-dev                   # command-line parsing
   libtinyxml2-dev zlib1g-dev     # VTK XML (.vti) files, zlib/gzip payloads
   libgtest-dev libbenchmark-dev  # tests and micro-benchmarks
+  python3-dev pybind11-dev       # the Python module (src/python)
+  python3-numpy python3-pytest python3-pil  # its tests (tests/python; Pillow reads the CLI's PNGs)
   ${VSIL_EXTRA_PACKAGES:-}
 )
 # vsil needs one GL back end (EGL or OSMesa) and builds each one that is there; where Debian no

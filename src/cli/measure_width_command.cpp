@@ -26,20 +26,6 @@ struct MeasureWidthArgs {
   double binWidth = 1.0;
 };
 
-nlohmann::json statisticsJson(const WidthStatistics& stats) {
-  return {{"count", stats.count},
-          {"mean", stats.mean},
-          {"median", stats.median},
-          {"min", stats.min},
-          {"max", stats.max},
-          {"p05", stats.p05},
-          {"p25", stats.p25},
-          {"p75", stats.p75},
-          {"p95", stats.p95},
-          {"bin_width", stats.binWidth},
-          {"histogram", stats.histogram}};
-}
-
 void run(const MeasureWidthArgs& args) {
   const Rgba color = parseColor(args.lineColor, "--line-color");
   if (validateOnly()) return;
@@ -54,8 +40,9 @@ void run(const MeasureWidthArgs& args) {
   for (const auto& s : samples) widths.push_back(s.width);
   const WidthStatistics stats = summarizeWidths(widths, args.binWidth);
 
-  nlohmann::json report = {
-      {"image", args.image}, {"line_color", args.lineColor}, {"widths", statisticsJson(stats)}};
+  nlohmann::json report = {{"image", args.image},
+                           {"line_color", args.lineColor},
+                           {"widths", widthStatisticsJson(stats)}};
   std::cout << std::fixed << std::setprecision(2) << "samples " << stats.count << "  mean "
             << stats.mean << "  median " << stats.median << "  p05 " << stats.p05 << "  p95 "
             << stats.p95 << "  min " << stats.min << "  max " << stats.max << "\n";
@@ -65,19 +52,13 @@ void run(const MeasureWidthArgs& args) {
       throwInputError(args.depth, "is not the size of " + args.image);
     }
     const auto bins = widthAgainstDepth(samples, depth, args.bins);
-    nlohmann::json rows = nlohmann::json::array();
     std::cout << "depth from   to  count  mean  median\n";
     for (const auto& bin : bins) {
-      rows.push_back({{"depth_from", bin.depthFrom},
-                      {"depth_to", bin.depthTo},
-                      {"count", bin.count},
-                      {"mean_width", bin.meanWidth},
-                      {"median_width", bin.medianWidth}});
       std::cout << std::setw(10) << bin.depthFrom << std::setw(5) << bin.depthTo << std::setw(7)
                 << bin.count << std::setw(6) << bin.meanWidth << std::setw(8) << bin.medianWidth
                 << "\n";
     }
-    report["by_depth"] = rows;
+    report["by_depth"] = depthBinsJson(bins);
     if (!args.plot.empty()) writePng(args.plot, plotWidthAgainstDepth(samples, depth, bins));
   }
   if (!args.json.empty()) writeFileAtomically(args.json, report.dump(2) + "\n");

@@ -45,21 +45,31 @@ void Volume::allocate(SampleType type) {
   const std::size_t count = voxelCount();
   switch (type) {
     case SampleType::UInt8:
-      samples_.emplace<std::vector<std::uint8_t>>(count);
+      samples_.emplace<SampleBuffer<std::uint8_t>>(count);
       break;
     case SampleType::Int8:
-      samples_.emplace<std::vector<std::int8_t>>(count);
+      samples_.emplace<SampleBuffer<std::int8_t>>(count);
       break;
     case SampleType::UInt16:
-      samples_.emplace<std::vector<std::uint16_t>>(count);
+      samples_.emplace<SampleBuffer<std::uint16_t>>(count);
       break;
     case SampleType::Int16:
-      samples_.emplace<std::vector<std::int16_t>>(count);
+      samples_.emplace<SampleBuffer<std::int16_t>>(count);
       break;
     case SampleType::Float32:
-      samples_.emplace<std::vector<float>>(count);
+      samples_.emplace<SampleBuffer<float>>(count);
       break;
   }
+}
+
+Volume Volume::sharing(const std::shared_ptr<Volume>& owner) {
+  // Copy every field but the samples: move them out for the copy, then back.
+  SampleStorage samples = std::move(owner->samples_);
+  owner->samples_ = SampleStorage();
+  Volume view = *owner;
+  owner->samples_ = std::move(samples);
+  owner->visit([&](auto span) { view.borrow(span.data(), owner); });
+  return view;
 }
 
 std::size_t Volume::sampleCount() const {

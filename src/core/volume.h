@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <stdexcept>
@@ -34,10 +35,44 @@ const char* sampleTypeName(SampleType type);  // "uint8", "int8", "uint16", "int
 std::size_t sampleTypeSize(SampleType type);  // bytes per sample
 bool isIntegerType(SampleType type);
 
+// A volume's samples of one C++ type: owned (a vector), or borrowed from memory that another
+// owner keeps alive (a numpy array wrapped by the Python module), so that wrapping copies
+// nothing. Copying an owned buffer copies the samples; copying a borrowed one shares them, as
+// numpy views do.
+template <typename C>
+class SampleBuffer {
+ public:
+  using value_type = C;
+  SampleBuffer() = default;
+  explicit SampleBuffer(std::size_t count) : owned_(count) {}
+  SampleBuffer(C* data, std::size_t count, std::shared_ptr<void> keepAlive)
+      : isBorrowed_(true),
+        borrowed_(data),
+        borrowedCount_(count),
+        keepAlive_(std::move(keepAlive)) {}
+
+  bool borrowed() const { return isBorrowed_; }
+  std::span<C> span() {
+    return borrowed() ? std::span<C>(borrowed_, borrowedCount_) : std::span<C>(owned_);
+  }
+  std::span<const C> span() const {
+    return borrowed() ? std::span<const C>(borrowed_, borrowedCount_) : std::span<const C>(owned_);
+  }
+  std::size_t size() const { return span().size(); }
+  const C& operator[](std::size_t i) const { return span()[i]; }
+
+ private:
+  std::vector<C> owned_;
+  bool isBorrowed_ = false;
+  C* borrowed_ = nullptr;
+  std::size_t borrowedCount_ = 0;
+  std::shared_ptr<void> keepAlive_;
+};
+
 // The C++ type of each SampleType, and back.
-using SampleStorage = std::variant<std::vector<std::uint8_t>, std::vector<std::int8_t>,
-                                   std::vector<std::uint16_t>, std::vector<std::int16_t>,
-                                   std::vector<float>>;  // in SampleType's order
+using SampleStorage = std::variant<SampleBuffer<std::uint8_t>, SampleBuffer<std::int8_t>,
+                                   SampleBuffer<std::uint16_t>, SampleBuffer<std::int16_t>,
+                                   SampleBuffer<float>>;  // in SampleType's order
 template <SampleType T>
 using SampleCType = typename std::variant_alternative_t<std::size_t(T), SampleStorage>::value_type;
 template <typename C>
@@ -71,6 +106,19 @@ class Volume {
 
   // Sizes the samples for `dims` in `type`, all zero (replacing any previous samples).
   void allocate(SampleType type);
+  // Uses `samples` (voxelCount() of them, x fastest) in place, without a copy; `keepAlive`
+  // owns that memory and is released with the last volume that shares it.
+  template <typename C>
+  void borrow(C* samples, std::shared_ptr<void> keepAlive) {
+    samples_.emplace<SampleBuffer<C>>(samples, voxelCount(), std::move(keepAlive));
+  }
+  // A volume with `owner`'s fields whose samples borrow owner's, kept alive by it: a copy that
+  // costs no samples (the Python module hands its volumes to a RenderJob this way).
+  static Volume sharing(const std::shared_ptr<Volume>& owner);
+  // Whether the samples are borrowed (borrow) rather than owned.
+  bool borrowsSamples() const {
+    return std::visit([](const auto& buffer) { return buffer.borrowed(); }, samples_);
+  }
   SampleType type() const { return SampleType(samples_.index()); }
   std::size_t sampleCount() const;
   std::size_t sampleBytes() const { return sampleCount() * sampleTypeSize(type()); }
@@ -92,29 +140,29 @@ class Volume {
   // (std::logic_error otherwise).
   template <typename C>
   std::span<C> samples() {
-    return checkedVector<C>(samples_);
+    return checkedBuffer<C>(samples_).span();
   }
   template <typename C>
   std::span<const C> samples() const {
-    return checkedVector<C>(samples_);
+    return checkedBuffer<C>(samples_).span();
   }
   // Calls f(std::span<const C>) (or std::span<C> on a non-const volume) with the samples in
   // their own type; returns what f returns. One instantiation of f per SampleType.
   template <typename F>
   decltype(auto) visit(F&& f) const {
-    return std::visit([&f](const auto& v) -> decltype(auto) { return f(std::span(v)); }, samples_);
+    return std::visit([&f](const auto& v) -> decltype(auto) { return f(v.span()); }, samples_);
   }
   template <typename F>
   decltype(auto) visit(F&& f) {
-    return std::visit([&f](auto& v) -> decltype(auto) { return f(std::span(v)); }, samples_);
+    return std::visit([&f](auto& v) -> decltype(auto) { return f(v.span()); }, samples_);
   }
 
  private:
   template <typename C, typename Storage>
-  static auto& checkedVector(Storage& storage) {
-    auto* vector = std::get_if<std::vector<C>>(&storage);
-    if (!vector) throw std::logic_error("Volume::samples: not the volume's sample type");
-    return *vector;
+  static auto& checkedBuffer(Storage& storage) {
+    auto* buffer = std::get_if<SampleBuffer<C>>(&storage);
+    if (!buffer) throw std::logic_error("Volume::samples: not the volume's sample type");
+    return *buffer;
   }
 
   SampleStorage samples_;

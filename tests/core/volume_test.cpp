@@ -3,10 +3,15 @@
 // run before a reader allocates (planVolume, resolveRegion) and the render's memory model.
 #include "core/volume.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
+#include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -94,6 +99,41 @@ TEST(Volume, AllocateZeroesAndReplacesTheType) {
   EXPECT_EQ(volume.type(), SampleType::Int8);
   EXPECT_EQ(volume.sampleBytes(), 3u);
   for (int x = 0; x < 3; ++x) EXPECT_EQ(volume.at(x, 0, 0), 0.0f);
+}
+
+TEST(Volume, BorrowedSamplesAreSharedOwnedOnesCopied) {
+  std::vector<std::uint16_t> memory{1, 2, 3, 4, 5, 6};
+  auto released = std::make_shared<bool>(false);
+  Volume borrowed;
+  borrowed.dims = {3, 2, 1};
+  borrowed.borrow(memory.data(),
+                  std::shared_ptr<void>(nullptr, [released](void*) { *released = true; }));
+  EXPECT_TRUE(borrowed.borrowsSamples());
+  EXPECT_EQ(borrowed.type(), SampleType::UInt16);
+  EXPECT_EQ(borrowed.samples<std::uint16_t>().data(), memory.data());
+  EXPECT_EQ(borrowed.at(2, 1, 0), 6.0f);
+  {
+    const Volume copy = borrowed;  // shares, as a numpy view does
+    EXPECT_EQ(copy.samples<std::uint16_t>().data(), memory.data());
+    borrowed = Volume();
+    EXPECT_FALSE(*released);  // the copy still holds the owner
+  }
+  EXPECT_TRUE(*released);
+
+  auto owner = std::make_shared<Volume>();
+  owner->name = "owner";
+  owner->dims = {2, 2, 2};
+  owner->spacing = {1, 2, 3};
+  owner->allocate(SampleType::Float32);
+  owner->samples<float>()[7] = 0.5f;
+  const Volume deep = *owner;  // owned samples are copied
+  EXPECT_NE(deep.samples<float>().data(), owner->samples<float>().data());
+  const Volume view = Volume::sharing(owner);
+  EXPECT_EQ(view.name, "owner");
+  EXPECT_EQ(view.spacing, owner->spacing);
+  EXPECT_EQ(view.samples<float>().data(), owner->samples<float>().data());
+  EXPECT_EQ(owner->at(1, 1, 1), 0.5f);  // the owner keeps its samples
+  EXPECT_FALSE(owner->borrowsSamples());
 }
 
 TEST(Volume, TypeNamesAndSizes) {
