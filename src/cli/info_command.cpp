@@ -135,7 +135,7 @@ std::string toText(const Volume& volume, const Summary& s) {
       << "\n"
       << "range     " << s.range.min << " .. " << s.range.max << "\n"
       << "mean      " << s.mean << "  (stddev " << s.stddev << ")\n"
-      << "iso       " << defaultIso(volume) << "  (the default of --iso)\n"
+      << "iso       " << defaultIso(volume) << "  (the default of --iso: Otsu's threshold)\n"
       << "percentiles";
   for (std::size_t i = 0; i < std::size(kPercentiles); ++i) {
     out << "  p" << kPercentiles[i] << " " << s.percentiles[i];

@@ -1,7 +1,11 @@
 #include "core/volume.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
+
+#include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
 
@@ -167,7 +171,33 @@ VolumeSubset planVolume(const std::string& where, glm::ivec3 fileDims, SampleTyp
 
 float defaultIso(const Volume& volume) {
   const ValueRange range = valueRange(volume);
-  return float(0.5 * (double(range.min) + double(range.max)));
+  const double span = double(range.max) - double(range.min);
+  if (!(span > 0)) return range.min;
+  // The samples quantized to 256 levels of the value range: every one up to 2^24, else a
+  // regular subsample of about that many (a second at 1024³ would be too long to wait for).
+  constexpr int kLevels = 256;
+  const std::size_t count = volume.sampleCount();
+  const std::size_t step = std::max<std::size_t>(1, count >> 24);
+  cv::Mat1b levels(1, int((count + step - 1) / step));
+  std::array<std::size_t, kLevels> histogram{};
+  volume.visit([&](auto samples) {
+    const double scale = kLevels / span;
+    for (std::size_t i = 0, j = 0; i < samples.size(); i += step, ++j) {
+      const double level = std::floor((double(samples[i]) - range.min) * scale);
+      levels(0, int(j)) = std::uint8_t(std::clamp(level, 0.0, kLevels - 1.0));
+      ++histogram[levels(0, int(j))];
+    }
+  });
+  cv::Mat1b binary;
+  const int t = int(cv::threshold(levels, binary, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU));
+  // Otsu puts levels <= t in the lower class. Where no sample lies between the two classes,
+  // every threshold in that gap splits them alike: take the gap's middle (0.5 for a 0/1 mask,
+  // where the first such t, OpenCV's choice, would be the bottom of the gap).
+  int below = t, above = t + 1;
+  while (below > 0 && histogram[below] == 0) --below;
+  while (above < kLevels - 1 && histogram[above] == 0) ++above;
+  const double level = 0.5 * ((below + 1) + above);  // in units of span / kLevels
+  return float(double(range.min) + level * span / kLevels);
 }
 
 DerivedDefaults derivedDefaults(const Volume& volume) {

@@ -174,7 +174,9 @@ struct ValueRange {
 };
 ValueRange valueRange(const Volume& volume);
 
-// The iso value a technique uses when none is given: the middle of the value range.
+// The iso value a technique uses when none is given, one a user would pick: Otsu's threshold
+// (OpenCV) over the samples in 256 levels of the value range, in the middle of the gap between
+// the two classes where there is one; the range's minimum for a constant volume.
 float defaultIso(const Volume& volume);
 
 // The facts option defaults are derived from (core/options.h), for this volume.

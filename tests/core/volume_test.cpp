@@ -136,6 +136,70 @@ TEST(Volume, BorrowedSamplesAreSharedOwnedOnesCopied) {
   EXPECT_FALSE(owner->borrowsSamples());
 }
 
+// Otsu's threshold written out: the level t maximizing the between-class variance of the
+// histogram (classes <= t and > t), the first t on ties, as OpenCV takes it.
+int bruteForceOtsu(const std::vector<double>& histogram) {
+  double total = 0, sum = 0;
+  for (std::size_t i = 0; i < histogram.size(); ++i) total += histogram[i], sum += i * histogram[i];
+  double best = -1, w0 = 0, sum0 = 0;
+  int bestLevel = 0;
+  for (std::size_t t = 0; t + 1 < histogram.size(); ++t) {
+    w0 += histogram[t];
+    sum0 += t * histogram[t];
+    const double w1 = total - w0;
+    if (w0 == 0 || w1 == 0) continue;
+    const double m0 = sum0 / w0, m1 = (sum - sum0) / w1;
+    const double between = w0 * w1 * (m0 - m1) * (m0 - m1);
+    if (between > best * (1 + 1e-12)) best = between, bestLevel = int(t);
+  }
+  return bestLevel;
+}
+
+TEST(DefaultIso, ABinaryMaskGetsTheMiddleOfItsGap) {
+  Volume mask;
+  mask.dims = {8, 8, 8};
+  mask.allocate(SampleType::UInt8);
+  for (std::size_t i = 0; i < mask.sampleCount(); i += 3) mask.samples<std::uint8_t>()[i] = 1;
+  EXPECT_EQ(defaultIso(mask), 0.5f);
+  // Two values far apart, any proportion: the middle of the empty levels between them.
+  for (std::size_t i = 0; i < mask.sampleCount(); ++i) {
+    mask.samples<std::uint8_t>()[i] = i % 7 == 0 ? 200 : 10;
+  }
+  EXPECT_FLOAT_EQ(defaultIso(mask), 10.0f + 128.0f * 190.0f / 256.0f);
+}
+
+TEST(DefaultIso, IsOtsusThresholdOfTwoOverlappingClasses) {
+  // 16-bit "CT": 70 % soft tissue around 1000, 30 % bone around 3000, and a few outliers.
+  Volume ct;
+  ct.dims = {64, 64, 32};
+  ct.allocate(SampleType::UInt16);
+  std::mt19937 random(3);
+  std::normal_distribution<double> soft(1000, 150), bone(3000, 400);
+  const auto samples = ct.samples<std::uint16_t>();
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const double v = i % 10 < 7 ? soft(random) : bone(random);
+    samples[i] = std::uint16_t(std::clamp(v, 0.0, 65535.0));
+  }
+  const ValueRange range = valueRange(ct);
+  const double span = double(range.max) - range.min;
+  std::vector<double> histogram(256, 0.0);
+  for (const std::uint16_t v : samples) {
+    ++histogram[std::min(255, int(std::floor((v - range.min) * 256 / span)))];
+  }
+  const int t = bruteForceOtsu(histogram);
+  const float iso = defaultIso(ct);
+  // Overlapping classes leave no gap: the iso is the top of Otsu's level t.
+  EXPECT_NEAR(iso, range.min + (t + 1) * span / 256, 1e-3 * span);
+  EXPECT_GT(iso, 1500.0f);  // between the classes, not the range's middle alone
+  EXPECT_LT(iso, 2500.0f);
+  // A constant volume: its value.
+  Volume flat;
+  flat.dims = {2, 2, 2};
+  flat.allocate(SampleType::Float32);
+  for (float& v : flat.samples<float>()) v = 3.5f;
+  EXPECT_EQ(defaultIso(flat), 3.5f);
+}
+
 TEST(Volume, TypeNamesAndSizes) {
   const char* names[] = {"uint8", "int8", "uint16", "int16", "float32"};
   int i = 0;

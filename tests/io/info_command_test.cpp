@@ -35,6 +35,25 @@ TEST(InfoCommand, JsonAgreesWithTheDatasetChecksum) {
   EXPECT_EQ(counted, 32768u);
 }
 
+// The iso value `info` reports is the one a render without --iso uses (Otsu's threshold).
+TEST(InfoCommand, DefaultIsoIsWhatARenderUses) {
+  VSIL_REQUIRE_DATASETS();
+  const auto path = test::datasetPath("bucky_32x32x32_uint8.nhdr").string();
+  const auto info = test::runVsil("info --json '" + path + "'");
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  const double iso = nlohmann::json::parse(info.out)["default_iso"].get<double>();
+  const auto meta = test::scratchDir() / "default_iso_meta.json";
+  const auto render = test::runVsil("render '" + path + "' --size 32x32 --out '" +
+                                    (test::scratchDir() / "default_iso.png").string() +
+                                    "' --meta-out '" + meta.string() + "'");
+  ASSERT_EQ(render.exitCode, 0) << render.err;
+  const auto parameters = nlohmann::json::parse(test::readFileBytes(meta))["parameters"];
+  EXPECT_FLOAT_EQ(float(parameters["iso"].get<double>()), float(iso));
+  const auto range = nlohmann::json::parse(info.out);
+  EXPECT_GT(iso, range["min"].get<double>());
+  EXPECT_LT(iso, range["max"].get<double>());
+}
+
 TEST(InfoCommand, RawLayoutFlagsAndGenerators) {
   VSIL_REQUIRE_DATASETS();
   const auto raw = test::datasetPath("nucleon_41x41x41_uint8.raw").string();
