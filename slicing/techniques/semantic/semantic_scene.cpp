@@ -15,7 +15,8 @@ const std::vector<OptionSpec>& semanticOptions() {
                        "tooth-focus-context; README, semantic); default: default")
           .validatedBy([](const OptionValue& value) {
             const std::string& text = std::get<std::string>(value);
-            if (!text.empty()) loadRulesPreset(text);
+            // The sphere files too: every error before any GL work.
+            if (!text.empty()) buildSphereAtlas(loadRulesPreset(text), 2);
           }),
       OptionSpec::number("flatness", 0.0,
                          "flat rendering mode everywhere with this flatness p_f (0: ordinary "
@@ -34,7 +35,13 @@ const std::vector<OptionSpec>& semanticOptions() {
       OptionSpec::text("plane",
                        "the plane PX,PY,PZ,NX,NY,NZ: a point in voxel coordinates and a normal "
                        "(plane_distance); default through the centre, normal along z")
-          .holdsNumbers(6),
+          .holdsNumbers(6)
+          .validatedBy([](const OptionValue& value) {
+            const auto v = parseNumberList(std::get<std::string>(value), 6);
+            if (v && (*v)[3] == 0 && (*v)[4] == 0 && (*v)[5] == 0) {
+              throwInputError("--plane", "the normal must not be 0,0,0");
+            }
+          }),
       OptionSpec::flag("plane-show", "draw the data on the plane (grey, opaque, on top)"),
       OptionSpec::number("time", 0.0, "the time source's value").atLeast(0).atMost(1),
   };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include <opencv2/imgcodecs.hpp>
@@ -65,6 +66,11 @@ std::vector<std::vector<glm::vec4>> sphereRamp(const Spheres& spheres, const std
   }
   const std::string file = spheres.file.string();
   const std::string context = " (spheres " + quoted(spheres.text) + " at " + where + ")";
+  // OpenCV warns on stderr about a file it cannot open: only files that exist reach it.
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(spheres.file, error)) {
+    throwInputError(file, "no such sphere image" + context);
+  }
   const cv::Mat image = cv::imread(file, cv::IMREAD_UNCHANGED);
   if (image.empty()) throwInputError(file, "cannot read the sphere image" + context);
   const int height = image.rows, width = image.cols;
