@@ -3,7 +3,8 @@
 // template and in the flat rendering mode; flatness 0 is the ordinary composite; flatness 1
 // shows the top priority through an occluder (gen:cube with the fig6-cube preset); moving the
 // cursor changes only what the focus rules reach; a membership-function change re-renders
-// without compiling a program, a rule change compiles one.
+// without compiling a program, a rule change compiles one; a .png strip of spheres gives a style
+// its colours; --plane-show draws the data on the plane in grey.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -13,12 +14,14 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
 #include "frame_compare.h"
 #include "generators/generators.h"
 #include "gl_harness.h"
 #include "semantic_frame_reference.h"
+#include "slice_sampler.h"
 #include "slicing/renderer.h"
 #include "slicing/shader_program.h"
 
@@ -349,6 +352,128 @@ TEST_F(SemanticTest, SphereFilesThatDoNotReadAreNamedInTheError) {
     EXPECT_NE(std::string(error.what()).find("missing-spheres.png"), std::string::npos)
         << error.what();
   }
+}
+
+// A .png strip of spheres: a red sphere, then a blue one, written with OpenCV (BGR, 8 bit, no
+// alpha: opaque). A style whose value is near 0 shows the first sphere's colour, one near 1 the
+// last's: the colours come from the file, channel order included, and nothing of a built-in
+// ramp's shading is left (green stays 0).
+TEST_F(SemanticTest, APngSphereStripGivesTheStyleItsColours) {
+  const std::string stem = "vsil_semantic_" + std::to_string(::getpid()) + "_strip.png";
+  const auto strip = std::filesystem::temp_directory_path() / stem;
+  cv::Mat3b image(16, 32, cv::Vec3b(0, 0, 0));
+  image(cv::Rect(0, 0, 16, 16)).setTo(cv::Vec3b(0, 0, 255));   // red (BGR)
+  image(cv::Rect(16, 0, 16, 16)).setTo(cv::Vec3b(255, 0, 0));  // blue
+  ASSERT_TRUE(cv::imwrite(strip.string(), image));
+  const Volume volume = generateVolume("sphere:40");
+  Renderer renderer(test::sharedGlContext());
+  renderer.setVolume(volume);
+  const auto renderWith = [&](const std::string& value) {
+    const std::string text =
+        "attribute density from data { some = trapezoid(0.1, 0.3, 1, 1) }\n"
+        "style painted { spheres = \"" +
+        stem +
+        "\"  low = triangle(0, 0, 0.1)  high = trapezoid(0.9, 1, 1, 1) }\n"
+        "rule if density is some then painted is " +
+        value + "\n";
+    return renderer.render(semanticSettings(writeRulesFile("strip_" + value, text))).frame.color;
+  };
+  // The mean straight colour of the pixels that show something.
+  const auto meanColour = [](const cv::Mat4f& color) {
+    cv::Vec3d sum(0, 0, 0);
+    int count = 0;
+    for (auto it = color.begin(); it != color.end(); ++it) {
+      const cv::Vec4f c = *it;
+      if (c[3] < 0.2f) continue;
+      sum += cv::Vec3d(c[0] / c[3], c[1] / c[3], c[2] / c[3]);
+      ++count;
+    }
+    EXPECT_GT(count, 500);
+    return count ? sum / double(count) : sum;
+  };
+  const cv::Vec3d low = meanColour(renderWith("low"));
+  const cv::Vec3d high = meanColour(renderWith("high"));
+  std::filesystem::remove(strip);
+  std::cout << "[ info ] straight colour near the first sphere " << low << ", near the last "
+            << high << "\n";
+  // `low`'s centroid is about 0.03 of the way along the strip, `high`'s about 0.95.
+  EXPECT_GT(low[0], 0.9);
+  EXPECT_LT(low[2], 0.1);
+  EXPECT_GT(high[2], 0.9);
+  EXPECT_LT(high[0], 0.1);
+  EXPECT_LT(low[1], 1e-4);
+  EXPECT_LT(high[1], 1e-4);
+  EXPECT_NEAR(low[0] + low[2], 1.0, 1e-3) << "a mix of the two spheres' colours";
+  EXPECT_NEAR(high[0] + high[2], 1.0, 1e-3);
+}
+
+// --plane-show: where the plane crosses the volume and no style shows along the ray, the pixel is
+// the data at the plane in grey, opaque; without it the same pixels are empty. The plane goes
+// through the centre of a ball whose only style is its core (data ≥ 0.75, within 6 voxels of the
+// centre), tilted against the view so that every ray has a sample within half a voxel of it.
+TEST_F(SemanticTest, PlaneShowDrawsTheDataOnThePlaneInGrey) {
+  const Volume volume = generateVolume("sphere:48");
+  Renderer renderer(test::sharedGlContext());
+  renderer.setVolume(volume);
+  const std::string text = R"(attribute density from data { core = trapezoid(0.75, 0.85, 1, 1) }
+    style core priority 1 { spheres = "red"  opaque = trapezoid(0.6, 0.9, 1, 1) }
+    rule if density is core then core is opaque)";
+  RenderSettings settings = semanticSettings(writeRulesFile("plane", text), {96, 96});
+  settings.camera.orthographic = true;
+  settings.camera.zoom = 1.0;
+  const RenderResult without = renderer.render(settings);
+  const View& view = without.view;
+  const glm::dvec3 centre = (glm::dvec3(volume.dims) - 1.0) * 0.5;
+  const glm::dvec3 forward = view.viewDirectionWorld();
+  const glm::dvec3 side = glm::normalize(glm::cross(forward, glm::dvec3(0, 0, 1)));
+  const glm::dvec3 normal = glm::normalize(forward + 0.6 * side);
+  std::ostringstream plane;
+  plane << centre.x << "," << centre.y << "," << centre.z << "," << normal.x << "," << normal.y
+        << "," << normal.z;
+  settings.options["plane"] = plane.str();
+  settings.options["plane-show"] = true;
+  const RenderResult shown = renderer.render(settings);
+  EXPECT_EQ(shown.options["semantic"]["program_compiled"], true) << "another program";
+
+  const reference::SliceSampler sampler(volume, view);
+  const ValueRange range = valueRange(volume);
+  int checked = 0, bright = 0;
+  double worst = 0;
+  for (int y = 0; y < 96; ++y) {
+    for (int x = 0; x < 96; ++x) {
+      // The pixel's ray in voxels, and where it meets the plane.
+      const glm::dvec3 a(sampler.voxelFromEyePoint(sampler.eyePoint(x, y, float(view.nearEye))));
+      const glm::dvec3 b(sampler.voxelFromEyePoint(sampler.eyePoint(x, y, float(view.farEye))));
+      const glm::dvec3 direction = glm::normalize(b - a);
+      const double along = glm::dot(centre - a, normal) / glm::dot(direction, normal);
+      const glm::dvec3 hit = a + along * direction;
+      // Only rays that stay 10 voxels from the centre (data ≤ 0.58: the core's style never
+      // fires), with the hit a voxel inside the box.
+      const glm::dvec3 offset = centre - a;
+      const double fromCentre = glm::length(offset - glm::dot(offset, direction) * direction);
+      const bool inside = glm::all(glm::greaterThan(hit, glm::dvec3(1.0))) &&
+                          glm::all(glm::lessThan(hit, glm::dvec3(volume.dims) - 2.0));
+      if (fromCentre < 10.0 || !inside) continue;
+      const double expected =
+          (double(sampler.sample(glm::vec3(hit))) - range.min) / (double(range.max) - range.min);
+      const cv::Vec4f p = shown.frame.color(y, x);
+      SCOPED_TRACE("pixel " + std::to_string(x) + "," + std::to_string(y));
+      ASSERT_NEAR(p[3], 1.0f, 1e-5f) << "the plane is opaque";
+      ASSERT_NEAR(p[0], p[1], 1e-5f) << "grey";
+      ASSERT_NEAR(p[1], p[2], 1e-5f) << "grey";
+      worst = std::max(worst, std::abs(double(p[0]) - expected));
+      ASSERT_EQ(without.frame.color(y, x)[3], 0.0f) << "nothing there without the plane";
+      ++checked;
+      bright += expected > 0.2;
+    }
+  }
+  std::cout << "[ info ] " << checked << " plane pixels checked (" << bright
+            << " brighter than 0.2), largest difference from the data " << worst << "\n";
+  EXPECT_GT(checked, 1000);
+  EXPECT_GT(bright, 300);
+  // Slices sample within half a voxel of the plane (along the ray up to 0.6 voxel): the data
+  // changes by 1/24 per voxel here.
+  EXPECT_LT(worst, 0.035);
 }
 
 }  // namespace
