@@ -87,11 +87,10 @@ std::string ruleLine(int k, int styles, int valueOffset = 0) {
 }
 
 // The text of an n-rule base. `materialEdge` is where the `material` value reaches 1 (the
-// membership change moves it); `editedRule`, when ≥ 1, has its consequent's value moved by
-// `valueOffset` (the rule change). Line numbers do not depend on either (the generated GLSL
-// names them in comments).
-std::string ruleBaseText(int rules, double materialEdge = 0.2, int editedRule = -1,
-                         int valueOffset = 0) {
+// membership change moves it); rule 1 + b, for each bit b set in `editedRules`, has its
+// consequent's value moved to the next one (the rule change). Line numbers do not depend on
+// either (the generated GLSL names them in comments).
+std::string ruleBaseText(int rules, double materialEdge = 0.2, unsigned editedRules = 0) {
   const int styles = styleCountOf(rules);
   std::ostringstream text;
   text << "# vsil bench --table semantic: " << rules << " rules, " << styles << " styles\n";
@@ -123,7 +122,8 @@ std::string ruleBaseText(int rules, double materialEdge = 0.2, int editedRule = 
             "trapezoid(0.6, 0.9, 1, 1) }\n";
   }
   for (int k = 0; k < rules; ++k) {
-    text << ruleLine(k, styles, k == editedRule ? valueOffset : 0) << "\n";
+    const bool edited = k >= 1 && ((editedRules >> unsigned(k - 1)) & 1u) != 0;
+    text << ruleLine(k, styles, edited ? 1 : 0) << "\n";
   }
   return text.str();
 }
@@ -168,15 +168,15 @@ constexpr double kElevationDeg = 20.0;
 // Frame k's text of a case's rule file (all the 16-rule cases share one file, as an editor
 // would: the generated GLSL names the file, so another file would be another program).
 // Membership change k: `material` reaches 1 a little earlier each time (a new membership row,
-// the same code). Rule change k: one rule at a time (1..15) gets another consequent value (new
-// code each time, for 30 frames; after that earlier programs come back from the cache and the
-// self-check says so).
+// the same code). Rule change k: the rules given by the bits of k + 1 get the next consequent
+// value: rule 1, then rule 2, then both, then rule 3, … (new code every frame, for 2^15 − 1
+// frames; after that earlier programs would come back from the cache and the self-check say so).
 std::string caseRuleText(const SemanticCase& c, int k) {
   switch (c.kind) {
     case SemanticCase::Kind::MembershipChange:
       return ruleBaseText(c.rules, 0.2 - 0.002 * (1 + k % 30));
     case SemanticCase::Kind::RuleChange:
-      return ruleBaseText(c.rules, 0.2, 1 + k % (c.rules - 1), 1 + (k / (c.rules - 1)) % 2);
+      return ruleBaseText(c.rules, 0.2, 1u + unsigned(k) % ((1u << unsigned(c.rules - 1)) - 1u));
     default:
       return ruleBaseText(c.rules);
   }
@@ -625,7 +625,8 @@ TableResult runSemanticTable(const BenchOptions& options, Progress& progress) {
       "of N rules (rule 0: all material in style s0; the others: density band and gradient band "
       "and, from the 4th, view angle, under and/or/not), min(N, 4) styles with built-in ramps; "
       "membership_change = the 16-rule base with one membership function moved (new table rows, "
-      "no program compiled), rule_change = one rule's consequent changed (one program compiled), "
+      "no program compiled), rule_change = rules' consequents changed (rule 1, then rule 2, then "
+      "both, …: one program compiled every frame), "
       "both right after the unchanged 16-rule frame of the same view, in that order; frame time = "
       "Renderer::render (reading the rule file, compiling the rules, uploading tables, building "
       "the program when new, slicing, glFinish, readback), fps = 1000 / median; ratio = frame "
