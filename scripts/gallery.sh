@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Renders the README's gallery, docs/images/*.png, from the classic datasets: one small picture
-# per look, each beside the paper figure it can be compared with (README, "Gallery").
+# Renders the README's gallery, docs/images/*.png, from the classic datasets and gen: volumes: one
+# small picture per look, each beside the paper figure it can be compared with (README, "Gallery").
 #   scripts/gallery.sh [VSIL] [PREFIX]   (default build/vsil; datasets from $VSIL_SHARED_DIR or
 #                                         ../shared; PREFIX: only the entries whose name starts so)
 # Each entry is NAME|INPUT|OPTIONS. Add a technique's entries here when it lands; the README
@@ -53,6 +53,14 @@ entries=(
   # The same with a transfer function instead of the grey window (docs/tf/), as MIP and DEMIP.
   "dv_aneurism_tf_mip|$data/aneurism.vti|--technique mip --tf docs/tf/aneurism_vessels.json --view 30,20 --zoom 1.4 --background black"
   "dv_aneurism_tf_demip|$data/aneurism.vti|--technique demip --tf docs/tf/aneurism_vessels.json --depth-weight 0.3 --view 30,20 --zoom 1.4 --background black"
+  # Rautek, Bruckner & Groller, Fig. 6: the cube whose density rises towards its centre (gen:cube),
+  # flatness 0 (the grey shell hides the red core) and 1 (the core, of higher priority, shows);
+  # Fig. 8 in spirit: the tooth's focus+context rules with the cursor on the crown's left and
+  # right, where the enamel turns transparent and flat so that the dentin shows through.
+  "rk_cube_fig6_flat0|gen:cube:64|--technique semantic --rules fig6-cube --flatness 0 --view 30,20"
+  "rk_cube_fig6_flat1|gen:cube:64|--technique semantic --rules fig6-cube --flatness 1 --view 30,20"
+  "rk_tooth_cursor_left|$data/tooth.nrrd|--technique semantic --rules tooth-focus-context --view 0,-80 --zoom 1.2 --cursor 25,12,130"
+  "rk_tooth_cursor_right|$data/tooth.nrrd|--technique semantic --rules tooth-focus-context --view 0,-80 --zoom 1.2 --cursor 80,12,130"
 )
 
 count=0

@@ -93,6 +93,7 @@
   X(glUniform1f, PFNGLUNIFORM1FPROC)                             \
   X(glUniform1fv, PFNGLUNIFORM1FVPROC)                           \
   X(glUniform1i, PFNGLUNIFORM1IPROC)                             \
+  X(glUniform1iv, PFNGLUNIFORM1IVPROC)                           \
   X(glUniform1ui, PFNGLUNIFORM1UIPROC)                           \
   X(glUniform2fv, PFNGLUNIFORM2FVPROC)                           \
   X(glUniform2iv, PFNGLUNIFORM2IVPROC)                           \

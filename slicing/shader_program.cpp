@@ -213,6 +213,10 @@ void Program::set(const char* name, const float* values, int count) {
   if (count > 0) glUniform1fv(location(name), count, values);
 }
 
+void Program::set(const char* name, const int* values, int count) {
+  if (count > 0) glUniform1iv(location(name), count, values);
+}
+
 Program& ProgramCache::get(const ProgramSpec& spec) {
   const std::string key = spec.key();
   auto it = programs_.find(key);

@@ -81,6 +81,7 @@ class Program {
   // Arrays (e.g. light directions), `count` elements from `values`.
   void set(const char* name, const glm::vec3* values, int count);
   void set(const char* name, const float* values, int count);
+  void set(const char* name, const int* values, int count);
 
  private:
   GLint location(const char* name);

@@ -8,12 +8,14 @@
 #include "slicing/techniques/mip/lmip_technique.h"
 #include "slicing/techniques/mip/mip_technique.h"
 #include "slicing/techniques/rightangle/rightangle_technique.h"
+#include "slicing/techniques/semantic/semantic_technique.h"
 #include "slicing/techniques/silhouette/silhouette_technique.h"
 
 namespace vsil {
 
 const std::vector<TechniqueInfo>& techniqueTable() {
   static const std::vector<TechniqueInfo> table{
+      // clang-format off
       silhouetteTechniqueInfo(),
       rightAngleTechniqueInfo(),
       firstHitTechniqueInfo(),
@@ -21,6 +23,8 @@ const std::vector<TechniqueInfo>& techniqueTable() {
       mipTechniqueInfo(),
       demipTechniqueInfo(),
       lmipTechniqueInfo(),
+      semanticTechniqueInfo(),
+      // clang-format on
   };
   return table;
 }

@@ -28,6 +28,7 @@ std::string glslUnitDefines() {
       {"AUXILIARY1", TextureUnit::Auxiliary1},
       {"AUXILIARY2", TextureUnit::Auxiliary2},
       {"ENTRY_DEPTH", TextureUnit::EntryDepth},
+      {"AUXILIARY3", TextureUnit::Auxiliary3},
   };
   static const std::pair<const char*, ImageUnit> images[] = {
       {"RECORD", ImageUnit::Record},

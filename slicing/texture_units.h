@@ -21,6 +21,7 @@ enum class TextureUnit : GLuint {
   Auxiliary1 = 8,
   Auxiliary2 = 9,
   EntryDepth = 10,  // where rays enter occupied bricks, as an image (empty_space.h; tile march)
+  Auxiliary3 = 11,
 };
 
 enum class ImageUnit : GLuint {

@@ -6,6 +6,7 @@
 #include "tables/fft_table.h"
 #include "tables/illustrate_table.h"
 #include "tables/nk3_table.h"
+#include "tables/semantic_table.h"
 
 namespace vsil::bench {
 namespace {
@@ -23,10 +24,9 @@ std::vector<TableDefinition> makeRegistry() {
        "Ebert–Rheingans volume illustration: plain composite, each effect, all, and RA",
        illustrateDatasetNames(), runIllustrateTable, ""},
       {"semantic",
-       "Rautek et al. semantic rendering frame rates",
-       {},
-       {},
-       "the semantic technique does not exist yet"},
+       "Rautek et al. semantic rendering: rule bases of 1 to 32 rules against the plain "
+       "composite, a membership change against a rule change",
+       semanticDatasetNames(), runSemanticTable, ""},
   };
 }
 

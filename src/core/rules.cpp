@@ -13,6 +13,10 @@
 
 namespace vsil {
 
+// The presets (src/CMakeLists.txt embeds src/core/rules/*.rules).
+std::string_view embeddedRuleSource(std::string_view path);
+std::vector<std::string_view> embeddedRulePaths();
+
 namespace {
 
 // ---------------------------------------------------------------------------------------------
@@ -900,6 +904,32 @@ RuleBase parseRulesText(std::string_view text, const std::string& source,
 RuleBase loadRules(const std::string& path) {
   const std::string text = io::readWholeFile(path, limits::kMaxHeaderBytes);
   return parseRulesText(text, path, std::filesystem::path(path).parent_path());
+}
+
+std::vector<std::string> rulePresetNames() {
+  std::vector<std::string> names;
+  for (std::string_view path : embeddedRulePaths()) {
+    if (path.ends_with(".rules")) names.emplace_back(path.substr(0, path.size() - 6));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+bool isRulesFile(std::string_view text) {
+  return text.ends_with(".rules") || text.find('/') != std::string_view::npos;
+}
+
+RuleBase loadRulesPreset(const std::string& nameOrFile) {
+  if (isRulesFile(nameOrFile)) return loadRules(nameOrFile);
+  const auto names = rulePresetNames();
+  if (std::find(names.begin(), names.end(), nameOrFile) == names.end()) {
+    std::string known;
+    for (const auto& name : names) known += (known.empty() ? "" : ", ") + name;
+    throwInputError("--rules", "unknown preset '" + nameOrFile + "' (presets: " + known +
+                                   "; or a .rules file)");
+  }
+  // Presets name only built-in sphere ramps: there is no folder beside them.
+  return parseRulesText(embeddedRuleSource(nameOrFile + ".rules"), nameOrFile + ".rules", {});
 }
 
 // -----------------------------------------------------------------------------------------------

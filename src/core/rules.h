@@ -187,6 +187,14 @@ RuleBase parseRulesText(std::string_view text, const std::string& source,
 // Reads (at most 1 MiB) and parses a file.
 RuleBase loadRules(const std::string& path);
 
+// The rule bases shipped with vsil (src/core/rules/*.rules, embedded), by name without ".rules":
+// default, example, fig6-cube, tooth-focus-context.
+std::vector<std::string> rulePresetNames();
+// A text ending in ".rules" or holding a '/' is a file; anything else names a preset (messages
+// then name "NAME.rules"); InputError "--rules: unknown preset ..." for other names.
+bool isRulesFile(std::string_view text);
+RuleBase loadRulesPreset(const std::string& nameOrFile);
+
 // The paper's defuzzification (its equations 2-6): for a consequent (a style or the flatness)
 // with semantic values m_j, a rule i of degree a_i adds min(m_j(x), a_i) to the aggregated
 // function f, whose centroid is

@@ -54,6 +54,14 @@ Field sphere(int n) {
   };
 }
 
+Field cube(int n) {
+  const double c = (n - 1) / 2.0;
+  return [=](double x, double y, double z) {
+    const double d = std::max({std::abs(x - c), std::abs(y - c), std::abs(z - c)});
+    return clamp01(1.0 - d / (n / 2.0));
+  };
+}
+
 Field spheres(int n) {
   const double c = (n - 1) / 2.0;
   const double sigma = n / 8.0;
@@ -144,6 +152,7 @@ constexpr Generator kGenerators[] = {
     {"sphere", sphere},     {"spheres", spheres},
     {"torus", torus},       {"marschner-lobb", marschnerLobb},
     {"hydrogen", hydrogen}, {"blobs", blobs},
+    {"cube", cube},
 };
 
 std::string validNames() {

@@ -10,6 +10,11 @@
 //  sphere          f = clamp01(1 - r / (N/2)),  r = |p - c|.
 //                  The iso-surface f = v is the sphere of radius (1 - v)·N/2 around c.
 //
+//  cube            f = clamp01(1 - d / (N/2)),  d = max(|x - c.x|, |y - c.y|, |z - c.z|): Rautek et
+//                  al.'s Figure 6, a cube whose density increases towards its centre (the
+//                  fig6-cube rule preset). The iso-surface f = v is the cube of half side
+//                  (1 - v)·N/2 around c.
+//
 //  spheres         Two Gaussian blobs that melt into one ("melted spheres", Nagy–Klein Fig. 3):
 //                  g(q) = exp(-|p - q|² / (2σ²)), σ = N/8, centres a,b = c ∓ (N/6, 0, 0),
 //                  f = clamp01((g(a) + g(b)) / (1 + exp(-(N/3)² / (2σ²)))),

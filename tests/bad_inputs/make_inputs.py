@@ -57,3 +57,12 @@ write('tf_bad_opacity.json', '[{"value": 0, "color": "red", "opacity": 1.5}]\n')
 write('style_unknown_key.json', '{"effects": ["tone"], "shininess": 3}\n')
 write('style_bad_effect.json', '{"effects": ["tone", "glow"]}\n')
 write('style_bad_parameter.json', '{"parameters": {"k_gc": "high"}}\n')
+
+# Rule bases (technique semantic): a malformed shape, sphere files missing or not images.
+write('rules_bad_shape.rules', 'attribute density from data {\n  high = trapezoid(0.2, 0.5, 1)\n}\n')
+rules = ('attribute density from data { high = trapezoid(0.2, 0.5, 1, 1) }\n'
+         'style bone { spheres = "%s"  opaque = trapezoid(0.6, 0.9, 1, 1) }\n'
+         'rule if density is high then bone is opaque\n')
+write('rules_missing_spheres.rules', rules % 'missing_spheres.png')
+write('rules_bad_spheres.rules', rules % 'not_an_image.png')
+write('not_an_image.png', 'this is not a PNG\n')

@@ -198,18 +198,17 @@ TEST_P(BenchBadFlags, ExitTwoWithOneLine) {
 
 INSTANTIATE_TEST_SUITE_P(
     Flags, BenchBadFlags,
-    ::testing::Values(
-        BadFlags{"UnknownTable", "--table nk9", "nk9"},
-        BadFlags{"SemanticNotImplemented", "--table semantic", "not implemented yet"},
-        BadFlags{"UnknownDataset", "--table nk3 --only bonsia", "bonsia"},
-        BadFlags{"OnlyWithoutDatasets", "--table fft --only bonsai", "--only"},
-        BadFlags{"ZeroFrames", "--frames 0", "--frames"},
-        BadFlags{"NegativeWarmup", "--warmup -1", "--warmup"},
-        BadFlags{"TinySize", "--sizes 4", "--sizes"},
-        BadFlags{"SizeNotANumber", "--sizes 256,big", "--sizes"},
-        BadFlags{"MissingDatasetsFolder", "--datasets /nonexistent/vsil", "/nonexistent/vsil"},
-        BadFlags{"JsonInMissingFolder", "--json /nonexistent/vsil/x.json", "--json"},
-        BadFlags{"PlotNotPng", "--plot /tmp/x.jpg", "--plot"}),
+    ::testing::Values(BadFlags{"UnknownTable", "--table nk9", "nk9"},
+                      BadFlags{"UnknownDataset", "--table nk3 --only bonsia", "bonsia"},
+                      BadFlags{"OnlyWithoutDatasets", "--table fft --only bonsai", "--only"},
+                      BadFlags{"ZeroFrames", "--frames 0", "--frames"},
+                      BadFlags{"NegativeWarmup", "--warmup -1", "--warmup"},
+                      BadFlags{"TinySize", "--sizes 4", "--sizes"},
+                      BadFlags{"SizeNotANumber", "--sizes 256,big", "--sizes"},
+                      BadFlags{"MissingDatasetsFolder", "--datasets /nonexistent/vsil",
+                               "/nonexistent/vsil"},
+                      BadFlags{"JsonInMissingFolder", "--json /nonexistent/vsil/x.json", "--json"},
+                      BadFlags{"PlotNotPng", "--plot /tmp/x.jpg", "--plot"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

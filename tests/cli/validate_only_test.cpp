@@ -199,7 +199,6 @@ INSTANTIATE_TEST_SUITE_P(
     Flags, ValidateOnlyBadFlags,
     ::testing::Values(
         BadFlags{"BenchUnknownTable", {"bench", "--table", "nk9"}, "nk9"},
-        BadFlags{"BenchNotImplemented", {"bench", "--table", "semantic"}, "not implemented yet"},
         BadFlags{"BenchUnknownDataset", {"bench", "--only", "bonsia"}, "bonsia"},
         BadFlags{
             "BenchOnlyWithoutDatasets", {"bench", "--table", "fft", "--only", "neghip"}, "--only"},

@@ -109,7 +109,7 @@ TEST(Generators, AreDeterministic) {
 }
 
 TEST(Generators, BadNamesAndEdgesListTheValidNames) {
-  for (const char* spec : {"cube", "sphere:abc", "sphere:", "sphere:1", "sphere:-4", "sphere:12x",
+  for (const char* spec : {"box", "sphere:abc", "sphere:", "sphere:1", "sphere:-4", "sphere:12x",
                            "sphere:99999999999"}) {
     try {
       generateVolume(spec);
@@ -117,7 +117,7 @@ TEST(Generators, BadNamesAndEdgesListTheValidNames) {
     } catch (const InputError& e) {
       const std::string message = e.what();
       EXPECT_EQ(message.rfind(std::string("gen:") + spec + ": ", 0), 0u) << message;
-      EXPECT_NE(message.find("sphere, spheres, torus, marschner-lobb, hydrogen, blobs"),
+      EXPECT_NE(message.find("sphere, spheres, torus, marschner-lobb, hydrogen, blobs, cube"),
                 std::string::npos)
           << message;
       EXPECT_EQ(message.find('\n'), std::string::npos) << message;

@@ -6,6 +6,7 @@
 #include "illustrate_reference.h"
 #include "mip_reference.h"
 #include "rightangle_reference.h"
+#include "semantic_frame_reference.h"
 #include "silhouette_reference.h"
 
 namespace vsil::reference {
@@ -27,6 +28,9 @@ const std::vector<ReferenceTechnique>& referenceTable() {
       // termination (at most 1/255 per channel) and trilinear weights computed in a different
       // order, and is below what a wrong formula or a misplaced sample changes.
       {"illustrate", renderIllustrate, 2.0f / 255.0f, {}},
+      // As illustrate: float colours composited in float, early ray termination (<= 1/255) and
+      // trilinear weights (volume, gradients, sphere atlas) rounded in a different order.
+      {"semantic", renderSemantic, 2.0f / 255.0f, {}},
   };
   return table;
 }
