@@ -121,6 +121,11 @@ const std::vector<WorkingCase>& workingCases() {
          return {"measure-width", (out / "lines.png").string(), "--json",
                  (out / "w.json").string()};
        }},
+      {"rules",
+       [](const fs::path&) -> std::vector<std::string> {
+         return {"rules", (fs::path(VSIL_SOURCE_DIR) / "src/core/rules/fig6-cube.rules").string(),
+                 "--glsl"};
+       }},
       // Small on purpose: if bench ever ran here, the test fails in a second instead of hanging.
       // Plain `bench` (every table, minutes) is replayed by the fuzz suite
       // (tests/fuzz/regressions/cli/timeout-bench) under the fuzzer's time limit.

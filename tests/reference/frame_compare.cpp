@@ -45,6 +45,14 @@ int differingPixels(const FrameBuffers& a, const FrameBuffers& b) {
   return differing;
 }
 
+double maxChannelDifference(const cv::Mat4f& a, const cv::Mat4f& b) {
+  cv::Mat diff;
+  cv::absdiff(a, b, diff);
+  double largest = 0;
+  cv::minMaxLoc(diff.reshape(1), nullptr, &largest);
+  return largest;
+}
+
 int shownPixels(const FrameBuffers& frame) {
   int shown = 0;
   if (!frame.state.empty()) {

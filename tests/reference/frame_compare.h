@@ -9,6 +9,9 @@ namespace vsil::test {
 // Pixels where any buffer the frames hold differs (NaN equals NaN; every byte and float exact).
 int differingPixels(const FrameBuffers& a, const FrameBuffers& b);
 
+// The largest difference of any channel between two colour images of the same size.
+double maxChannelDifference(const cv::Mat4f& a, const cv::Mat4f& b);
+
 // Pixels that show something: a state other than Empty, or a colour with alpha > 0.
 int shownPixels(const FrameBuffers& frame);
 

@@ -133,14 +133,6 @@ class IllustrateTest : public test::GlTest {
   }
 };
 
-double maxChannelDifference(const cv::Mat4f& a, const cv::Mat4f& b) {
-  cv::Mat diff;
-  cv::absdiff(a, b, diff);
-  double largest = 0;
-  cv::minMaxLoc(diff.reshape(1), nullptr, &largest);
-  return largest;
-}
-
 TEST_F(IllustrateTest, NeutralParametersGiveExactlyThePlainComposite) {
   const Volume volume = generateVolume("sphere:48");
   const RenderResult plain = render(volume, illustrateSettings("", "k_os=0.3"));
@@ -151,7 +143,8 @@ TEST_F(IllustrateTest, NeutralParametersGiveExactlyThePlainComposite) {
                                         "k_ds=0,k_hd=0,k_ho=0,k_ta=1,k_td=0,k_ty=0,k_tb=0"));
   EXPECT_GT(test::shownPixels(plain.frame), 500);
   EXPECT_EQ(test::differingPixels(plain.frame, neutral.frame), 0)
-      << "max channel difference " << maxChannelDifference(plain.frame.color, neutral.frame.color);
+      << "max channel difference "
+      << test::maxChannelDifference(plain.frame.color, neutral.frame.color);
 }
 
 // Mean over a block of straight colours (premultiplied divided by alpha) of (r + g)/2 − b: how
@@ -297,7 +290,7 @@ TEST_F(IllustrateTest, SkippingChangesNoPixelAndEarlyTerminationNoChannelByMoreT
     EXPECT_GT(test::shownPixels(reference.frame), 1000);
     EXPECT_EQ(test::differingPixels(reference.frame, skipped.frame), 0) << "effects " << effects;
     const RenderResult both = render(volume, settings);
-    EXPECT_LE(maxChannelDifference(reference.frame.color, both.frame.color), 1.0 / 255.0)
+    EXPECT_LE(test::maxChannelDifference(reference.frame.color, both.frame.color), 1.0 / 255.0)
         << "effects " << effects;
   }
 }
@@ -309,7 +302,7 @@ TEST_F(IllustrateTest, OpacityIsCorrectedForTheSliceDistance) {
   const RenderResult once = render(volume, settings);
   settings.samplesPerVoxel = 2.0;
   const RenderResult twice = render(volume, settings);
-  EXPECT_LE(maxChannelDifference(once.frame.color, twice.frame.color), 2.0 / 255.0);
+  EXPECT_LE(test::maxChannelDifference(once.frame.color, twice.frame.color), 2.0 / 255.0);
 }
 
 }  // namespace

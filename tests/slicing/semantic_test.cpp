@@ -192,14 +192,6 @@ INSTANTIATE_TEST_SUITE_P(RandomRuleBases, SemanticMatchesReference,
 
 class SemanticTest : public test::GlTest {};
 
-double maxChannelDifference(const cv::Mat4f& a, const cv::Mat4f& b) {
-  cv::Mat diff;
-  cv::absdiff(a, b, diff);
-  double largest = 0;
-  cv::minMaxLoc(diff.reshape(1), nullptr, &largest);
-  return largest;
-}
-
 TEST_F(SemanticTest, FlatnessZeroGivesTheOrdinaryComposite) {
   const Volume volume = generateVolume("cube:40");
   Renderer renderer(test::sharedGlContext());
@@ -220,7 +212,7 @@ TEST_F(SemanticTest, FlatnessZeroGivesTheOrdinaryComposite) {
   EXPECT_EQ(flat.options["semantic"]["flat_mode"], true);
   // Early ray termination differs (flat mode retires a pixel only when nothing higher is
   // left): at most 1/255 per channel; otherwise the same operations.
-  EXPECT_LE(maxChannelDifference(ordinary.frame.color, flat.frame.color), 1.0 / 255.0 + 1e-6);
+  EXPECT_LE(test::maxChannelDifference(ordinary.frame.color, flat.frame.color), 1.0 / 255.0 + 1e-6);
 }
 
 // The straight colour's red minus its blue, averaged over the centre block: the core is red,
