@@ -15,23 +15,6 @@
 namespace vsil::reference {
 namespace {
 
-// The gradient texture sampled trilinearly at texture coordinate `tex` (what texture() returns
-// from the RGBA16F texels).
-glm::vec4 sampleGradient(const GradientTexels& texels, glm::vec3 tex) {
-  const LinearTaps tx = linearTaps(tex.x, texels.dims.x), ty = linearTaps(tex.y, texels.dims.y),
-                   tz = linearTaps(tex.z, texels.dims.z);
-  glm::vec4 result(0.0f);
-  for (int dz = 0; dz < 2; ++dz) {
-    for (int dy = 0; dy < 2; ++dy) {
-      for (int dx = 0; dx < 2; ++dx) {
-        const float w = (dx ? tx.f : 1 - tx.f) * (dy ? ty.f : 1 - ty.f) * (dz ? tz.f : 1 - tz.f);
-        result += w * texels.at(dx ? tx.i1 : tx.i0, dy ? ty.i1 : ty.i0, dz ? tz.i1 : tz.i0);
-      }
-    }
-  }
-  return result;
-}
-
 // The texel GL_NEAREST picks for `tex`, clamped to the volume.
 glm::ivec3 nearestTexel(glm::vec3 tex, glm::ivec3 dims) {
   return glm::clamp(glm::ivec3(glm::floor(tex * glm::vec3(dims))), glm::ivec3(0), dims - 1);
@@ -180,7 +163,7 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
         const float nearFeature = has(Effect::Halo) ? maskAt(nearestTexel(tex, volume.dims)) : 0;
         if (material.a <= 0 && nearFeature <= 0) continue;  // adds nothing
 
-        const glm::vec4 g = sampleGradient(gradients, tex);
+        const glm::vec4 g = sampleGradientTexels(gradients, tex);
         const glm::vec3 direction(g);
         const float length2 = glm::dot(direction, direction);
         const glm::vec3 n = length2 > 0 ? -direction / std::sqrt(length2) : glm::vec3(0.0f);

@@ -14,22 +14,6 @@
 namespace vsil::reference {
 namespace {
 
-// The gradient texture sampled trilinearly at `tex` (texture() on the RGBA16F texels).
-glm::vec4 semanticSampleGradient(const GradientTexels& texels, glm::vec3 tex) {
-  const LinearTaps tx = linearTaps(tex.x, texels.dims.x), ty = linearTaps(tex.y, texels.dims.y),
-                   tz = linearTaps(tex.z, texels.dims.z);
-  glm::vec4 result(0.0f);
-  for (int dz = 0; dz < 2; ++dz) {
-    for (int dy = 0; dy < 2; ++dy) {
-      for (int dx = 0; dx < 2; ++dx) {
-        const float w = (dx ? tx.f : 1 - tx.f) * (dy ? ty.f : 1 - ty.f) * (dz ? tz.f : 1 - tz.f);
-        result += w * texels.at(dx ? tx.i1 : tx.i0, dy ? ty.i1 : ty.i0, dz ? tz.i1 : tz.i0);
-      }
-    }
-  }
-  return result;
-}
-
 glm::vec4 semanticSampleAtlas(const SphereAtlas& atlas, glm::vec3 coord) {
   const LinearTaps tx = linearTaps(coord.x, atlas.cell), ty = linearTaps(coord.y, atlas.cell),
                    tz = linearTaps(coord.z, atlas.depth);
@@ -154,7 +138,7 @@ ReferenceFrame renderSemantic(const Volume& volume, const RenderSettings& settin
         const int interval = std::min(int(data * float(intervals)), intervals - 1);
         if (!onPlane && !visible[std::size_t(interval)]) continue;
 
-        const glm::vec4 g = semanticSampleGradient(gradients, tex);
+        const glm::vec4 g = sampleGradientTexels(gradients, tex);
         const glm::vec3 gradient(g);
         const float length2 = glm::dot(gradient, gradient);
         const glm::vec3 direction = length2 > 0 ? gradient / std::sqrt(length2) : glm::vec3(0.0f);

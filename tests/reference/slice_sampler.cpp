@@ -10,6 +10,21 @@ std::vector<float> textureTexels(const Volume& volume) {
       [](auto samples) { return std::vector<float>(samples.begin(), samples.end()); });
 }
 
+glm::vec4 sampleGradientTexels(const GradientTexels& texels, glm::vec3 tex) {
+  const LinearTaps tx = linearTaps(tex.x, texels.dims.x), ty = linearTaps(tex.y, texels.dims.y),
+                   tz = linearTaps(tex.z, texels.dims.z);
+  glm::vec4 result(0.0f);
+  for (int dz = 0; dz < 2; ++dz) {
+    for (int dy = 0; dy < 2; ++dy) {
+      for (int dx = 0; dx < 2; ++dx) {
+        const float w = (dx ? tx.f : 1 - tx.f) * (dy ? ty.f : 1 - ty.f) * (dz ? tz.f : 1 - tz.f);
+        result += w * texels.at(dx ? tx.i1 : tx.i0, dy ? ty.i1 : ty.i0, dz ? tz.i1 : tz.i0);
+      }
+    }
+  }
+  return result;
+}
+
 LinearTaps linearTaps(float u, int n) {
   const float t = u * float(n) - 0.5f;
   const float base = std::floor(t);

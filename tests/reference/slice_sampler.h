@@ -8,6 +8,7 @@
 
 #include "core/camera.h"
 #include "core/volume.h"
+#include "slicing/gradient_texture.h"
 #include "slicing/slicer.h"
 
 namespace vsil::reference {
@@ -26,6 +27,10 @@ glm::vec4 sampleTable(const std::vector<glm::vec4>& table, float u);
 // The texels of the volume texture (slicing/volume_texture.h): every sample as a float in the
 // data's own units, x fastest. What the GL path reads back to build gradients and halo masks.
 std::vector<float> textureTexels(const Volume& volume);
+
+// The gradient texture sampled trilinearly at texture coordinate `tex` (what texture() returns
+// from the RGBA16F texels, clamped at the edges).
+glm::vec4 sampleGradientTexels(const GradientTexels& texels, glm::vec3 tex);
 
 class SliceSampler {
  public:
