@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/transfer_function.h"
+#include "harness/dataset_choice.h"
 #include "harness/format.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
@@ -97,26 +98,7 @@ constexpr double kElevationDeg = 20.0;
 
 // ---- Choosing ---------------------------------------------------------------------------------
 
-struct Choice {
-  const IllustrateDataset& dataset;
-  std::filesystem::path path;
-  std::string missing;
-};
-
-std::vector<Choice> chooseDatasets(const BenchOptions& options) {
-  std::vector<Choice> chosen;
-  for (const IllustrateDataset& d : kDatasets) {
-    const bool asked =
-        std::find(options.only.begin(), options.only.end(), d.name) != options.only.end();
-    if (options.only.empty() ? !d.byDefault : !asked) continue;
-    const std::filesystem::path path = options.datasetsDir / d.file;
-    chosen.push_back({d, path,
-                      std::filesystem::exists(path)
-                          ? ""
-                          : "not found: " + path.string() + " (use --datasets DIR)"});
-  }
-  return chosen;
-}
+using Choice = DatasetChoice<IllustrateDataset>;
 
 std::vector<int> windowSizes(const BenchOptions& options) {
   return options.sizes.empty() ? std::vector<int>{512} : options.sizes;
@@ -406,7 +388,8 @@ std::vector<std::string> illustrateDatasetNames() {
 
 TableResult runIllustrateTable(const BenchOptions& options, Progress& progress) {
   const std::vector<int> sizes = windowSizes(options);
-  const std::vector<Choice> chosen = chooseDatasets(options);
+  const std::vector<Choice> chosen =
+      chooseDatasets(std::span<const IllustrateDataset>(kDatasets), options);
   int cases = 0;
   for (const auto& c : chosen) cases += c.missing.empty() ? int(sizes.size()) : 0;
   progress.setTotalCases(cases);

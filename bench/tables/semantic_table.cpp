@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "harness/dataset_choice.h"
 #include "harness/format.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
@@ -184,26 +185,7 @@ std::string caseRuleText(const SemanticCase& c, int k) {
 
 // ---- Choosing ---------------------------------------------------------------------------------
 
-struct Choice {
-  const SemanticDataset& dataset;
-  std::filesystem::path path;
-  std::string missing;
-};
-
-std::vector<Choice> chooseDatasets(const BenchOptions& options) {
-  std::vector<Choice> chosen;
-  for (const SemanticDataset& d : kDatasets) {
-    const bool asked =
-        std::find(options.only.begin(), options.only.end(), d.name) != options.only.end();
-    if (options.only.empty() ? !d.byDefault : !asked) continue;
-    const std::filesystem::path path = options.datasetsDir / d.file;
-    chosen.push_back({d, path,
-                      std::filesystem::exists(path)
-                          ? ""
-                          : "not found: " + path.string() + " (use --datasets DIR)"});
-  }
-  return chosen;
-}
+using Choice = DatasetChoice<SemanticDataset>;
 
 // ---- Measuring --------------------------------------------------------------------------------
 
@@ -539,7 +521,8 @@ std::vector<std::string> semanticDatasetNames() {
 
 TableResult runSemanticTable(const BenchOptions& options, Progress& progress) {
   const std::vector<int> sizes = options.sizes.empty() ? std::vector<int>{512} : options.sizes;
-  const std::vector<Choice> chosen = chooseDatasets(options);
+  const std::vector<Choice> chosen =
+      chooseDatasets(std::span<const SemanticDataset>(kDatasets), options);
   int cases = 0;
   for (const auto& c : chosen) cases += c.missing.empty() ? int(sizes.size()) : 0;
   progress.setTotalCases(cases);
