@@ -2,6 +2,7 @@
 // (the cases of a dataset take turns frame by frame, then check their own output), rows (JSON,
 // failed checks, lines) and formatting. runIllustrateTable at the end calls them in that order.
 #include "tables/illustrate_table.h"
+#include "core/clock.h"
 
 #include <algorithm>
 #include <chrono>
@@ -130,11 +131,6 @@ struct Measured {
   std::vector<Window> windows;
 };
 
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
-
 // CPU time of the whole process (every llvmpipe thread): steadier than wall time on a loaded
 // machine, since it counts work, not waiting.
 double processCpuMs() {
@@ -196,7 +192,7 @@ void renderFrame(Renderer& renderer, RenderSettings settings, int k, const Bench
   const auto start = std::chrono::steady_clock::now();
   const double cpuStart = processCpuMs();
   const RenderResult frame = renderer.render(settings);
-  const double ms = msSince(start);
+  const double ms = millisecondsSince(start);
   const double cpuMs = processCpuMs() - cpuStart;
   result.sliceCount = frame.sliceCount;
   const cv::Mat image =
@@ -293,7 +289,7 @@ Measured measureDataset(const Choice& chosen, const std::vector<int>& sizes,
     RenderSettings first = caseSettings(illustrateCases()[kPlain], chosen.dataset, tfPath, 16);
     const auto start = std::chrono::steady_clock::now();
     renderer.render(first);
-    measured.gradientMs = msSince(start);
+    measured.gradientMs = millisecondsSince(start);
   }
   for (auto& window : measured.windows) {
     window.cases = measureWindow(renderer, chosen.dataset, tfPath, window.size, options, progress);

@@ -2,6 +2,7 @@
 // rule bases), measuring (the cases of a window take turns frame by frame and check their own
 // output), rows and formatting. runSemanticTable at the end calls them in that order.
 #include "tables/semantic_table.h"
+#include "core/clock.h"
 
 #include <algorithm>
 #include <chrono>
@@ -214,11 +215,6 @@ struct Measured {
   std::vector<Window> windows;
 };
 
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
-
 // CPU time of the whole process (every llvmpipe thread): steadier than wall time on a loaded
 // machine, since it counts work, not waiting.
 double processCpuMs() {
@@ -281,7 +277,7 @@ class CaseRenderer {
     const auto start = std::chrono::steady_clock::now();
     const double cpuStart = processCpuMs();
     RenderResult frame = renderer_.render(settings);
-    if (ms) *ms = msSince(start);
+    if (ms) *ms = millisecondsSince(start);
     if (cpuMs) *cpuMs = processCpuMs() - cpuStart;
     return frame;
   }
@@ -399,7 +395,7 @@ Measured measureDataset(const Choice& chosen, const std::vector<int>& sizes,
         cases.render(c, 0, 16, kOrbitStartDeg);
       }
     }
-    measured.firstMs = msSince(start);
+    measured.firstMs = millisecondsSince(start);
   }
   for (auto& window : measured.windows) {
     window.cases = measureWindow(cases, chosen.dataset, window.size, options, progress);
