@@ -47,6 +47,8 @@ class SliceSampler {
   bool insideTexture(glm::vec3 tex) const;
   float sampleTexture(glm::vec3 tex) const;
   glm::vec3 gradientVoxel(glm::vec3 voxel) const;
+  // −∇f/|∇f| in eye space, 0 where the gradient vanishes (common.glsl outwardNormalEye).
+  glm::vec3 outwardNormalEye(glm::vec3 voxel) const;
   float facingRatio(glm::vec3 voxel, glm::vec3 eye) const;  // |n·v| as in common.glsl
 
  private:
