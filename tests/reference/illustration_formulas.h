@@ -12,8 +12,9 @@
 
 namespace vsil::reference {
 
-// All vectors in one space (the caller's: world axes for illustrate): n the outward unit normal
-// (0 where the gradient vanishes), the lights' directions towards the lights.
+// All vectors in one space (the caller's: world axes for illustrate, eye space for the tone
+// fill): n the outward unit normal (0 where the gradient vanishes), the lights' directions
+// towards the lights.
 struct IllustrationFormulas {
   const Illustration& ill;
   std::vector<glm::vec3> lights;  // towards the lights, in the space of n
