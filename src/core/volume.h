@@ -24,8 +24,8 @@
 namespace vsil {
 
 // The types a volume keeps its samples in, in the data's own units. Files with other types
-// convert when read (io/sample_codec.h): float64 (and, later, 32/64-bit integers) to Float32,
-// counting the samples whose value changed (Volume::inexactSamples).
+// convert when read (io/sample_codec.h): float64 and 32/64-bit integers to Float32, counting
+// the samples whose value changed (Volume::inexactSamples).
 enum class SampleType { UInt8, Int8, UInt16, Int16, Float32 };
 inline constexpr SampleType kSampleTypes[] = {SampleType::UInt8, SampleType::Int8,
                                               SampleType::UInt16, SampleType::Int16,
@@ -99,7 +99,8 @@ class Volume {
   glm::dvec3 spacing{1.0};  // distance between sample centres along x, y, z (any unit)
   // The file's sample type when the volume keeps another ("float64" kept as float32), else "".
   std::string fileType;
-  // Samples whose value changed in that conversion (float64 values that float32 rounds).
+  // Samples whose value changed in that conversion (float64 values that float32 rounds,
+  // integers beyond 2^24 that it cannot hold).
   std::uint64_t inexactSamples = 0;
   // Set when only part of the file was read (--crop, --stride): which part.
   std::optional<VolumeSubset> subset;

@@ -43,6 +43,32 @@ void checkFinite(const std::string& where, std::uint64_t index, double value) {
   if (std::isinf(value)) badSample(where, index, "is infinite");
 }
 
+// Whether float32 `kept` holds the integer `value` exactly (every integer up to 2^24 does).
+// Compared as integers: the float of a 64-bit value may be 2^63 or 2^64, beyond its type.
+template <typename Integer>
+bool exactInFloat32(Integer value, float kept) {
+  if constexpr (sizeof(Integer) <= 4) {
+    return std::int64_t(kept) == std::int64_t(value);
+  } else {
+    const double bound = std::is_signed_v<Integer> ? 0x1p63 : 0x1p64;
+    return double(kept) < bound && Integer(kept) == value;
+  }
+}
+
+// `count` file samples of the 32- or 64-bit integer type `Integer` into floats; returns how
+// many float32 rounded.
+template <typename Integer>
+std::uint64_t convertWideIntegers(float* out, const std::uint8_t* in, std::size_t inStep,
+                                  std::size_t count, bool swap) {
+  std::uint64_t inexact = 0;
+  for (std::size_t i = 0; i < count; ++i, in += inStep) {
+    const Integer value = load<Integer>(in, swap);
+    out[i] = float(value);
+    inexact += !exactInFloat32(value, out[i]);
+  }
+  return inexact;
+}
+
 }  // namespace
 
 SampleSink::SampleSink(const std::string& where, Volume& volume, const VolumeSubset& subset,
@@ -91,6 +117,25 @@ void SampleSink::decode(Out* out, const std::uint8_t* in, std::size_t inStep, st
         }
         out[i] = float(value);
         inexact += double(out[i]) != value;
+      }
+      if (inexact) inexact_ += inexact;
+      return;
+    }
+    if (isWideInteger(fileType_)) {
+      std::uint64_t inexact = 0;
+      switch (fileType_) {
+        case StoredType::Int32:
+          inexact = convertWideIntegers<std::int32_t>(out, in, inStep, count, swap_);
+          break;
+        case StoredType::UInt32:
+          inexact = convertWideIntegers<std::uint32_t>(out, in, inStep, count, swap_);
+          break;
+        case StoredType::Int64:
+          inexact = convertWideIntegers<std::int64_t>(out, in, inStep, count, swap_);
+          break;
+        default:
+          inexact = convertWideIntegers<std::uint64_t>(out, in, inStep, count, swap_);
+          break;
       }
       if (inexact) inexact_ += inexact;
       return;
@@ -182,7 +227,10 @@ void SampleSink::putValue(std::uint64_t index, double value) {
     using Out = typename decltype(samples)::value_type;
     samples[kept] = Out(value);
     if constexpr (std::is_same_v<Out, float>) {
-      if (fileType_ == StoredType::Float64 && double(samples[kept]) != value) ++inexact_;
+      if ((fileType_ == StoredType::Float64 || isWideInteger(fileType_)) &&
+          double(samples[kept]) != value) {
+        ++inexact_;
+      }
     }
   });
 }

@@ -55,8 +55,14 @@ StoredType parseVtkType(const std::string& path, const std::string& name) {
   if (name == "Int16") return StoredType::Int16;
   if (name == "Float32") return StoredType::Float32;
   if (name == "Float64") return StoredType::Float64;  // converted to float32 when finite
+  // Converted to float32, exact up to 2^24 (the others counted).
+  if (name == "Int32") return StoredType::Int32;
+  if (name == "UInt32") return StoredType::UInt32;
+  if (name == "Int64") return StoredType::Int64;
+  if (name == "UInt64") return StoredType::UInt64;
   throwInputError(path, "DataArray type " + quote(name) +
-                            " is not supported (UInt8, Int8, UInt16, Int16, Float32, Float64)");
+                            " is not supported (UInt8, Int8, UInt16, Int16, Int32, UInt32, Int64, "
+                            "UInt64, Float32, Float64)");
 }
 
 // "x0 x1 y0 y1 z0 z1" -> samples per axis.

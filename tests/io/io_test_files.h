@@ -67,6 +67,14 @@ inline Bytes encodeSamples(const std::vector<float>& values, SampleType type, bo
   return out;
 }
 
+// 32- or 64-bit integers (`size` bytes each, two's complement) in the given byte order.
+inline Bytes encodeIntegers(const std::vector<std::int64_t>& values, std::size_t size,
+                            bool bigEndian) {
+  Bytes out;
+  for (std::int64_t v : values) appendWord(out, std::uint64_t(v), size, bigEndian);
+  return out;
+}
+
 // A volume's samples as floats (Volume::value), to compare with the values a test wrote.
 inline std::vector<float> floatsOf(const Volume& volume) {
   std::vector<float> values(volume.sampleCount());

@@ -1,5 +1,8 @@
 // VTK XML ImageData round trips: ascii, inline base64, appended raw and base64, each binary
 // form with and without zlib blocks, UInt32 and UInt64 headers, both byte orders.
+#include <cctype>
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "io/volume_loader.h"
@@ -160,6 +163,70 @@ std::vector<VtiCase> vtiCases() {
 
 INSTANTIATE_TEST_SUITE_P(Vti, VtiRoundTrip, ::testing::ValuesIn(vtiCases()),
                          [](const auto& info) { return caseName(info.param); });
+
+// Int32, UInt32, Int64, UInt64 arrays are kept as float32: exact up to 2^24, the samples float32
+// changes counted, the file's type reported; raw and zlib, both byte orders.
+TEST(VtiReader, WideIntegersConvertToFloat32CountingRoundedSamples) {
+  struct WideCase {
+    const char* type;
+    std::size_t size;
+    std::vector<std::int64_t> values;  // UInt64 2^63 written as its bits
+    std::vector<float> kept;
+    std::uint64_t inexact;
+  };
+  const WideCase cases[] = {
+      {"Int32", 4, {-5, 16777216, 16777217, 2147483647}, {-5, 16777216, 16777216, 2147483648.f}, 2},
+      {"UInt32", 4, {0, 4294967295, 255, 16777215}, {0, 4294967296.f, 255, 16777215}, 1},
+      {"Int64",
+       8,
+       {-1, std::numeric_limits<std::int64_t>::min(), std::numeric_limits<std::int64_t>::max(),
+        (std::int64_t(1) << 53) + 1},
+       {-1, -9223372036854775808.f, 9223372036854775808.f, 9007199254740992.f},
+       2},
+      {"UInt64",
+       8,
+       {3, std::numeric_limits<std::int64_t>::min(), -1, 9},
+       {3, 0x1p63f, 0x1p64f, 9},
+       1},
+  };
+  for (const WideCase& c : cases) {
+    for (bool compressed : {false, true}) {
+      for (bool big : {false, true}) {
+        SCOPED_TRACE(std::string(c.type) + (compressed ? " zlib" : " raw") +
+                     (big ? " big-endian" : ""));
+        const Bytes data = test::encodeIntegers(c.values, c.size, big);
+        Bytes block;
+        if (compressed) {
+          const Bytes packed = test::deflateBytes(data, false);
+          for (std::uint64_t word : {std::uint64_t(1), data.size(), data.size(), packed.size()}) {
+            test::appendWord(block, word, 4, big);
+          }
+          block.insert(block.end(), packed.begin(), packed.end());
+        } else {
+          test::appendWord(block, data.size(), 4, big);
+          block.insert(block.end(), data.begin(), data.end());
+        }
+        const auto path = test::scratchDir() / "wide.vti";
+        test::writeFile(path, std::string("<VTKFile type=\"ImageData\" byte_order=\"") +
+                                  (big ? "BigEndian" : "LittleEndian") + "\"" +
+                                  (compressed ? " compressor=\"vtkZLibDataCompressor\"" : "") +
+                                  "><ImageData WholeExtent=\"0 1 0 1 0 0\"><Piece><PointData>"
+                                  "<DataArray type=\"" +
+                                  c.type +
+                                  "\" format=\"appended\" offset=\"0\"/></PointData></Piece>"
+                                  "</ImageData><AppendedData encoding=\"raw\">_" +
+                                  test::asText(block) + "</AppendedData></VTKFile>\n");
+        const Volume v = loadVolume(path.string());
+        EXPECT_EQ(v.type(), SampleType::Float32);
+        std::string fileType = c.type;  // "int32" for "Int32"
+        for (char& ch : fileType) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        EXPECT_EQ(v.fileType, fileType);
+        EXPECT_EQ(test::floatsOf(v), c.kept);
+        EXPECT_EQ(v.inexactSamples, c.inexact);
+      }
+    }
+  }
+}
 
 }  // namespace
 }  // namespace vsil
