@@ -9,7 +9,7 @@ namespace vsil::cli {
 
 void addRenderOptions(CLI::App& command, RenderFlags& flags) {
   command.add_option("input", flags.input,
-                     "Volume file (.nrrd .nhdr .vti .vtk, raw with --dims/--type) or "
+                     "Volume file (.nrrd .nhdr .vti .vtk .mhd .mha, raw with --dims/--type) or "
                      "gen:NAME[:N]; default " +
                          std::string(kDefaultInput));
   addTechniqueOptions(command, flags.technique, flags.techniqueOptions);

@@ -241,7 +241,7 @@ const CommandRegistration registerInfoCommand(20, [](CLI::App& app) {
       "info",
       "Print a volume's size, type, spacing and value statistics; with --gl, the OpenGL context");
   command->add_option("volume", options->volume,
-                      "volume file (.nrrd .nhdr .vti .vtk, raw with "
+                      "volume file (.nrrd .nhdr .vti .vtk .mhd .mha, raw with "
                       "--dims/--type) or gen:NAME[:N]");
   command->add_flag("--json", options->json, "machine-readable output");
   addVolumeOptions(*command, options->load);

@@ -18,6 +18,7 @@ class FileReader;
 Volume readNrrd(const std::string& path, const LoadOptions& options);       // .nrrd, .nhdr
 Volume readVti(const std::string& path, const LoadOptions& options);        // VTK XML ImageData
 Volume readLegacyVtk(const std::string& path, const LoadOptions& options);  // STRUCTURED_POINTS
+Volume readMetaImage(const std::string& path, const LoadOptions& options);  // .mhd, .mha
 Volume readRaw(const std::string& path, const RawLayout& layout, const LoadOptions& options);
 
 // A new volume read from `path`: name = the file's base name without extension, source = the

@@ -21,12 +21,13 @@ Volume loadVolume(const std::string& spec, const LoadOptions& options) {
   if (extension == ".nrrd" || extension == ".nhdr") return io::readNrrd(spec, options);
   if (extension == ".vti") return io::readVti(spec, options);
   if (extension == ".vtk") return io::readLegacyVtk(spec, options);
+  if (extension == ".mhd" || extension == ".mha") return io::readMetaImage(spec, options);
 
   io::regularFileSize(spec);  // a missing file or a directory says so first
   throwInputError(spec, "unknown volume format" +
                             (extension.empty() ? std::string() : " " + io::quote(extension)) +
-                            " (known: .nrrd, .nhdr, .vti, .vtk, gen:NAME[:N]; a headerless raw "
-                            "file needs --dims and --type)");
+                            " (known: .nrrd, .nhdr, .vti, .vtk, .mhd, .mha, gen:NAME[:N]; a "
+                            "headerless raw file needs --dims and --type)");
 }
 
 }  // namespace vsil

@@ -26,14 +26,16 @@ struct LoadOptions {
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
 };
 
-// `spec` is a path (.nrrd, .nhdr, .vti, .vtk, or any file with options.raw set) or a generator
-// `gen:NAME[:N]` (see generators/generators.h). Throws InputError naming the file and problem.
-// Readers (src/io/*_reader.cpp): NRRD raw/gzip/ascii, attached or detached; VTK XML ImageData
-// ascii/base64/appended, zlib or not; legacy VTK STRUCTURED_POINTS ASCII/BINARY; raw.
-// Samples keep their file's type (io/sample_codec.h): float64 is kept as Float32 (refused unless
-// finite in float; rounded values counted in Volume::inexactSamples). With options.region the
-// volume holds only those samples, its spacing multiplied by the stride, and Volume::subset
-// says which; headers are checked against options.limits before any payload is read.
+// `spec` is a path (.nrrd, .nhdr, .vti, .vtk, .mhd, .mha, or any file with options.raw set) or a
+// generator `gen:NAME[:N]` (see generators/generators.h). Throws InputError naming the file and
+// problem. Readers (src/io/*_reader.cpp): NRRD raw/gzip/ascii, attached or detached; VTK XML
+// ImageData ascii/base64/appended, zlib or not; legacy VTK STRUCTURED_POINTS ASCII/BINARY;
+// MetaImage .mha/.mhd, raw or zlib, binary or ASCII; raw. Samples keep their file's type
+// (io/sample_codec.h): float64 and 32/64-bit integers are kept as Float32 (float64 refused unless
+// finite in float; values that float32 changes counted in Volume::inexactSamples). With
+// options.region the volume holds only those samples, its spacing multiplied by the stride, and
+// Volume::subset says which; headers are checked against options.limits before any payload is
+// read.
 Volume loadVolume(const std::string& spec, const LoadOptions& options = {});
 
 }  // namespace vsil

@@ -66,3 +66,19 @@ rules = ('attribute density from data { high = trapezoid(0.2, 0.5, 1, 1) }\n'
 write('rules_missing_spheres.rules', rules % 'missing_spheres.png')
 write('rules_bad_spheres.rules', rules % 'not_an_image.png')
 write('not_an_image.png', 'this is not a PNG\n')
+
+# MetaImage (.mha attached, .mhd detached): truncated data, a DimSize larger than the data file,
+# a zlib bomb, a CompressedDataSize past the end, several channels, a 2D image, a missing data
+# file, a list of slice files.
+mha = 'ObjectType = Image\nNDims = %s\nDimSize = %s\n%sElementType = MET_UCHAR\nElementDataFile = %s\n'
+write('truncated.mha', (mha % (3, '4 4 4', '', 'LOCAL')).encode() + bytes(10))
+write('lying_dimsize.mhd', mha % (3, '8 8 8', '', 'lying_dimsize.raw'))
+write('lying_dimsize.raw', bytes(64))
+write('zlib_bomb.mha', (mha % (3, '4 4 4', 'CompressedData = True\n', 'LOCAL')).encode() +
+      zlib.compress(bytes(1 << 20), 9))
+write('bad_compressed_size.mha', (mha % (3, '4 4 4', 'CompressedData = True\nCompressedDataSize = 999999\n',
+                                         'LOCAL')).encode() + zlib.compress(bytes(64), 9))
+write('multichannel.mha', (mha % (3, '2 2 2', 'ElementNumberOfChannels = 3\n', 'LOCAL')).encode() + bytes(24))
+write('image_2d.mha', (mha % (2, '4 4', '', 'LOCAL')).encode() + bytes(16))
+write('missing_data.mhd', mha % (3, '4 4 4', '', 'no_such_data.raw'))
+write('slice_list.mhd', mha % (3, '4 4 4', '', 'LIST'))

@@ -30,13 +30,27 @@ enum class FileFormat {
   VtiInlineBase64Zlib,
   VtiAscii,
   VtkBinary,
-  VtkAscii
+  VtkAscii,
+  MetaImageRaw,
+  MetaImageZlib,
+  MetaImageBigEndianDetached
 };
 
 const char* formatName(FileFormat f) {
-  static const char* names[] = {
-      "Raw",        "NrrdRaw",         "NrrdGzip", "NrrdAscii", "VtiAppendedRaw", "VtiAppendedZlib",
-      "VtiOddZlib", "VtiInlineBase64", "VtiAscii", "VtkBinary", "VtkAscii"};
+  static const char* names[] = {"Raw",
+                                "NrrdRaw",
+                                "NrrdGzip",
+                                "NrrdAscii",
+                                "VtiAppendedRaw",
+                                "VtiAppendedZlib",
+                                "VtiOddZlib",
+                                "VtiInlineBase64",
+                                "VtiAscii",
+                                "VtkBinary",
+                                "VtkAscii",
+                                "MetaImageRaw",
+                                "MetaImageZlib",
+                                "MetaImageMsbDetached"};
   return names[int(f)];
 }
 
@@ -159,6 +173,26 @@ std::pair<std::string, LoadOptions> writeVolume(FileFormat format,
                             : asciiValues(values)));
       return {path.string(), options};
     }
+    case FileFormat::MetaImageRaw:
+    case FileFormat::MetaImageZlib:
+    case FileFormat::MetaImageBigEndianDetached: {
+      const bool zlib = format == FileFormat::MetaImageZlib;
+      const bool big = format == FileFormat::MetaImageBigEndianDetached;
+      const std::string header =
+          "ObjectType = Image\nNDims = 3\nDimSize = " + dims +
+          "\nElementSpacing = 0.5 1 2\nElementType = MET_USHORT\nBinaryDataByteOrderMSB = " +
+          (big ? "True" : "False") + "\nCompressedData = " + (zlib ? "True" : "False") +
+          "\nElementDataFile = ";
+      if (big) {
+        test::writeFile(dir / "v.raw", test::encodeSamples(values, SampleType::UInt16, true));
+        test::writeFile(dir / "v.mhd", header + "v.raw\n");
+        return {(dir / "v.mhd").string(), options};
+      }
+      test::writeFile(
+          dir / "v.mha",
+          header + "LOCAL\n" + test::asText(zlib ? test::deflateBytes(little, false) : little));
+      return {(dir / "v.mha").string(), options};
+    }
   }
   return {};
 }
@@ -238,7 +272,9 @@ INSTANTIATE_TEST_SUITE_P(EveryReader, CropStrideRead,
                                            FileFormat::VtiAppendedRaw, FileFormat::VtiAppendedZlib,
                                            FileFormat::VtiAppendedZlibOddBlocks,
                                            FileFormat::VtiInlineBase64Zlib, FileFormat::VtiAscii,
-                                           FileFormat::VtkBinary, FileFormat::VtkAscii),
+                                           FileFormat::VtkBinary, FileFormat::VtkAscii,
+                                           FileFormat::MetaImageRaw, FileFormat::MetaImageZlib,
+                                           FileFormat::MetaImageBigEndianDetached),
                          [](const auto& info) { return std::string(formatName(info.param)); });
 
 // Float samples are checked for NaN as they are decoded: a NaN outside the crop is never
