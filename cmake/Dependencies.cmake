@@ -91,7 +91,18 @@ find_package(tinyxml2 QUIET)
 vsil_require(tinyxml2_FOUND "TinyXML-2 (VTK XML files)" libtinyxml2-dev)
 
 find_package(ZLIB QUIET)
-vsil_require(ZLIB_FOUND "zlib (compressed VTI and NRRD payloads)" zlib1g-dev)
+vsil_require(ZLIB_FOUND "zlib (compressed VTI, NRRD and MetaImage payloads)" zlib1g-dev)
+
+# VTI files written with vtkLZ4DataCompressor and vtkLZMADataCompressor.
+find_path(LZ4_INCLUDE_DIR lz4.h)
+find_library(LZ4_LIBRARY lz4)
+vsil_require(LZ4_INCLUDE_DIR "LZ4 headers (VTI files compressed with LZ4)" liblz4-dev)
+vsil_require(LZ4_LIBRARY "LZ4 (VTI files compressed with LZ4)" liblz4-dev)
+add_library(vsil::lz4 INTERFACE IMPORTED)
+target_include_directories(vsil::lz4 INTERFACE ${LZ4_INCLUDE_DIR})
+target_link_libraries(vsil::lz4 INTERFACE ${LZ4_LIBRARY})
+find_package(LibLZMA QUIET)
+vsil_require(LIBLZMA_FOUND "liblzma (VTI files compressed with LZMA)" liblzma-dev)
 
 find_package(Threads REQUIRED)
 

@@ -20,6 +20,7 @@ packages=(
   nlohmann-json3-dev             # JSON (metadata, benchmark tables)
   libcli11-dev                   # command-line parsing
   libtinyxml2-dev zlib1g-dev     # VTK XML (.vti) files, zlib/gzip payloads
+  liblz4-dev liblzma-dev         # VTI files compressed with LZ4 or LZMA
   libgtest-dev libbenchmark-dev  # tests and micro-benchmarks
   python3-dev pybind11-dev       # the Python module (src/python)
   python3-numpy python3-pytest python3-pil  # its tests (tests/python; Pillow reads the CLI's PNGs)

@@ -3,7 +3,9 @@
 // form optionally compressed by vtkZLibDataCompressor, with UInt32 or UInt64 headers.
 // Format notes: docs.vtk.org "VTK File Formats" (XML section) and the Kitware wiki
 // "VTK_XML_Formats"; a binary block starts with a byte count, or with the compression header
-// [#blocks][block size][last partial block size][compressed size of each block].
+// [#blocks][block size][last partial block size][compressed size of each block]; blocks are
+// zlib streams (vtkZLibDataCompressor), LZ4 blocks (vtkLZ4DataCompressor) or xz streams
+// (vtkLZMADataCompressor), io/block_codec.h.
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -17,6 +19,7 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "io/base64.h"
+#include "io/block_codec.h"
 #include "io/file_access.h"
 #include "io/inflate.h"
 #include "io/readers.h"
@@ -32,6 +35,7 @@ struct Encoding {
   bool bigEndian = false;
   std::size_t headerWordSize = 4;  // UInt32 or UInt64 block headers
   bool compressed = false;
+  BlockCodec codec = BlockCodec::Zlib;  // when compressed
 };
 
 std::string attribute(const XMLElement* element, const char* name, const char* fallback = "") {
@@ -161,7 +165,8 @@ class BlockReader {
     }
     readHeader(3 + blocks);  // the header is all there
     const std::uint64_t dataStart = (3 + blocks) * wordSize;
-    checkInflatable(path_, "zlib data", block_.size() - dataStart, expected);
+    checkDecompressible(path_, std::string(blockCodecName(encoding_.codec)) + " data",
+                        encoding_.codec, block_.size() - dataStart, expected);
     inflateBlocks(dataStart, blocks, blockSize, last, sink);
   }
 
@@ -190,8 +195,8 @@ class BlockReader {
     return value;
   }
 
-  // The zlib blocks, in batches of a few MiB of compressed bytes; within a batch the blocks are
-  // inflated on every core (each block is an independent stream whose output has its own place
+  // The compressed blocks, in batches of a few MiB of compressed bytes; within a batch the blocks
+  // are inflated on every core (each block is an independent stream whose output has its own place
   // in the volume). Errors are those a block-by-block reading meets first: the lowest block's.
   void inflateBlocks(std::uint64_t dataStart, std::uint64_t blocks, std::uint64_t blockSize,
                      std::uint64_t lastSize, SampleSink& sink) {
@@ -201,6 +206,7 @@ class BlockReader {
     const bool aligned = blockSize % sampleSize == 0;
     const int threads = aligned ? limits::workerThreads() : 1;
     SampleSink::Appender inOrder(sink, 0);
+    const std::string codecName = blockCodecName(encoding_.codec);
     const std::uint64_t compressedTotal = block_.size() - dataStart;
     std::vector<std::uint8_t> batchBytes;
     std::uint64_t offset = dataStart;  // of block `first`
@@ -232,15 +238,9 @@ class BlockReader {
             const std::uint64_t outSize = b + 1 == blocks ? lastSize : blockSize;
             SampleSink::Appender own(sink, b * blockSize / sampleSize);
             SampleSink::Appender& appender = aligned ? own : inOrder;
-            bool given = false;
-            inflateStream(
-                path_, "zlib block " + std::to_string(b), DeflateWrapper::Zlib, outSize,
-                [&] {
-                  const auto piece = given ? std::span<const std::uint8_t>() : compressed;
-                  given = true;
-                  return piece;
-                },
-                [&](std::span<const std::uint8_t> out) { appender.append(out); });
+            decompressBlock(path_, codecName + " block " + std::to_string(b), encoding_.codec,
+                            compressed, outSize,
+                            [&](std::span<const std::uint8_t> out) { appender.append(out); });
           } catch (...) {
             errors[std::size_t(thread)] = {b, std::current_exception()};
             for (std::uint64_t seen = failed; b < seen && !failed.compare_exchange_weak(seen, b);) {
@@ -259,7 +259,8 @@ class BlockReader {
                            [](const auto& a, const auto& b) { return a.first < b.first; });
       if (error->second) std::rethrow_exception(error->second);
       if (truncated) {
-        throwInputError(path_, "zlib block " + std::to_string(*truncated) + " is truncated (" +
+        throwInputError(path_, codecName + " block " + std::to_string(*truncated) +
+                                   " is truncated (" +
                                    std::to_string(block_.size() - (offset + bytes)) + " of " +
                                    std::to_string(word(3 + *truncated)) + " bytes)");
       }
@@ -358,9 +359,14 @@ Volume readVti(const std::string& path, const LoadOptions& options) {
   }
   encoding.headerWordSize = headerType == "UInt64" ? 8 : 4;
   const std::string compressor = attribute(root, "compressor");
-  if (!compressor.empty() && compressor != "vtkZLibDataCompressor") {
-    throwInputError(
-        path, "compressor " + quote(compressor) + " is not supported (only vtkZLibDataCompressor)");
+  if (compressor == "vtkLZ4DataCompressor") {
+    encoding.codec = BlockCodec::Lz4;
+  } else if (compressor == "vtkLZMADataCompressor") {
+    encoding.codec = BlockCodec::Lzma;
+  } else if (!compressor.empty() && compressor != "vtkZLibDataCompressor") {
+    throwInputError(path, "compressor " + quote(compressor) +
+                              " is not supported (vtkZLibDataCompressor, vtkLZ4DataCompressor, "
+                              "vtkLZMADataCompressor)");
   }
   encoding.compressed = !compressor.empty();
 

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <lz4.h>
+#include <lzma.h>
 #include <zlib.h>
 
 #include "core/error.h"
@@ -94,6 +96,26 @@ inline Bytes deflateBytes(const Bytes& in, bool gzip) {
   deflate(&s, Z_FINISH);
   out.resize(s.total_out);
   deflateEnd(&s);
+  return out;
+}
+
+// One LZ4 block (vtkLZ4DataCompressor's format).
+inline Bytes lz4Bytes(const Bytes& in) {
+  Bytes out(std::size_t(LZ4_compressBound(int(in.size()))));
+  const int size =
+      LZ4_compress_default(reinterpret_cast<const char*>(in.data()),
+                           reinterpret_cast<char*>(out.data()), int(in.size()), int(out.size()));
+  out.resize(std::size_t(size));
+  return out;
+}
+
+// One xz stream (vtkLZMADataCompressor's format: lzma_easy_buffer_encode).
+inline Bytes xzBytes(const Bytes& in) {
+  Bytes out(lzma_stream_buffer_bound(in.size()));
+  std::size_t size = 0;
+  lzma_easy_buffer_encode(6, LZMA_CHECK_CRC64, nullptr, in.data(), in.size(), out.data(), &size,
+                          out.size());
+  out.resize(size);
   return out;
 }
 
