@@ -7,6 +7,8 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "core/clock.h"
+
 namespace vsil {
 
 namespace {
@@ -45,11 +47,6 @@ struct GradientAt {
     return glm::vec3(dx * halfPerSpacing.x, dy * halfPerSpacing.y, dz * halfPerSpacing.z);
   }
 };
-
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 }  // namespace
 
@@ -143,7 +140,7 @@ GradientTexture::GradientTexture(GLuint volumeTexture, glm::ivec3 dims, glm::dve
     glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
   }
   VSIL_GL(glBindTexture(GL_TEXTURE_3D, GLuint(bound)));
-  buildMs_ = msSince(start);
+  buildMs_ = millisecondsSince(start);
 }
 
 void GradientTextureCache::reset(GLuint volumeTexture, glm::ivec3 dims, glm::dvec3 spacing) {

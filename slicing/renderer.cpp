@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 
+#include "core/clock.h"
 #include "core/error.h"
 #include "core/limits.h"
 #include "slicing/empty_space.h"
@@ -23,11 +24,6 @@ namespace {
 
 constexpr int kMaxImageSide = limits::kMaxImageSide;
 constexpr double kMaxSamplesPerVoxel = limits::kMaxSamplesPerVoxel;
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 void validate(const RenderSettings& settings) {
   if (settings.size.x < 1 || settings.size.y < 1 || settings.size.x > kMaxImageSide ||

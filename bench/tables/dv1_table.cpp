@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "core/clock.h"
 #include "core/error.h"
 #include "harness/format.h"
 #include "harness/text_table.h"
@@ -75,11 +76,6 @@ struct CaseResult {
   std::vector<std::string> problems;
 };
 
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
-
 cv::Mat1b coverage(const cv::Mat4f& colour) {
   cv::Mat1b shown(colour.size());
   for (int y = 0; y < colour.rows; ++y) {
@@ -107,7 +103,7 @@ std::vector<CaseResult> measureWindow(Renderer& renderer, int window, const Benc
       settings.camera.elevationDeg = kElevationDeg;
       const auto start = std::chrono::steady_clock::now();
       RenderResult frame = renderer.render(settings);
-      const double ms = msSince(start);
+      const double ms = millisecondsSince(start);
       results[c].slices = frame.sliceCount;
       if (timed >= 0) results[c].ms.push_back(ms);
       colours.push_back(frame.frame.color);

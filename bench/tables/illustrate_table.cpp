@@ -2,6 +2,7 @@
 // (the cases of a dataset take turns frame by frame, then check their own output), rows (JSON,
 // failed checks, lines) and formatting. runIllustrateTable at the end calls them in that order.
 #include "tables/illustrate_table.h"
+#include "core/clock.h"
 
 #include <algorithm>
 #include <chrono>
@@ -14,6 +15,7 @@
 
 #include "core/error.h"
 #include "core/transfer_function.h"
+#include "harness/dataset_choice.h"
 #include "harness/format.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
@@ -97,26 +99,7 @@ constexpr double kElevationDeg = 20.0;
 
 // ---- Choosing ---------------------------------------------------------------------------------
 
-struct Choice {
-  const IllustrateDataset& dataset;
-  std::filesystem::path path;
-  std::string missing;
-};
-
-std::vector<Choice> chooseDatasets(const BenchOptions& options) {
-  std::vector<Choice> chosen;
-  for (const IllustrateDataset& d : kDatasets) {
-    const bool asked =
-        std::find(options.only.begin(), options.only.end(), d.name) != options.only.end();
-    if (options.only.empty() ? !d.byDefault : !asked) continue;
-    const std::filesystem::path path = options.datasetsDir / d.file;
-    chosen.push_back({d, path,
-                      std::filesystem::exists(path)
-                          ? ""
-                          : "not found: " + path.string() + " (use --datasets DIR)"});
-  }
-  return chosen;
-}
+using Choice = DatasetChoice<IllustrateDataset>;
 
 std::vector<int> windowSizes(const BenchOptions& options) {
   return options.sizes.empty() ? std::vector<int>{512} : options.sizes;
@@ -147,11 +130,6 @@ struct Measured {
   };
   std::vector<Window> windows;
 };
-
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 // CPU time of the whole process (every llvmpipe thread): steadier than wall time on a loaded
 // machine, since it counts work, not waiting.
@@ -214,7 +192,7 @@ void renderFrame(Renderer& renderer, RenderSettings settings, int k, const Bench
   const auto start = std::chrono::steady_clock::now();
   const double cpuStart = processCpuMs();
   const RenderResult frame = renderer.render(settings);
-  const double ms = msSince(start);
+  const double ms = millisecondsSince(start);
   const double cpuMs = processCpuMs() - cpuStart;
   result.sliceCount = frame.sliceCount;
   const cv::Mat image =
@@ -311,7 +289,7 @@ Measured measureDataset(const Choice& chosen, const std::vector<int>& sizes,
     RenderSettings first = caseSettings(illustrateCases()[kPlain], chosen.dataset, tfPath, 16);
     const auto start = std::chrono::steady_clock::now();
     renderer.render(first);
-    measured.gradientMs = msSince(start);
+    measured.gradientMs = millisecondsSince(start);
   }
   for (auto& window : measured.windows) {
     window.cases = measureWindow(renderer, chosen.dataset, tfPath, window.size, options, progress);
@@ -406,7 +384,8 @@ std::vector<std::string> illustrateDatasetNames() {
 
 TableResult runIllustrateTable(const BenchOptions& options, Progress& progress) {
   const std::vector<int> sizes = windowSizes(options);
-  const std::vector<Choice> chosen = chooseDatasets(options);
+  const std::vector<Choice> chosen =
+      chooseDatasets(std::span<const IllustrateDataset>(kDatasets), options);
   int cases = 0;
   for (const auto& c : chosen) cases += c.missing.empty() ? int(sizes.size()) : 0;
   progress.setTotalCases(cases);

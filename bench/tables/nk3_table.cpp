@@ -3,6 +3,7 @@
 // failed checks, table lines) and formatting (text, Markdown, plot, notes). runNk3Table at the
 // end calls them in that order.
 #include "tables/nk3_table.h"
+#include "core/clock.h"
 
 #include <algorithm>
 #include <chrono>
@@ -237,11 +238,6 @@ struct Nk3Measured {
   std::vector<Window> windows;
 };
 
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
-
 void countStates(const cv::Mat1b& state, FrameSample& sample) {
   for (auto it = state.begin(); it != state.end(); ++it) {
     switch (PixelState(*it)) {
@@ -289,12 +285,12 @@ void renderFrame(Renderer& renderer, RenderSettings settings, int k, const Bench
     const auto postStart = std::chrono::steady_clock::now();
     lines = broadenSilhouettes(frame.frame, postfx.width, blur);
     const cv::Mat illustration = composeIllustration(frame.frame, postfx, blur, lines);
-    sample.postfxMs = msSince(postStart);
+    sample.postfxMs = millisecondsSince(postStart);
     if (illustration.size() != frame.frame.state.size()) {
       result.problems.push_back("the illustration has the wrong size");
     }
   }
-  sample.ms = msSince(start);
+  sample.ms = millisecondsSince(start);
   sample.renderMs = frame.timings.renderMs;
   sample.readbackMs = frame.timings.readbackMs;
   result.sliceCount = frame.sliceCount;

@@ -2,6 +2,7 @@
 // rule bases), measuring (the cases of a window take turns frame by frame and check their own
 // output), rows and formatting. runSemanticTable at the end calls them in that order.
 #include "tables/semantic_table.h"
+#include "core/clock.h"
 
 #include <algorithm>
 #include <chrono>
@@ -16,6 +17,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "harness/dataset_choice.h"
 #include "harness/format.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
@@ -184,26 +186,7 @@ std::string caseRuleText(const SemanticCase& c, int k) {
 
 // ---- Choosing ---------------------------------------------------------------------------------
 
-struct Choice {
-  const SemanticDataset& dataset;
-  std::filesystem::path path;
-  std::string missing;
-};
-
-std::vector<Choice> chooseDatasets(const BenchOptions& options) {
-  std::vector<Choice> chosen;
-  for (const SemanticDataset& d : kDatasets) {
-    const bool asked =
-        std::find(options.only.begin(), options.only.end(), d.name) != options.only.end();
-    if (options.only.empty() ? !d.byDefault : !asked) continue;
-    const std::filesystem::path path = options.datasetsDir / d.file;
-    chosen.push_back({d, path,
-                      std::filesystem::exists(path)
-                          ? ""
-                          : "not found: " + path.string() + " (use --datasets DIR)"});
-  }
-  return chosen;
-}
+using Choice = DatasetChoice<SemanticDataset>;
 
 // ---- Measuring --------------------------------------------------------------------------------
 
@@ -231,11 +214,6 @@ struct Measured {
   };
   std::vector<Window> windows;
 };
-
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 // CPU time of the whole process (every llvmpipe thread): steadier than wall time on a loaded
 // machine, since it counts work, not waiting.
@@ -299,7 +277,7 @@ class CaseRenderer {
     const auto start = std::chrono::steady_clock::now();
     const double cpuStart = processCpuMs();
     RenderResult frame = renderer_.render(settings);
-    if (ms) *ms = msSince(start);
+    if (ms) *ms = millisecondsSince(start);
     if (cpuMs) *cpuMs = processCpuMs() - cpuStart;
     return frame;
   }
@@ -417,7 +395,7 @@ Measured measureDataset(const Choice& chosen, const std::vector<int>& sizes,
         cases.render(c, 0, 16, kOrbitStartDeg);
       }
     }
-    measured.firstMs = msSince(start);
+    measured.firstMs = millisecondsSince(start);
   }
   for (auto& window : measured.windows) {
     window.cases = measureWindow(cases, chosen.dataset, window.size, options, progress);
@@ -539,7 +517,8 @@ std::vector<std::string> semanticDatasetNames() {
 
 TableResult runSemanticTable(const BenchOptions& options, Progress& progress) {
   const std::vector<int> sizes = options.sizes.empty() ? std::vector<int>{512} : options.sizes;
-  const std::vector<Choice> chosen = chooseDatasets(options);
+  const std::vector<Choice> chosen =
+      chooseDatasets(std::span<const SemanticDataset>(kDatasets), options);
   int cases = 0;
   for (const auto& c : chosen) cases += c.missing.empty() ? int(sizes.size()) : 0;
   progress.setTotalCases(cases);

@@ -19,10 +19,11 @@
 #include "cli/cli_render_options.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "core/image_file.h"
-#include "core/number_pair.h"
 #include "core/limits.h"
+#include "core/number_pair.h"
 #include "core/progress_line.h"
 #include "core/version.h"
 #include "job/animation.h"
@@ -43,10 +44,6 @@ struct AnimateFlags {
   double fps = 25;
   bool quiet = false;
 };
-
-double millisecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 AnimationSpec animationSpec(const AnimateFlags& flags) {
   AnimationSpec spec;

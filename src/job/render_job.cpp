@@ -8,6 +8,7 @@
 #include <sstream>
 #include <variant>
 
+#include "core/clock.h"
 #include "core/depth_image.h"
 #include "core/error.h"
 #include "core/limits.h"
@@ -19,11 +20,6 @@
 namespace vsil {
 
 namespace {
-
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 nlohmann::json matrixRowMajor(const glm::dmat4& m) {
   nlohmann::json rows = nlohmann::json::array();

@@ -263,18 +263,14 @@ class PythonRenderer {
     RenderJob::checkRequest(request, loadOptions.limits);
 
     if (isPath) {
+      // Read on every call (the file may have changed); a sweep loads once with vsil.load.
       const std::string spec = input.cast<std::string>();
-      const std::string key = spec + "\n" + py::repr(kwargs).cast<std::string>();
-      if (key != loadedKey_) {
-        py::gil_scoped_release release;
-        job_->load(spec, RenderJob::loadOptionsFor(request, loadOptions));
-        uploaded_.reset();
-        loadedKey_ = key;
-      }
+      py::gil_scoped_release release;
+      job_->load(spec, RenderJob::loadOptionsFor(request, loadOptions));
+      uploaded_.reset();
     } else {
       const PyVolume& volume = input.cast<const PyVolume&>();
       if (volume.volume != uploaded_) upload(volume);
-      loadedKey_.clear();
     }
 
     RenderOutput output;
@@ -299,7 +295,6 @@ class PythonRenderer {
  private:
   std::unique_ptr<RenderJob> job_;
   std::shared_ptr<Volume> uploaded_;  // the volume the texture holds, when given as a Volume
-  std::string loadedKey_;             // the spec and keywords it holds, when given as a path
 };
 
 // ---- postfx on arrays ----

@@ -1,5 +1,6 @@
 #include "frame_compare.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace vsil::test {
@@ -50,6 +51,13 @@ double maxChannelDifference(const cv::Mat4f& a, const cv::Mat4f& b) {
   cv::absdiff(a, b, diff);
   double largest = 0;
   cv::minMaxLoc(diff.reshape(1), nullptr, &largest);
+  return largest;
+}
+
+double maxChannelDifference(const cv::Mat4f& a, const cv::Mat4f& b, int y, int x) {
+  double largest = 0;
+  for (int k = 0; k < 4; ++k)
+    largest = std::max(largest, double(std::abs(a(y, x)[k] - b(y, x)[k])));
   return largest;
 }
 

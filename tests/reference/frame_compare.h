@@ -11,6 +11,8 @@ int differingPixels(const FrameBuffers& a, const FrameBuffers& b);
 
 // The largest difference of any channel between two colour images of the same size.
 double maxChannelDifference(const cv::Mat4f& a, const cv::Mat4f& b);
+// The same at pixel (x, y) alone (row y, column x).
+double maxChannelDifference(const cv::Mat4f& a, const cv::Mat4f& b, int y, int x);
 
 // Pixels that show something: a state other than Empty, or a colour with alpha > 0.
 int shownPixels(const FrameBuffers& frame);

@@ -95,11 +95,7 @@ TEST_P(IllustrateMatchesReference, EveryChannelWithin2Of255) {
   std::ostringstream first;
   for (int y = 0; y < settings.size.y; ++y) {
     for (int x = 0; x < settings.size.x; ++x) {
-      double pixelError = 0;
-      for (int k = 0; k < 4; ++k) {
-        pixelError = std::max(pixelError,
-                              double(std::abs(gl.frame.color(y, x)[k] - cpu.frame.color(y, x)[k])));
-      }
+      const double pixelError = test::maxChannelDifference(gl.frame.color, cpu.frame.color, y, x);
       maxError = std::max(maxError, pixelError);
       if (pixelError > 2.0 / 255.0 && ++over <= 3) {
         first << " (" << x << "," << y << ") gl " << gl.frame.color(y, x) << " cpu "

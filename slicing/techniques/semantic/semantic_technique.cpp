@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/clock.h"
 #include "slicing/gl_state.h"
 #include "slicing/hit_records.h"
 #include "slicing/texture_units.h"
@@ -11,11 +12,6 @@
 namespace vsil {
 
 namespace {
-
-double semanticMillisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 // A float texture read with texelFetch (nearest, clamped), replaced whole.
 void uploadFetchTexture2D(gl::TextureName& texture, GLenum internalFormat, GLenum format, int width,
@@ -92,7 +88,7 @@ ResolvedOptions SemanticTechnique::resolve(const FrameContext& frame) {
   rules_ = loadSemanticRules(*frame.options);
   const auto compileStart = std::chrono::steady_clock::now();
   compiled_ = compileRules(rules_);
-  const double compileMs = semanticMillisecondsSince(compileStart);
+  const double compileMs = millisecondsSince(compileStart);
   interaction_ = resolveSemanticInteraction(*frame.options, frame.dims, *frame.view);
   flat_ = usesFlatMode(rules_, interaction_);
 
@@ -141,7 +137,7 @@ ResolvedOptions SemanticTechnique::resolve(const FrameContext& frame) {
   const int buildsBefore = frame.programs->builds();
   const auto buildStart = std::chrono::steady_clock::now();
   program_ = &frame.programs->get(semanticProgram(compiled_, flat_, interaction_.planeShow));
-  const double buildMs = semanticMillisecondsSince(buildStart);
+  const double buildMs = millisecondsSince(buildStart);
 
   ResolvedOptions resolved;
   nlohmann::json& details = resolved.details["semantic"];

@@ -1,0 +1,39 @@
+#pragma once
+// Which of a table's datasets a run measures: those --only names, else those the table measures
+// by default; each with its file under --datasets, or why it is missing. For tables whose
+// datasets have `name`, `file` and `byDefault`.
+#include <algorithm>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "harness/bench_options.h"
+
+namespace vsil::bench {
+
+template <typename Dataset>
+struct DatasetChoice {
+  const Dataset& dataset;
+  std::filesystem::path path;
+  std::string missing;  // empty when the file is there
+};
+
+template <typename Dataset>
+std::vector<DatasetChoice<Dataset>> chooseDatasets(std::span<const Dataset> datasets,
+                                                   const BenchOptions& options) {
+  std::vector<DatasetChoice<Dataset>> chosen;
+  for (const Dataset& d : datasets) {
+    const bool asked =
+        std::find(options.only.begin(), options.only.end(), d.name) != options.only.end();
+    if (options.only.empty() ? !d.byDefault : !asked) continue;
+    const std::filesystem::path path = options.datasetsDir / d.file;
+    chosen.push_back({d, path,
+                      std::filesystem::exists(path)
+                          ? ""
+                          : "not found: " + path.string() + " (use --datasets DIR)"});
+  }
+  return chosen;
+}
+
+}  // namespace vsil::bench
