@@ -103,6 +103,31 @@ target_include_directories(vsil::lz4 INTERFACE ${LZ4_INCLUDE_DIR})
 target_link_libraries(vsil::lz4 INTERFACE ${LZ4_LIBRARY})
 find_package(LibLZMA QUIET)
 vsil_require(LIBLZMA_FOUND "liblzma (VTI files compressed with LZMA)" liblzma-dev)
+# NIfTI-1/-2 files. Debian's NIFTIConfig.cmake names the nifti tools, which libnifti2-dev does
+# not install, so find_package(NIFTI) fails: the headers and libraries are found directly.
+find_path(NIFTI_INCLUDE_DIR nifti2_io.h PATH_SUFFIXES nifti)
+find_library(NIFTI2_LIBRARY nifti2)
+find_library(NIFTI_ZNZ_LIBRARY znz)
+vsil_require(NIFTI_INCLUDE_DIR "nifticlib headers (NIfTI files)" libnifti2-dev)
+vsil_require(NIFTI2_LIBRARY "nifticlib (NIfTI files)" libnifti2-dev)
+vsil_require(NIFTI_ZNZ_LIBRARY "nifticlib's znzlib (NIfTI files)" libnifti2-dev)
+add_library(vsil::nifti INTERFACE IMPORTED)
+target_include_directories(vsil::nifti INTERFACE ${NIFTI_INCLUDE_DIR})
+target_link_libraries(vsil::nifti INTERFACE ${NIFTI2_LIBRARY} ${NIFTI_ZNZ_LIBRARY} ZLIB::ZLIB m)
+# DICOM series (GDCM, with its codecs for compressed transfer syntaxes). Debian's
+# GDCMConfig.cmake, like NIfTI's, fails without the command-line tools (libgdcm-tools): the
+# headers and libraries are found directly.
+find_path(GDCM_INCLUDE_DIR gdcmImageReader.h PATH_SUFFIXES gdcm-3.0)
+find_library(GDCM_MSFF_LIBRARY gdcmMSFF)
+find_library(GDCM_DSED_LIBRARY gdcmDSED)
+find_library(GDCM_DICT_LIBRARY gdcmDICT)
+find_library(GDCM_COMMON_LIBRARY gdcmCommon)
+vsil_require(GDCM_INCLUDE_DIR "GDCM headers (DICOM series)" libgdcm-dev)
+vsil_require(GDCM_MSFF_LIBRARY "GDCM (DICOM series)" libgdcm-dev)
+add_library(vsil::gdcm INTERFACE IMPORTED)
+target_include_directories(vsil::gdcm INTERFACE ${GDCM_INCLUDE_DIR})
+target_link_libraries(vsil::gdcm INTERFACE ${GDCM_MSFF_LIBRARY} ${GDCM_DSED_LIBRARY}
+                                           ${GDCM_DICT_LIBRARY} ${GDCM_COMMON_LIBRARY})
 
 find_package(Threads REQUIRED)
 

@@ -190,6 +190,11 @@ Volume readMetaImage(const std::string& path, const LoadOptions& options) {
   const MetaPayload payload = locateMetaPayload(path, header, fileSize);
   const std::uint64_t expected = payloadBytes(dims, type);
   const std::string layout = " (" + describeLayout(dims, type) + ")";
+  auto format = [&](const char* encoding) {
+    return std::string("MetaImage (") +
+           (toLower(*header.find("elementdatafile")) == "local" ? ".mha" : ".mhd") + ", " +
+           encoding + ")";
+  };
   // The payload's bytes: HeaderSize skipped, or (-1) the last `tail` bytes of the file.
   std::uint64_t offset = payload.offset, available = payload.size;
   auto skipHeader = [&](std::uint64_t tail) {
@@ -228,6 +233,7 @@ Volume readMetaImage(const std::string& path, const LoadOptions& options) {
     const std::string what = "zlib " + payload.label;
     checkInflatable(path, what, size, expected);
     Volume volume = startVolume(path, dims, type, spacing, options);
+    volume.format = format("zlib");
     SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
     const FileReader file(payload.path);
     // MetaIO writes zlib streams; gzip ones (magic 1f 8b) are read too.
@@ -261,6 +267,7 @@ Volume readMetaImage(const std::string& path, const LoadOptions& options) {
                                 " bytes, too many for ASCII text of" + layout);
     }
     Volume volume = startVolume(path, dims, type, spacing, options);
+    volume.format = format("ASCII");
     SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
     const auto bytes = readFileBytes(payload.path, offset, available);
     parseTextSamples(path,
@@ -274,6 +281,7 @@ Volume readMetaImage(const std::string& path, const LoadOptions& options) {
                               std::to_string(expected) + " expected" + layout);
   }
   Volume volume = startVolume(path, dims, type, spacing, options);
+  volume.format = format("raw");
   SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
   readUncompressed(FileReader(payload.path), offset, sink, options);
   return volume;

@@ -9,15 +9,18 @@
 namespace vsil::io {
 
 Volume startVolume(const std::string& path, glm::ivec3 fileDims, StoredType type,
-                   glm::dvec3 spacing, const LoadOptions& options) {
-  const SampleType kept = keptSampleType(type);
+                   glm::dvec3 spacing, const LoadOptions& options, Rescale rescale) {
+  const SampleType kept = keptSampleType(type, rescale);
   const VolumeSubset subset = planVolume(path, fileDims, kept, options.limits, options.region);
   Volume volume;
-  volume.name = std::filesystem::path(path).stem().string();
+  std::filesystem::path stem = std::filesystem::path(path).stem();
+  if (std::filesystem::path(path).extension() == ".gz") stem = stem.stem();  // name.nii.gz
+  volume.name = stem.string();
   volume.source = path;
   volume.dims = subset.dims();
   volume.spacing = spacing * double(subset.stride);
   if (type != storedTypeOf(kept)) volume.fileType = storedTypeName(type);
+  if (!rescale.identity()) volume.rescale = rescale;
   if (!subset.whole()) volume.subset = subset;
   volume.allocate(kept);
   return volume;

@@ -19,14 +19,16 @@ Volume readNrrd(const std::string& path, const LoadOptions& options);       // .
 Volume readVti(const std::string& path, const LoadOptions& options);        // VTK XML ImageData
 Volume readLegacyVtk(const std::string& path, const LoadOptions& options);  // STRUCTURED_POINTS
 Volume readMetaImage(const std::string& path, const LoadOptions& options);  // .mhd, .mha
+Volume readNifti(const std::string& path, const LoadOptions& options);      // .nii, .hdr/.img, .gz
+Volume readDicomSeries(const std::string& path, const LoadOptions& options);  // folder, slice
 Volume readRaw(const std::string& path, const RawLayout& layout, const LoadOptions& options);
 
 // A new volume read from `path`: name = the file's base name without extension, source = the
 // path; dims, sample type, spacing (times the stride) and subset from the file's `fileDims`,
-// `type` and `spacing` and options.region, checked against options.limits (planVolume) before
-// its samples are allocated.
+// `type` (through `rescale`) and `spacing` and options.region, checked against options.limits
+// (planVolume) before its samples are allocated.
 Volume startVolume(const std::string& path, glm::ivec3 fileDims, StoredType type,
-                   glm::dvec3 spacing, const LoadOptions& options);
+                   glm::dvec3 spacing, const LoadOptions& options, Rescale rescale = {});
 // The subset a volume from startVolume keeps (the whole file when it has none).
 VolumeSubset subsetOf(const Volume& volume);
 

@@ -81,6 +81,10 @@ SampleType keptSampleType(StoredType type) {
   return SampleType::Float32;
 }
 
+SampleType keptSampleType(StoredType type, const Rescale& rescale) {
+  return rescale.identity() ? keptSampleType(type) : SampleType::Float32;
+}
+
 StoredType storedTypeOf(SampleType type) {
   switch (type) {
     case SampleType::UInt8:

@@ -33,6 +33,8 @@ bool isWideInteger(StoredType type);
 std::size_t storedSize(StoredType type);
 const char* storedTypeName(StoredType type);
 SampleType keptSampleType(StoredType type);
+// The type a volume keeps for `type` read through `rescale`: Float32 unless it is the identity.
+SampleType keptSampleType(StoredType type, const Rescale& rescale);
 StoredType storedTypeOf(SampleType type);
 
 // Payload bytes for `dims` samples of `type`, once planVolume has passed (so the product cannot

@@ -72,17 +72,18 @@ std::uint64_t convertWideIntegers(float* out, const std::uint8_t* in, std::size_
 }  // namespace
 
 SampleSink::SampleSink(const std::string& where, Volume& volume, const VolumeSubset& subset,
-                       StoredType fileType, bool bigEndian)
+                       StoredType fileType, bool bigEndian, Rescale rescale)
     : where_(where),
       volume_(volume),
       subset_(subset),
       fileType_(fileType),
       swap_(bigEndian != (std::endian::native == std::endian::big)),
+      rescale_(rescale),
       size_(storedSize(fileType)),
       fileSamples_(std::uint64_t(subset.fileDims.x) * std::uint64_t(subset.fileDims.y) *
                    std::uint64_t(subset.fileDims.z)),
       whole_(subset.whole()) {
-  if (volume.type() != keptSampleType(fileType) || volume.dims != subset.dims() ||
+  if (volume.type() != keptSampleType(fileType, rescale) || volume.dims != subset.dims() ||
       volume.sampleCount() != volume.voxelCount()) {
     throw std::logic_error("SampleSink: the volume is not allocated for the subset");
   }
@@ -102,10 +103,51 @@ bool SampleSink::rowKept(std::uint64_t row) const {
   return subset_.keeps(1, int(row % fy)) && subset_.keeps(2, int(row / fy));
 }
 
+template <typename FileC>
+void SampleSink::decodeRescaled(float* out, const std::uint8_t* in, std::size_t inStep,
+                                std::size_t count, std::uint64_t firstSample) {
+  std::uint64_t inexact = 0;
+  for (std::size_t i = 0; i < count; ++i, in += inStep) {
+    const double value = rescale_.slope * double(load<FileC>(in, swap_)) + rescale_.intercept;
+    checkFinite(where_, firstSample + i * subset_.stride, value);
+    if (std::abs(value) > double(std::numeric_limits<float>::max())) {
+      badSample(where_, firstSample + i * subset_.stride,
+                "rescaled (" + std::to_string(value) + ") is beyond the float32 range");
+    }
+    out[i] = float(value);
+    inexact += double(out[i]) != value;
+  }
+  if (inexact) inexact_ += inexact;
+}
+
 template <typename Out>
 void SampleSink::decode(Out* out, const std::uint8_t* in, std::size_t inStep, std::size_t count,
                         std::uint64_t firstSample) {
   if constexpr (std::is_same_v<Out, float>) {
+    if (!rescale_.identity()) {
+      switch (fileType_) {
+        case StoredType::UInt8:
+          return decodeRescaled<std::uint8_t>(out, in, inStep, count, firstSample);
+        case StoredType::Int8:
+          return decodeRescaled<std::int8_t>(out, in, inStep, count, firstSample);
+        case StoredType::UInt16:
+          return decodeRescaled<std::uint16_t>(out, in, inStep, count, firstSample);
+        case StoredType::Int16:
+          return decodeRescaled<std::int16_t>(out, in, inStep, count, firstSample);
+        case StoredType::Int32:
+          return decodeRescaled<std::int32_t>(out, in, inStep, count, firstSample);
+        case StoredType::UInt32:
+          return decodeRescaled<std::uint32_t>(out, in, inStep, count, firstSample);
+        case StoredType::Int64:
+          return decodeRescaled<std::int64_t>(out, in, inStep, count, firstSample);
+        case StoredType::UInt64:
+          return decodeRescaled<std::uint64_t>(out, in, inStep, count, firstSample);
+        case StoredType::Float32:
+          return decodeRescaled<float>(out, in, inStep, count, firstSample);
+        case StoredType::Float64:
+          return decodeRescaled<double>(out, in, inStep, count, firstSample);
+      }
+    }
     if (fileType_ == StoredType::Float64) {
       std::uint64_t inexact = 0;
       for (std::size_t i = 0; i < count; ++i, in += inStep) {
@@ -223,11 +265,20 @@ void SampleSink::putValue(std::uint64_t index, double value) {
     if (!subset_.keeps(0, x) || !subset_.keeps(1, y) || !subset_.keeps(2, z)) return;
     kept = volume_.index(subset_.keptIndex(0, x), subset_.keptIndex(1, y), subset_.keptIndex(2, z));
   }
+  const bool rescaled = !rescale_.identity();
+  if (rescaled) {
+    value = rescale_.slope * value + rescale_.intercept;
+    checkFinite(where_, index, value);
+    if (std::abs(value) > double(std::numeric_limits<float>::max())) {
+      badSample(where_, index,
+                "rescaled (" + std::to_string(value) + ") is beyond the float32 range");
+    }
+  }
   volume_.visit([&](auto samples) {
     using Out = typename decltype(samples)::value_type;
     samples[kept] = Out(value);
     if constexpr (std::is_same_v<Out, float>) {
-      if ((fileType_ == StoredType::Float64 || isWideInteger(fileType_)) &&
+      if ((rescaled || fileType_ == StoredType::Float64 || isWideInteger(fileType_)) &&
           double(samples[kept]) != value) {
         ++inexact_;
       }
@@ -279,6 +330,12 @@ void SampleSink::finishAppending() {
 
 void SampleSink::finish() {
   volume_.inexactSamples = inexact_;
+  if (inexact_ > 0) {
+    volume_.warnings.push_back(
+        where_ + ": " + std::to_string(inexact_) + " of " + std::to_string(volume_.voxelCount()) +
+        " samples lost precision as float32 (the file's " + storedTypeName(fileType_) +
+        (rescale_.identity() ? std::string() : ", rescaled") + ")");
+  }
 }
 
 }  // namespace vsil::io

@@ -21,6 +21,7 @@ struct LoadOptions {
   VolumeLimits limits;
   std::optional<RawLayout> raw;  // set: the file is read as raw samples with this layout
   ReadRegion region;             // --crop, --stride: keep (and where possible read) only these
+  std::string series;            // DICOM: the Series Instance UID to read (--series)
   // Called now and then while the payload is read, with the bytes read so far and in all
   // (compressed bytes for compressed payloads); from the loading thread.
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;

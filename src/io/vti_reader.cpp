@@ -404,9 +404,15 @@ Volume readVti(const std::string& path, const LoadOptions& options) {
   const glm::dvec3 spacing = parseSpacing(path, "Spacing", attribute(image, "Spacing", "1 1 1"));
   const std::uint64_t expected = payloadBytes(dims, type);
   const std::string layout = " (" + describeLayout(dims, type) + ")";
-  auto start = [&] { return startVolume(path, dims, type, spacing, options); };
-
   const std::string format = attribute(array, "format", "ascii");
+  auto start = [&] {
+    Volume volume = startVolume(path, dims, type, spacing, options);
+    volume.format =
+        "VTK XML ImageData (" + format +
+        (encoding.compressed ? std::string(", ") + blockCodecName(encoding.codec) : "") + ")";
+    return volume;
+  };
+
   const char* text = array->GetText();
   if (format == "ascii") {
     Volume volume = start();

@@ -82,3 +82,74 @@ write('multichannel.mha', (mha % (3, '2 2 2', 'ElementNumberOfChannels = 3\n', '
 write('image_2d.mha', (mha % (2, '4 4', '', 'LOCAL')).encode() + bytes(16))
 write('missing_data.mhd', mha % (3, '4 4 4', '', 'no_such_data.raw'))
 write('slice_list.mhd', mha % (3, '4 4 4', '', 'LIST'))
+
+# NIfTI-1 (.nii, .nii.gz, .hdr/.img): truncated data, a 4D series, complex samples, a negative
+# size, a vox_offset far past any header, a cut gzip stream, a pair without its .img, text named
+# .nii, sizes past the memory limit.
+def nifti1(dims=(4, 4, 4), datatype=2, bitpix=8, vox_offset=352.0, extra_dims=(), magic=b'n+1\0'):
+    header = bytearray(348)
+    struct.pack_into('<i', header, 0, 348)
+    dim = [3 + len(extra_dims)] + list(dims) + list(extra_dims)
+    struct.pack_into('<8h', header, 40, *(dim + [1] * (8 - len(dim))))
+    struct.pack_into('<hh', header, 70, datatype, bitpix)
+    struct.pack_into('<8f', header, 76, 1, 1, 1, 1, 0, 0, 0, 0)
+    struct.pack_into('<f', header, 108, vox_offset)
+    header[344:348] = magic
+    return bytes(header) + (bytes(4) if magic == b'n+1\0' else b'')
+
+
+write('nifti_truncated.nii', nifti1() + bytes(10))
+write('nifti_4d.nii', nifti1(extra_dims=(5,)) + bytes(320))
+write('nifti_complex.nii', nifti1(datatype=32, bitpix=64) + bytes(512))
+write('nifti_negative_dim.nii', nifti1(dims=(4, -4, 4)) + bytes(64))
+write('nifti_vox_offset.nii', nifti1(vox_offset=1e12) + bytes(64))
+noise = bytes((i * 7919 + (i >> 3) * 104729) % 251 for i in range(16 * 16 * 8))
+whole = gzip.compress(nifti1(dims=(16, 16, 8)) + noise, 9, mtime=0)
+write('nifti_cut.nii.gz', whole[:len(whole) * 3 // 4])
+write('nifti_pair_no_img.hdr', nifti1(vox_offset=0.0, magic=b'ni1\0'))
+write('nifti_text.nii', 'this is not a NIfTI file, only text named like one\n' * 10)
+write('nifti_oversized.nii', nifti1(dims=(30000, 30000, 30000)) + bytes(64))
+
+
+# DICOM series (folders; written with pydicom): a missing slice, a slice cut short, no DICOM at
+# all, slices of two sizes, a header promising 65535 x 65535 slices, colour (RGB) pixels.
+def dicom_series(folder, count=3, positions=None, rows=3, columns=4, pixels=None, rgb=False):
+    from pydicom.dataset import Dataset, FileMetaDataset
+    from pydicom.uid import ExplicitVRLittleEndian, generate_uid
+    path = os.path.join(here, folder)
+    os.makedirs(path, exist_ok=True)
+    series = generate_uid(entropy_srcs=['bad', folder])
+    for k in range(count):
+        meta = FileMetaDataset()
+        meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.2'
+        meta.MediaStorageSOPInstanceUID = generate_uid(entropy_srcs=['bad', folder, str(k)])
+        meta.TransferSyntaxUID = ExplicitVRLittleEndian
+        ds = Dataset()
+        ds.file_meta = meta
+        ds.is_little_endian, ds.is_implicit_VR = True, False
+        ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
+        ds.Modality, ds.SeriesInstanceUID, ds.InstanceNumber = 'CT', series, k + 1
+        ds.ImageOrientationPatient = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+        ds.ImagePositionPatient = [0.0, 0.0, float(positions[k] if positions else 2 * k)]
+        ds.PixelSpacing = [1.0, 1.0]
+        r, c = (rows[k], columns[k]) if isinstance(rows, list) else (rows, columns)
+        ds.Rows, ds.Columns = r, c
+        ds.SamplesPerPixel = 3 if rgb else 1
+        ds.PhotometricInterpretation = 'RGB' if rgb else 'MONOCHROME2'
+        if rgb:
+            ds.PlanarConfiguration = 0
+        ds.BitsAllocated = ds.BitsStored = 8 if rgb else 16
+        ds.HighBit, ds.PixelRepresentation = (7 if rgb else 15), 0
+        ds.PixelData = pixels if pixels is not None else bytes((3 if rgb else 2) * r * c)
+        ds.save_as(os.path.join(path, 'slice%d.dcm' % k), write_like_original=False)
+
+
+dicom_series('dicom_missing_slice', count=4, positions=[0, 2, 4, 8])
+dicom_series('dicom_truncated')
+with open(os.path.join(here, 'dicom_truncated', 'slice1.dcm'), 'r+b') as f:
+    f.truncate(os.path.getsize(f.name) - 10)
+os.makedirs(os.path.join(here, 'dicom_none'), exist_ok=True)
+write('dicom_none/readme.txt', 'no DICOM here\n')
+dicom_series('dicom_mixed_sizes', rows=[3, 3, 5], columns=[4, 4, 4])
+dicom_series('dicom_huge', rows=65535, columns=65535, pixels=bytes(8))
+dicom_series('dicom_rgb', rgb=True)

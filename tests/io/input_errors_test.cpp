@@ -373,7 +373,9 @@ TEST(InputErrors, MissingFilesDirectoriesEmptyAndUnreadableFiles) {
   std::filesystem::create_directories(dir / "folder.nrrd");
   const std::string folder = (dir / "folder.nrrd").string();
   expectInputError([&] { loadVolume(folder); }, folder + ": is a directory", {});
-  expectInputError([&] { loadVolume(dir.string()); }, dir.string() + ": is a directory", {});
+  // A folder without an extension is read as a DICOM series.
+  expectInputError([&] { loadVolume(dir.string()); },
+                   dir.string() + ": is a folder without files (a DICOM series", {});
 
   for (const char* name : {"empty.nrrd", "empty.vti", "empty.vtk"}) {
     const std::string empty = (dir / name).string();
