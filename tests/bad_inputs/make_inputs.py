@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the bad-input corpus beside this script (committed; run again only to change it).
 Each file is small; cases.json says which command reads it and the exact error it must get."""
-import base64, gzip, os, struct, zlib
+import base64, gzip, lzma, os, struct, zlib
 
 here = os.path.dirname(os.path.abspath(__file__))
 
@@ -37,6 +37,16 @@ block = struct.pack('<4I', 1, 8, 0, len(packed)) + packed
 write('zlib_bomb.vti', (vti_head % ' compressor="vtkZLibDataCompressor"' +
                         '<DataArray type="UInt8" format="appended" offset="0"/>\n' + vti_tail +
                         '<AppendedData encoding="raw">_').encode() + block + b'</AppendedData></VTKFile>\n')
+# LZ4 and LZMA (xz) blocks get zlib's bomb check: a hand-made LZ4 block whose one match repeats
+# a zero byte ~25000 times, and 1 MiB of zeros in xz, each promised as 8 bytes.
+lz4_bomb = bytes([0x1f, 0x00, 0x01, 0x00]) + bytes([255] * 100) + bytes([0, 0x50]) + bytes(5)
+xz_bomb = lzma.compress(bytes(1 << 20), format=lzma.FORMAT_XZ)
+for name, compressor, packed in (('lz4_bomb.vti', 'vtkLZ4DataCompressor', lz4_bomb),
+                                 ('lzma_bomb.vti', 'vtkLZMADataCompressor', xz_bomb)):
+    block = struct.pack('<4I', 1, 8, 0, len(packed)) + packed
+    write(name, (vti_head % (' compressor="%s"' % compressor) +
+                 '<DataArray type="UInt8" format="appended" offset="0"/>\n' + vti_tail +
+                 '<AppendedData encoding="raw">_').encode() + block + b'</AppendedData></VTKFile>\n')
 write('bad_base64.vti', vti_head % '' + '<DataArray type="UInt8" format="binary">CAAAAA**AQIDBAUGBw==</DataArray>\n' + vti_tail + '</VTKFile>\n')
 
 vtk = '# vtk DataFile Version 3.0\nbad\n%s\nDATASET STRUCTURED_POINTS\nDIMENSIONS %s\nPOINT_DATA %s\nSCALARS s %s\nLOOKUP_TABLE default\n'

@@ -33,7 +33,9 @@ enum class FileFormat {
   VtkAscii,
   MetaImageRaw,
   MetaImageZlib,
-  MetaImageBigEndianDetached
+  MetaImageBigEndianDetached,
+  VtiAppendedLz4,
+  VtiAppendedLzma
 };
 
 const char* formatName(FileFormat f) {
@@ -50,7 +52,9 @@ const char* formatName(FileFormat f) {
                                 "VtkAscii",
                                 "MetaImageRaw",
                                 "MetaImageZlib",
-                                "MetaImageMsbDetached"};
+                                "MetaImageMsbDetached",
+                                "VtiAppendedLz4",
+                                "VtiAppendedLzma"};
   return names[int(f)];
 }
 
@@ -61,13 +65,15 @@ std::string asciiValues(const std::vector<float>& values) {
 }
 
 // VTK's zlib block layout (UInt32 header): [#blocks][block size][last size][sizes...] data.
-Bytes zlibBlocks(const Bytes& data, std::size_t blockSize) {
+// VTK's compressed block layout, each block compressed by `compress` (zlib by default).
+Bytes zlibBlocks(
+    const Bytes& data, std::size_t blockSize,
+    Bytes (*compress)(const Bytes&) = [](const Bytes& b) { return test::deflateBytes(b, false); }) {
   std::vector<Bytes> blocks;
   for (std::size_t at = 0; at < data.size(); at += blockSize) {
-    blocks.push_back(test::deflateBytes(
-        Bytes(data.begin() + std::ptrdiff_t(at),
-              data.begin() + std::ptrdiff_t(std::min(data.size(), at + blockSize))),
-        false));
+    blocks.push_back(
+        compress(Bytes(data.begin() + std::ptrdiff_t(at),
+                       data.begin() + std::ptrdiff_t(std::min(data.size(), at + blockSize)))));
   }
   Bytes out;
   test::appendWord(out, blocks.size(), 4, false);
@@ -138,6 +144,17 @@ std::pair<std::string, LoadOptions> writeVolume(FileFormat format,
       const std::size_t blockSize = format == FileFormat::VtiAppendedZlib ? 512 : 1001;
       return {vti(zlib, appendedArray,
                   "<AppendedData encoding=\"raw\">_" + test::asText(zlibBlocks(little, blockSize)) +
+                      "</AppendedData>"),
+              options};
+    }
+    case FileFormat::VtiAppendedLz4:
+    case FileFormat::VtiAppendedLzma: {
+      const bool lz4 = format == FileFormat::VtiAppendedLz4;
+      return {vti(lz4 ? " compressor=\"vtkLZ4DataCompressor\""
+                      : " compressor=\"vtkLZMADataCompressor\"",
+                  appendedArray,
+                  "<AppendedData encoding=\"raw\">_" +
+                      test::asText(zlibBlocks(little, 600, lz4 ? test::lz4Bytes : test::xzBytes)) +
                       "</AppendedData>"),
               options};
     }
@@ -274,7 +291,8 @@ INSTANTIATE_TEST_SUITE_P(EveryReader, CropStrideRead,
                                            FileFormat::VtiInlineBase64Zlib, FileFormat::VtiAscii,
                                            FileFormat::VtkBinary, FileFormat::VtkAscii,
                                            FileFormat::MetaImageRaw, FileFormat::MetaImageZlib,
-                                           FileFormat::MetaImageBigEndianDetached),
+                                           FileFormat::MetaImageBigEndianDetached,
+                                           FileFormat::VtiAppendedLz4, FileFormat::VtiAppendedLzma),
                          [](const auto& info) { return std::string(formatName(info.param)); });
 
 // Float samples are checked for NaN as they are decoded: a NaN outside the crop is never
