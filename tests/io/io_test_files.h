@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <span>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -146,6 +147,60 @@ inline std::vector<float> testValues(glm::ivec3 dims, SampleType type) {
     if (type == SampleType::Float32) values[i] = values[i] * 0.37f - 20.5f;
   }
   return values;
+}
+
+// One line of a fixture manifest (tests/io/<format>/fixtures.txt, written by that folder's
+// make_fixtures.py without vsil): a file and what a reader must find in it; `rest` holds the
+// line's further, format-specific fields.
+struct FixtureExpectation {
+  std::string file;
+  glm::ivec3 dims{0};
+  glm::dvec3 spacing{0.0};
+  std::string keptType;
+  std::string fileType;  // "" when kept as stored ("-" in the manifest)
+  std::uint64_t inexact = 0;
+  double sum = 0, first = 0, last = 0;  // of the samples as kept, summed in file order
+  std::vector<std::string> rest;
+};
+
+inline std::vector<FixtureExpectation> readFixtureManifest(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<FixtureExpectation> fixtures;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    FixtureExpectation f;
+    fields >> f.file >> f.dims.x >> f.dims.y >> f.dims.z >> f.spacing.x >> f.spacing.y >>
+        f.spacing.z >> f.keptType >> f.fileType >> f.inexact >> f.sum >> f.first >> f.last;
+    if (f.fileType == "-") f.fileType.clear();
+    for (std::string field; fields >> field;) f.rest.push_back(field);
+    fixtures.push_back(f);
+  }
+  return fixtures;
+}
+
+// Checks `volume` against the manifest line: dims, spacing, types, rounding, and the samples'
+// sum (in double, in file order, as make_fixtures.py adds them), first and last.
+inline void expectFixtureRead(const Volume& volume, const FixtureExpectation& f) {
+  EXPECT_EQ(volume.dims, f.dims);
+  EXPECT_EQ(volume.spacing, f.spacing);
+  EXPECT_EQ(sampleTypeName(volume.type()), f.keptType);
+  EXPECT_EQ(volume.fileType, f.fileType);
+  EXPECT_EQ(volume.inexactSamples, f.inexact);
+  double sum = 0;
+  for (std::size_t i = 0; i < volume.sampleCount(); ++i) sum += double(volume.value(i));
+  EXPECT_EQ(sum, f.sum);
+  EXPECT_EQ(double(volume.value(0)), f.first);
+  EXPECT_EQ(double(volume.value(volume.sampleCount() - 1)), f.last);
+}
+
+// A fixture's file name as a test name ("int16_gzip.nii.gz" -> "int16_gzip_nii_gz").
+inline std::string fixtureTestName(std::string file) {
+  for (char& c : file) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  }
+  return file;
 }
 
 // Expects `load()` to throw an InputError whose message is one line, starts with `prefix` and

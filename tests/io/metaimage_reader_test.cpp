@@ -3,8 +3,6 @@
 // them and the values a reader must find), files written here for the header variants, and the
 // errors for what vsil refuses.
 #include <cstdint>
-#include <fstream>
-#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -20,59 +18,18 @@ using test::Bytes;
 
 const fs::path kMetaImageFixtures = fs::path(VSIL_SOURCE_DIR) / "tests" / "io" / "metaimage";
 
-// One line of fixtures.txt: what make_fixtures.py wrote, computed without vsil.
-struct MetaImageFixture {
-  std::string file;
-  glm::ivec3 dims{0};
-  glm::dvec3 spacing{0.0};
-  std::string keptType;
-  std::string fileType;  // "" when kept as stored
-  std::uint64_t inexact = 0;
-  double sum = 0, first = 0, last = 0;
-};
-
-std::vector<MetaImageFixture> metaImageFixtures() {
-  std::ifstream in(kMetaImageFixtures / "fixtures.txt");
-  std::vector<MetaImageFixture> fixtures;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    MetaImageFixture f;
-    fields >> f.file >> f.dims.x >> f.dims.y >> f.dims.z >> f.spacing.x >> f.spacing.y >>
-        f.spacing.z >> f.keptType >> f.fileType >> f.inexact >> f.sum >> f.first >> f.last;
-    if (f.fileType == "-") f.fileType.clear();
-    fixtures.push_back(f);
-  }
-  return fixtures;
+std::vector<test::FixtureExpectation> metaImageFixtures() {
+  return test::readFixtureManifest(kMetaImageFixtures / "fixtures.txt");
 }
 
-class MetaImageFixtureRead : public ::testing::TestWithParam<MetaImageFixture> {};
+class MetaImageFixtureRead : public ::testing::TestWithParam<test::FixtureExpectation> {};
 
 TEST_P(MetaImageFixtureRead, FindsTheWrittenSamples) {
-  const MetaImageFixture& f = GetParam();
-  const Volume volume = loadVolume((kMetaImageFixtures / f.file).string());
-  EXPECT_EQ(volume.dims, f.dims);
-  EXPECT_EQ(volume.spacing, f.spacing);
-  EXPECT_EQ(sampleTypeName(volume.type()), f.keptType);
-  EXPECT_EQ(volume.fileType, f.fileType);
-  EXPECT_EQ(volume.inexactSamples, f.inexact);
-  // Summed in file order in double, as make_fixtures.py sums them: the same additions.
-  double sum = 0;
-  for (std::size_t i = 0; i < volume.sampleCount(); ++i) sum += double(volume.value(i));
-  EXPECT_EQ(sum, f.sum);
-  EXPECT_EQ(double(volume.value(0)), f.first);
-  EXPECT_EQ(double(volume.value(volume.sampleCount() - 1)), f.last);
+  test::expectFixtureRead(loadVolume((kMetaImageFixtures / GetParam().file).string()), GetParam());
 }
 
 INSTANTIATE_TEST_SUITE_P(Fixtures, MetaImageFixtureRead, ::testing::ValuesIn(metaImageFixtures()),
-                         [](const auto& info) {
-                           std::string name = info.param.file;
-                           for (char& c : name) {
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           }
-                           return name;
-                         });
+                         [](const auto& info) { return test::fixtureTestName(info.param.file); });
 
 TEST(MetaImageReader, EveryFixtureIsListed) {
   EXPECT_EQ(metaImageFixtures().size(), 20u);  // 12 element types and 8 layouts
