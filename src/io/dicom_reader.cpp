@@ -203,8 +203,16 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
   // The series: --series, else the given file's, else the largest.
   std::string wanted = options.series;
   if (wanted.empty() && !folderGiven) {
-    if (!scanner.IsKey(path.c_str())) throwInputError(path, "is not a DICOM file GDCM can read");
-    wanted = trimmed(scanner.GetValue(path.c_str(), kSeriesUid));
+    // The scanner names files as its folder listing did ("./a.dcm" for "a.dcm"): the given
+    // file is the one with its name.
+    std::string given_series;
+    for (const Series& s : all) {
+      for (const std::string& file : s.files) {
+        if (std::filesystem::path(file).filename() == given.filename()) given_series = s.uid;
+      }
+    }
+    if (given_series.empty()) throwInputError(path, "is not a DICOM image slice GDCM can read");
+    wanted = given_series;
   }
   const Series* chosen = &all.front();
   if (!wanted.empty()) {
@@ -241,6 +249,11 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
                               " lacks a valid Image Orientation (Patient) (0020,0037)");
   }
   const glm::dvec3 rowDir(iop[0], iop[1], iop[2]), columnDir(iop[3], iop[4], iop[5]);
+  if (glm::length(glm::cross(rowDir, columnDir)) < 1e-3) {
+    throwInputError(path, "slice " + fileLabel(chosen->files.front()) +
+                              ": Image Orientation (Patient) has no slice normal (its row and "
+                              "column directions are zero or parallel)");
+  }
   const glm::dvec3 normal = glm::normalize(glm::cross(rowDir, columnDir));
   const std::string rows = trimmed(scanner.GetValue(firstFile, kRows));
   const std::string columns = trimmed(scanner.GetValue(firstFile, kColumns));

@@ -123,7 +123,8 @@ write('nifti_oversized.nii', nifti1(dims=(30000, 30000, 30000)) + bytes(64))
 
 # DICOM series (folders; written with pydicom): a missing slice, a slice cut short, no DICOM at
 # all, slices of two sizes, a header promising 65535 x 65535 slices, colour (RGB) pixels.
-def dicom_series(folder, count=3, positions=None, rows=3, columns=4, pixels=None, rgb=False):
+def dicom_series(folder, count=3, positions=None, rows=3, columns=4, pixels=None, rgb=False,
+                 orientation=(1.0, 0.0, 0.0, 0.0, 1.0, 0.0)):
     from pydicom.dataset import Dataset, FileMetaDataset
     from pydicom.uid import ExplicitVRLittleEndian, generate_uid
     path = os.path.join(here, folder)
@@ -139,7 +140,7 @@ def dicom_series(folder, count=3, positions=None, rows=3, columns=4, pixels=None
         ds.is_little_endian, ds.is_implicit_VR = True, False
         ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
         ds.Modality, ds.SeriesInstanceUID, ds.InstanceNumber = 'CT', series, k + 1
-        ds.ImageOrientationPatient = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+        ds.ImageOrientationPatient = list(orientation)
         ds.ImagePositionPatient = [0.0, 0.0, float(positions[k] if positions else 2 * k)]
         ds.PixelSpacing = [1.0, 1.0]
         r, c = (rows[k], columns[k]) if isinstance(rows, list) else (rows, columns)
@@ -163,3 +164,4 @@ write('dicom_none/readme.txt', 'no DICOM here\n')
 dicom_series('dicom_mixed_sizes', rows=[3, 3, 5], columns=[4, 4, 4])
 dicom_series('dicom_huge', rows=65535, columns=65535, pixels=bytes(8))
 dicom_series('dicom_rgb', rgb=True)
+dicom_series('dicom_no_normal', orientation=(1.0, 0.0, 0.0, 1.0, 0.0, 0.0))

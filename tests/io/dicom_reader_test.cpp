@@ -105,6 +105,12 @@ TEST(DicomReader, ASliceFileStandsForItsSeries) {
   const Volume small = loadVolume((folder / "IM0007").string());
   EXPECT_EQ(small.dims.z, 3);
   EXPECT_TRUE(small.warnings.size() == 1u);  // the other series is still named
+  // Named relative to the working folder, as a user in that folder types it.
+  const fs::path before = fs::current_path();
+  fs::current_path(folder);
+  const Volume relative = loadVolume("IM0007");
+  fs::current_path(before);
+  EXPECT_EQ(test::floatsOf(relative), test::floatsOf(small));
 }
 
 TEST(DicomReader, CropAndStrideDecodeOnlyTheKeptSlices) {
