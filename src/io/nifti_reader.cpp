@@ -259,7 +259,9 @@ Volume readNifti(const std::string& path, const LoadOptions& options) {
   }
 
   const std::string dataPath = image->iname;
-  const std::string dataLabel = dataPath == path ? "its data" : "data file " + quote(dataPath);
+  const std::string dataLabel =
+      dataPath == path ? "its data"
+                       : "data file " + quote(std::filesystem::path(dataPath).filename().string());
   const bool gzipped = nifti_is_gzfile(dataPath.c_str()) != 0;
   const std::uint64_t expected = payloadBytes(dims, type);
   const auto offset = std::uint64_t(image->iname_offset);
