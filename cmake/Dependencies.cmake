@@ -7,6 +7,24 @@ function(vsil_require found what package)
   endif()
 endfunction()
 
+# A library Debian ships without a CMake config that works (or none): finds HEADER (in the
+# PATH_SUFFIXES folders) and each of LIBRARIES, requires them all from `package`, and makes the
+# INTERFACE target `target` carrying them, in that link order.
+function(vsil_import_library target what package)
+  cmake_parse_arguments(arg "" "HEADER" "PATH_SUFFIXES;LIBRARIES" ${ARGN})
+  string(MAKE_C_IDENTIFIER "${target}" id)
+  string(TOUPPER "${id}" id)
+  find_path(${id}_INCLUDE_DIR ${arg_HEADER} PATH_SUFFIXES ${arg_PATH_SUFFIXES})
+  vsil_require(${id}_INCLUDE_DIR "${what} headers" ${package})
+  add_library(${target} INTERFACE IMPORTED)
+  target_include_directories(${target} INTERFACE ${${id}_INCLUDE_DIR})
+  foreach(library ${arg_LIBRARIES})
+    find_library(${id}_${library}_LIBRARY ${library})
+    vsil_require(${id}_${library}_LIBRARY "${what} (lib${library})" ${package})
+    target_link_libraries(${target} INTERFACE ${${id}_${library}_LIBRARY})
+  endforeach()
+endfunction()
+
 find_package(PkgConfig QUIET)
 
 # OpenGL back ends (slicing/gl_context.h): OSMesa and headless EGL. Each is built when its
@@ -49,15 +67,8 @@ endif()
 message(STATUS "vsil GL back ends: osmesa ${VSIL_OSMESA_BUILT}, egl ${VSIL_EGL_BUILT}")
 
 # FFTW (single precision, with its threads library): Gaussian broadening in postfx.
-find_path(FFTW_INCLUDE_DIR fftw3.h)
-find_library(FFTW_FLOAT_LIBRARY fftw3f)
-find_library(FFTW_FLOAT_THREADS_LIBRARY fftw3f_threads)
-vsil_require(FFTW_INCLUDE_DIR "FFTW headers" libfftw3-dev)
-vsil_require(FFTW_FLOAT_LIBRARY "FFTW (single precision)" libfftw3-dev)
-vsil_require(FFTW_FLOAT_THREADS_LIBRARY "FFTW threads" libfftw3-dev)
-add_library(vsil::fftw INTERFACE IMPORTED)
-target_include_directories(vsil::fftw INTERFACE ${FFTW_INCLUDE_DIR})
-target_link_libraries(vsil::fftw INTERFACE ${FFTW_FLOAT_THREADS_LIBRARY} ${FFTW_FLOAT_LIBRARY})
+vsil_import_library(vsil::fftw "FFTW (single precision, threads)" libfftw3-dev HEADER fftw3.h
+                    LIBRARIES fftw3f_threads fftw3f)
 
 # OpenCV core/imgproc/imgcodecs: image files, distance transforms. Debian's per-module -dev
 # packages ship no CMake config, so the modules are found one by one.
@@ -94,40 +105,19 @@ find_package(ZLIB QUIET)
 vsil_require(ZLIB_FOUND "zlib (compressed VTI, NRRD and MetaImage payloads)" zlib1g-dev)
 
 # VTI files written with vtkLZ4DataCompressor and vtkLZMADataCompressor.
-find_path(LZ4_INCLUDE_DIR lz4.h)
-find_library(LZ4_LIBRARY lz4)
-vsil_require(LZ4_INCLUDE_DIR "LZ4 headers (VTI files compressed with LZ4)" liblz4-dev)
-vsil_require(LZ4_LIBRARY "LZ4 (VTI files compressed with LZ4)" liblz4-dev)
-add_library(vsil::lz4 INTERFACE IMPORTED)
-target_include_directories(vsil::lz4 INTERFACE ${LZ4_INCLUDE_DIR})
-target_link_libraries(vsil::lz4 INTERFACE ${LZ4_LIBRARY})
+vsil_import_library(vsil::lz4 "LZ4 (VTI files compressed with LZ4)" liblz4-dev HEADER lz4.h
+                    LIBRARIES lz4)
 find_package(LibLZMA QUIET)
 vsil_require(LIBLZMA_FOUND "liblzma (VTI files compressed with LZMA)" liblzma-dev)
 # NIfTI-1/-2 files. Debian's NIFTIConfig.cmake names the nifti tools, which libnifti2-dev does
-# not install, so find_package(NIFTI) fails: the headers and libraries are found directly.
-find_path(NIFTI_INCLUDE_DIR nifti2_io.h PATH_SUFFIXES nifti)
-find_library(NIFTI2_LIBRARY nifti2)
-find_library(NIFTI_ZNZ_LIBRARY znz)
-vsil_require(NIFTI_INCLUDE_DIR "nifticlib headers (NIfTI files)" libnifti2-dev)
-vsil_require(NIFTI2_LIBRARY "nifticlib (NIfTI files)" libnifti2-dev)
-vsil_require(NIFTI_ZNZ_LIBRARY "nifticlib's znzlib (NIfTI files)" libnifti2-dev)
-add_library(vsil::nifti INTERFACE IMPORTED)
-target_include_directories(vsil::nifti INTERFACE ${NIFTI_INCLUDE_DIR})
-target_link_libraries(vsil::nifti INTERFACE ${NIFTI2_LIBRARY} ${NIFTI_ZNZ_LIBRARY} ZLIB::ZLIB m)
+# not install, so find_package(NIFTI) fails: vsil_import_library finds them directly.
+vsil_import_library(vsil::nifti "nifticlib (NIfTI files)" libnifti2-dev HEADER nifti2_io.h
+                    PATH_SUFFIXES nifti LIBRARIES nifti2 znz)
+target_link_libraries(vsil::nifti INTERFACE ZLIB::ZLIB m)
 # DICOM series (GDCM, with its codecs for compressed transfer syntaxes). Debian's
-# GDCMConfig.cmake, like NIfTI's, fails without the command-line tools (libgdcm-tools): the
-# headers and libraries are found directly.
-find_path(GDCM_INCLUDE_DIR gdcmImageReader.h PATH_SUFFIXES gdcm-3.0)
-find_library(GDCM_MSFF_LIBRARY gdcmMSFF)
-find_library(GDCM_DSED_LIBRARY gdcmDSED)
-find_library(GDCM_DICT_LIBRARY gdcmDICT)
-find_library(GDCM_COMMON_LIBRARY gdcmCommon)
-vsil_require(GDCM_INCLUDE_DIR "GDCM headers (DICOM series)" libgdcm-dev)
-vsil_require(GDCM_MSFF_LIBRARY "GDCM (DICOM series)" libgdcm-dev)
-add_library(vsil::gdcm INTERFACE IMPORTED)
-target_include_directories(vsil::gdcm INTERFACE ${GDCM_INCLUDE_DIR})
-target_link_libraries(vsil::gdcm INTERFACE ${GDCM_MSFF_LIBRARY} ${GDCM_DSED_LIBRARY}
-                                           ${GDCM_DICT_LIBRARY} ${GDCM_COMMON_LIBRARY})
+# GDCMConfig.cmake, like NIfTI's, fails without the command-line tools (libgdcm-tools).
+vsil_import_library(vsil::gdcm "GDCM (DICOM series)" libgdcm-dev HEADER gdcmImageReader.h
+                    PATH_SUFFIXES gdcm-3.0 LIBRARIES gdcmMSFF gdcmDSED gdcmDICT gdcmCommon)
 
 find_package(Threads REQUIRED)
 
