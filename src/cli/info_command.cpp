@@ -254,8 +254,8 @@ const CommandRegistration registerInfoCommand(20, [](CLI::App& app) {
       "info",
       "Print a volume's size, type, spacing and value statistics; with --gl, the OpenGL context");
   command->add_option("volume", options->volume,
-                      "volume file (.nrrd .nhdr .vti .vtk .mhd .mha, raw with "
-                      "--dims/--type) or gen:NAME[:N]");
+                      "volume file (" + std::string(kVolumeFileKinds) +
+                          "; raw with --dims/--type) or gen:NAME[:N]");
   command->add_flag("--json", options->json, "machine-readable output");
   addVolumeOptions(*command, options->load);
   addGlOptions(*command, options->gl, /*valueOptional=*/true);

@@ -42,12 +42,10 @@ Volume loadVolume(const std::string& spec, const LoadOptions& options) {
     io::FileReader(spec).readAt(128, magic);
     if (std::equal(magic, magic + 4, "DICM")) return io::readDicomSeries(spec, options);
   }
-  throwInputError(spec,
-                  "unknown volume format" +
-                      (extension.empty() ? std::string() : " " + io::quote(extension)) +
-                      " (known: .nrrd, .nhdr, .vti, .vtk, .mhd, .mha, .nii, .nii.gz, .hdr/.img, "
-                      ".dcm or a folder of DICOM slices, gen:NAME[:N]; a "
-                      "headerless raw file needs --dims and --type)");
+  throwInputError(spec, "unknown volume format" +
+                            (extension.empty() ? std::string() : " " + io::quote(extension)) +
+                            " (known: " + kVolumeFileKinds +
+                            ", gen:NAME[:N]; a headerless raw file needs --dims and --type)");
 }
 
 }  // namespace vsil
