@@ -356,14 +356,12 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
   if (volume.name.empty()) volume.name = "dicom";
   volume.warnings = warnings;
   const VolumeSubset subset = subsetOf(volume);
-  glm::dmat4 worldFromIndex(glm::dvec4(rowDir * spacing.x, 0), glm::dvec4(columnDir * spacing.y, 0),
-                            glm::dvec4(normal * spacingZ, 0), glm::dvec4(slices.front().origin, 1));
-  const glm::dvec3 keptOrigin = glm::dvec3(worldFromIndex * glm::dvec4(glm::dvec3(subset.lo), 1));
-  for (int axis = 0; axis < 3; ++axis) worldFromIndex[axis] *= double(subset.stride);
-  worldFromIndex[3] = glm::dvec4(keptOrigin, 1);
+  const glm::dmat4 worldFromFile(
+      glm::dvec4(rowDir * spacing.x, 0), glm::dvec4(columnDir * spacing.y, 0),
+      glm::dvec4(normal * spacingZ, 0), glm::dvec4(slices.front().origin, 1));
   volume.orientations.push_back({"patient",
                                  "LPS",
-                                 worldFromIndex,
+                                 worldFromFile * fileFromKept(subset),
                                  {axisLetter(rowDir), axisLetter(columnDir), axisLetter(normal)}});
 
   // Decode the kept slices in order; each must match the first's size, format and rescale.

@@ -11,8 +11,6 @@
 #include <memory>
 #include <vector>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "core/error.h"
 #include "core/options.h"
 #include "io/file_access.h"
@@ -199,12 +197,10 @@ std::string axesOf(const nifti_dmat44& m) {
 
 // The image's qform and sform, for the samples the volume keeps (index 0 is the subset's first).
 std::vector<Orientation> orientationsOf(const nifti_image& image, const VolumeSubset& subset) {
-  const glm::dmat4 keptFromFile =
-      glm::scale(glm::translate(glm::dmat4(1.0), glm::dvec3(subset.lo)), glm::dvec3(subset.stride));
   std::vector<Orientation> result;
   auto add = [&](const char* name, int code, const nifti_dmat44& m) {
     if (code <= 0) return;
-    result.push_back({name, nifti_xform_string(code), toGlm(m) * keptFromFile, axesOf(m)});
+    result.push_back({name, nifti_xform_string(code), toGlm(m) * fileFromKept(subset), axesOf(m)});
   };
   add("qform", image.qform_code, image.qto_xyz);
   add("sform", image.sform_code, image.sto_xyz);

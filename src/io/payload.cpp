@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "io/file_access.h"
 #include "io/readers.h"
 
@@ -31,6 +33,11 @@ VolumeSubset subsetOf(const Volume& volume) {
   VolumeSubset whole;
   whole.fileDims = whole.hi = volume.dims;
   return whole;
+}
+
+glm::dmat4 fileFromKept(const VolumeSubset& subset) {
+  return glm::scale(glm::translate(glm::dmat4(1.0), glm::dvec3(subset.lo)),
+                    glm::dvec3(subset.stride));
 }
 
 void readUncompressed(const FileReader& file, std::uint64_t offset, SampleSink& sink,

@@ -31,6 +31,9 @@ Volume startVolume(const std::string& path, glm::ivec3 fileDims, StoredType type
                    glm::dvec3 spacing, const LoadOptions& options, Rescale rescale = {});
 // The subset a volume from startVolume keeps (the whole file when it has none).
 VolumeSubset subsetOf(const Volume& volume);
+// From the kept samples' indices to the file's (file = lo + stride · kept): a file's
+// world-from-index transform times this places the kept samples (Volume::orientations).
+glm::dmat4 fileFromKept(const VolumeSubset& subset);
 
 // Reads the samples `sink` keeps from an uncompressed payload at `offset` of `file`: only the
 // rows it keeps, each from its first to its last kept sample, in pieces of a few MiB.
