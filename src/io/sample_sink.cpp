@@ -43,6 +43,15 @@ void checkFinite(const std::string& where, std::uint64_t index, double value) {
   if (std::isinf(value)) badSample(where, index, "is infinite");
 }
 
+// Throws unless `value` is finite and within float32's range; `what` ("" or "rescaled ")
+// names it in the message.
+void checkFloat32(const std::string& where, std::uint64_t index, double value, const char* what) {
+  checkFinite(where, index, value);
+  if (std::abs(value) > double(std::numeric_limits<float>::max())) {
+    badSample(where, index, what + ("(" + std::to_string(value) + ") is beyond the float32 range"));
+  }
+}
+
 // Whether float32 `kept` holds the integer `value` exactly (every integer up to 2^24 does).
 // Compared as integers: the float of a 64-bit value may be 2^63 or 2^64, beyond its type.
 template <typename Integer>
@@ -104,16 +113,15 @@ bool SampleSink::rowKept(std::uint64_t row) const {
 }
 
 template <typename FileC>
-void SampleSink::decodeRescaled(float* out, const std::uint8_t* in, std::size_t inStep,
-                                std::size_t count, std::uint64_t firstSample) {
+void SampleSink::decodeViaDouble(float* out, const std::uint8_t* in, std::size_t inStep,
+                                 std::size_t count, std::uint64_t firstSample) {
+  const bool rescaled = !rescale_.identity();  // else the stored value as is (-0 stays -0)
+  const char* what = rescaled ? "rescaled " : "";
   std::uint64_t inexact = 0;
   for (std::size_t i = 0; i < count; ++i, in += inStep) {
-    const double value = rescale_.slope * double(load<FileC>(in, swap_)) + rescale_.intercept;
-    checkFinite(where_, firstSample + i * subset_.stride, value);
-    if (std::abs(value) > double(std::numeric_limits<float>::max())) {
-      badSample(where_, firstSample + i * subset_.stride,
-                "rescaled (" + std::to_string(value) + ") is beyond the float32 range");
-    }
+    const double stored = double(load<FileC>(in, swap_));
+    const double value = rescaled ? rescale_.slope * stored + rescale_.intercept : stored;
+    checkFloat32(where_, firstSample + i * subset_.stride, value, what);
     out[i] = float(value);
     inexact += double(out[i]) != value;
   }
@@ -127,41 +135,29 @@ void SampleSink::decode(Out* out, const std::uint8_t* in, std::size_t inStep, st
     if (!rescale_.identity()) {
       switch (fileType_) {
         case StoredType::UInt8:
-          return decodeRescaled<std::uint8_t>(out, in, inStep, count, firstSample);
+          return decodeViaDouble<std::uint8_t>(out, in, inStep, count, firstSample);
         case StoredType::Int8:
-          return decodeRescaled<std::int8_t>(out, in, inStep, count, firstSample);
+          return decodeViaDouble<std::int8_t>(out, in, inStep, count, firstSample);
         case StoredType::UInt16:
-          return decodeRescaled<std::uint16_t>(out, in, inStep, count, firstSample);
+          return decodeViaDouble<std::uint16_t>(out, in, inStep, count, firstSample);
         case StoredType::Int16:
-          return decodeRescaled<std::int16_t>(out, in, inStep, count, firstSample);
+          return decodeViaDouble<std::int16_t>(out, in, inStep, count, firstSample);
         case StoredType::Int32:
-          return decodeRescaled<std::int32_t>(out, in, inStep, count, firstSample);
+          return decodeViaDouble<std::int32_t>(out, in, inStep, count, firstSample);
         case StoredType::UInt32:
-          return decodeRescaled<std::uint32_t>(out, in, inStep, count, firstSample);
+          return decodeViaDouble<std::uint32_t>(out, in, inStep, count, firstSample);
         case StoredType::Int64:
-          return decodeRescaled<std::int64_t>(out, in, inStep, count, firstSample);
+          return decodeViaDouble<std::int64_t>(out, in, inStep, count, firstSample);
         case StoredType::UInt64:
-          return decodeRescaled<std::uint64_t>(out, in, inStep, count, firstSample);
+          return decodeViaDouble<std::uint64_t>(out, in, inStep, count, firstSample);
         case StoredType::Float32:
-          return decodeRescaled<float>(out, in, inStep, count, firstSample);
+          return decodeViaDouble<float>(out, in, inStep, count, firstSample);
         case StoredType::Float64:
-          return decodeRescaled<double>(out, in, inStep, count, firstSample);
+          return decodeViaDouble<double>(out, in, inStep, count, firstSample);
       }
     }
     if (fileType_ == StoredType::Float64) {
-      std::uint64_t inexact = 0;
-      for (std::size_t i = 0; i < count; ++i, in += inStep) {
-        const double value = load<double>(in, swap_);
-        checkFinite(where_, firstSample + i * subset_.stride, value);
-        if (std::abs(value) > double(std::numeric_limits<float>::max())) {
-          badSample(where_, firstSample + i * subset_.stride,
-                    "(" + std::to_string(value) + ") is beyond the float32 range");
-        }
-        out[i] = float(value);
-        inexact += double(out[i]) != value;
-      }
-      if (inexact) inexact_ += inexact;
-      return;
+      return decodeViaDouble<double>(out, in, inStep, count, firstSample);
     }
     if (isWideInteger(fileType_)) {
       std::uint64_t inexact = 0;
@@ -268,11 +264,7 @@ void SampleSink::putValue(std::uint64_t index, double value) {
   const bool rescaled = !rescale_.identity();
   if (rescaled) {
     value = rescale_.slope * value + rescale_.intercept;
-    checkFinite(where_, index, value);
-    if (std::abs(value) > double(std::numeric_limits<float>::max())) {
-      badSample(where_, index,
-                "rescaled (" + std::to_string(value) + ") is beyond the float32 range");
-    }
+    checkFloat32(where_, index, value, "rescaled ");
   }
   volume_.visit([&](auto samples) {
     using Out = typename decltype(samples)::value_type;

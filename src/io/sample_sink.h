@@ -67,9 +67,11 @@ class SampleSink {
   void finish();
 
  private:
+  // File samples of type FileC through the rescale (in double) into float32, each checked
+  // finite and within float range, counting those float32 rounds.
   template <typename FileC>
-  void decodeRescaled(float* out, const std::uint8_t* in, std::size_t inStep, std::size_t count,
-                      std::uint64_t firstSample);
+  void decodeViaDouble(float* out, const std::uint8_t* in, std::size_t inStep, std::size_t count,
+                       std::uint64_t firstSample);
   template <typename Out>
   void decode(Out* out, const std::uint8_t* in, std::size_t inStep, std::size_t count,
               std::uint64_t firstSample);
