@@ -1,6 +1,7 @@
 #include "cli/cli_volume_options.h"
 
 #include <array>
+#include <iostream>
 #include <limits>
 
 #include "core/error.h"
@@ -95,6 +96,9 @@ void addVolumeOptions(CLI::App& command, VolumeOptions& options) {
   command.add_option("--stride", options.stride,
                      "read only every Nth sample along each axis (from the crop's start); the "
                      "spacing grows N times");
+  command.add_option("--series", options.series,
+                     "DICOM: the Series Instance UID to read from a folder holding several (by "
+                     "default the series with the most slices; `vsil info` lists the others)");
   command.add_option("--max-memory", options.maxMemoryMiB,
                      "refuse work needing more than this many MiB of memory (default: half the "
                      "physical memory, " +
@@ -113,6 +117,7 @@ LoadOptions toLoadOptions(const VolumeOptions& options) {
     load.limits.maxBytes = std::size_t(mib) << 20;
   }
   if (!options.crop.empty()) load.region = parseCrop(options.crop);
+  load.series = options.series;
   if (options.stride) {
     const long long stride = *options.stride;
     if (stride < 1 || stride > limits::kMaxStride) {
@@ -152,6 +157,11 @@ LoadOptions toLoadOptions(const VolumeOptions& options) {
   layout.bigEndian = options.endian == "big";
   load.raw = layout;
   return load;
+}
+
+void printVolumeWarnings(const Volume& volume) {
+  for (const std::string& warning : volume.warnings)
+    std::cerr << "vsil: warning: " << warning << "\n";
 }
 
 }  // namespace vsil::cli
