@@ -124,10 +124,11 @@ IllustrationStyle styleFromOptions(const std::vector<OptionSpec>& declared,
 }
 
 Illustration illustrationFromOptions(const std::vector<OptionSpec>& declared,
-                                     const OptionReader& options) {
+                                     const OptionReader& options,
+                                     const IllustrationStyle& defaults) {
   const bool styled =
       declares(declared, "style") && options.given("style") && !options.text("style").empty();
-  const IllustrationStyle base = styled ? loadStyle(options.text("style")) : IllustrationStyle{};
+  const IllustrationStyle base = styled ? loadStyle(options.text("style")) : defaults;
   return resolveIllustration(base, styleFromOptions(declared, options),
                              styled ? options.text("style") : "");
 }

@@ -44,11 +44,17 @@ std::vector<OptionSpec> withToneFillOptions(std::vector<OptionSpec> own) {
   return own;
 }
 
+Illustration toneFillIllustration(const OptionReader& options) {
+  IllustrationStyle defaults;
+  defaults.parameters["k_ds"] = 0.0;
+  return illustrationFromOptions(toneFillOptions(), options, defaults);
+}
+
 nlohmann::json ToneFill::resolve(const FrameContext& frame) {
   active_ = frame.settings->toneFill.has_value();
   if (!active_) return nlohmann::json::object();
   color_ = *frame.settings->toneFill;
-  illustration_ = illustrationFromOptions(toneFillOptions(), *frame.options);
+  illustration_ = toneFillIllustration(*frame.options);
   nlohmann::json parameters = nlohmann::json::object();
   for (const auto& name : toneFillParameterNames()) parameters[name] = illustration_[name];
   nlohmann::json lights = nlohmann::json::array();

@@ -9,8 +9,8 @@
 // (RenderSettings::toneFill), n the outward normal at the hit (common.glsl outwardNormalEye: the
 // gradient `--fill shaded` takes its |n·v| from), d the hit's normalized depth, c_b the frame's
 // background. Parameters come from --param with the paper's names (only these eight), lights
-// from --light, both declared by the technique (toneFillOptions) and illustrate's defaults
-// otherwise. The pass runs only when the render asks for tone fill.
+// from --light, both declared by the technique (toneFillOptions); toneFillIllustration's
+// defaults otherwise. The pass runs only when the render asks for tone fill.
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +33,10 @@ std::vector<OptionSpec> toneFillOptions();
 void checkToneFillValues(const OptionValues& given);
 // A technique's own options followed by toneFillOptions().
 std::vector<OptionSpec> withToneFillOptions(std::vector<OptionSpec> own);
+// The tone fill's parameters and lights from --param and --light: illustrate's defaults, except
+// k_ds = 0 (distance blending off until asked for: at illustrate's k_ds = 1, k_de = 0.5 an
+// iso-surface a third of the way in is blended 58 % towards the background and its tones fade).
+Illustration toneFillIllustration(const OptionReader& options);
 
 class ToneFill {
  public:

@@ -10,7 +10,7 @@ namespace vsil::reference {
 
 ToneFillReference::ToneFillReference(const RenderSettings& settings, const ReferenceSetup& setup) {
   if (!settings.toneFill) return;
-  illustration_ = illustrationFromOptions(toneFillOptions(), setup.options);
+  illustration_ = toneFillIllustration(setup.options);
   color_ = settings.toneFill->rgb01();
   const Rgba background = settings.background.value_or(kDefaultBackground);
   formulas_.emplace(IllustrationFormulas{illustration_, {}, glm::vec3(0.0f), background.rgb01()});
