@@ -262,7 +262,8 @@ std::string OptionSpec::describe() const {
 
 void checkOptions(const std::vector<OptionSpec>& specs, const OptionValues& values,
                   const std::string& owner) {
-  for (const auto& [name, value] : values) {
+  for (const auto& given : values) {
+    const std::string& name = given.first;  // not a structured binding: clang 14 cannot capture one
     const auto it = std::find_if(specs.begin(), specs.end(),
                                  [&](const OptionSpec& spec) { return spec.name == name; });
     if (it == specs.end()) {
@@ -271,7 +272,7 @@ void checkOptions(const std::vector<OptionSpec>& specs, const OptionValues& valu
       throwInputError("--" + name, "not an option of " + owner + " (its options: " +
                                        (flags.empty() ? "none" : joined(flags, ", ")) + ")");
     }
-    it->check(value);
+    it->check(given.second);
   }
 }
 
