@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <iomanip>
 #include <memory>
+#include <sstream>
 #include <vector>
 
 #include "core/error.h"
@@ -72,7 +74,7 @@ struct RawHeader {
   int version = 0;  // 1 or 2
   std::int64_t dim[8] = {};
   int datatype = 0;
-  std::int64_t voxOffset = 0;
+  double voxOffset = 0;  // NIfTI-1 stores a float (any value, 1e25 too), NIfTI-2 an int64
   double pixdim[4] = {};
 };
 
@@ -109,14 +111,14 @@ RawHeader readRawHeader(const std::string& path) {
     const auto* h = static_cast<const nifti_2_header*>(raw);
     for (int i = 0; i < 8; ++i) header.dim[i] = h->dim[i];
     header.datatype = h->datatype;
-    header.voxOffset = h->vox_offset;
+    header.voxOffset = double(h->vox_offset);
     for (int i = 0; i < 4; ++i) header.pixdim[i] = h->pixdim[i];
     if (!nifti_hdr2_looks_good(h)) header.version = -2;
   } else {
     const auto* h = static_cast<const nifti_1_header*>(raw);
     for (int i = 0; i < 8; ++i) header.dim[i] = h->dim[i];
     header.datatype = h->datatype;
-    header.voxOffset = std::isfinite(h->vox_offset) ? std::int64_t(h->vox_offset) : -1;
+    header.voxOffset = h->vox_offset;
     for (int i = 0; i < 4; ++i) header.pixdim[i] = h->pixdim[i];
     if (!nifti_hdr1_looks_good(h)) header.version = -1;
   }
@@ -142,9 +144,13 @@ void checkRawHeader(const std::string& path, const RawHeader& header) {
                                 "e.g. with fslroi or nibabel");
     }
   }
-  if (header.voxOffset < 0) throwInputError(path, "vox_offset is negative or not finite");
-  if (std::uint64_t(header.voxOffset) > kMaxExtensionBytes) {
-    throwInputError(path, "vox_offset " + std::to_string(header.voxOffset) + " is beyond " +
+  if (!(header.voxOffset >= 0) || std::isinf(header.voxOffset)) {
+    throwInputError(path, "vox_offset is negative or not finite");
+  }
+  if (header.voxOffset > double(kMaxExtensionBytes)) {
+    std::ostringstream offset;  // the file's number: 999999995904, 1.79827990282068e+25
+    offset << std::setprecision(15) << header.voxOffset;
+    throwInputError(path, "vox_offset " + offset.str() + " is beyond " +
                               std::to_string(kMaxExtensionBytes >> 20) +
                               " MiB: not the header of an image");
   }
