@@ -92,14 +92,21 @@ Renderer::Renderer(gl::GlContext& context) : impl_(std::make_unique<Impl>()) {
 
 Renderer::~Renderer() = default;
 
+std::size_t Renderer::brickCount() const {
+  return impl_->volumeTexture ? impl_->volumeTexture->brickCount() : 0;
+}
+
 const gl::ProgramCache& Renderer::programs() const {
   return impl_->programs;
 }
 
-void Renderer::setVolume(const Volume& volume) {
+void Renderer::setVolume(const Volume& volume, std::uint64_t maxTextureBytes) {
+  impl_->gradients.reset(nullptr, volume.spacing);
   impl_->volumeTexture.reset();
-  impl_->volumeTexture.emplace(volume);
-  impl_->gradients.reset(impl_->volumeTexture->id(), volume.dims, volume.spacing);
+  impl_->volumeTexture.emplace(volume, maxTextureBytes);
+  impl_->gradients.reset(&*impl_->volumeTexture, volume.spacing);
+  if (!impl_->uniforms) impl_->uniforms.emplace();
+  impl_->uniforms->uploadBricks(impl_->volumeTexture->layout());
   ++impl_->volumeGeneration;
   impl_->brickRanges.emplace(volume);
   impl_->dims = volume.dims;
@@ -123,7 +130,9 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   result.sliceCount = int(plan.slices.size());
   result.sliceStepEye = plan.stepEye;
 
-  // All slice polygons as triangle fans in one buffer, uploaded once per frame.
+  // All slice pieces (slicer.h slicePieces) as triangle fans in one buffer, uploaded once per
+  // frame.
+  const BrickLayout& layout = impl_->volumeTexture->layout();
   std::vector<glm::vec3> vertices;
   std::vector<SliceContext> slices(plan.slices.size());
   for (std::size_t k = 0; k < plan.slices.size(); ++k) {
@@ -131,9 +140,16 @@ RenderResult Renderer::render(const RenderSettings& settings) {
     slice.index = int(k);
     slice.slice = &plan.slices[k];
     slice.firstVertex = GLint(vertices.size());
-    slice.vertexCount = GLsizei(plan.slices[k].polygonVoxel.size());
-    for (const auto& p : plan.slices[k].polygonVoxel) vertices.emplace_back(p);
-    slice.recentBounds[0] = polygonPixelBounds(result.view, plan.slices[k].polygonVoxel);
+    if (!plan.slices[k].polygonVoxel.empty()) {
+      for (const SlicePiece& piece : slicePieces(result.view, layout, plan.slices[k].eyeDistance)) {
+        slice.pieces.push_back(
+            {GLint(vertices.size()), GLsizei(piece.polygonVoxel.size()), piece.brick});
+        for (const auto& p : piece.polygonVoxel) vertices.emplace_back(p);
+        slice.recentBounds[0] =
+            slice.recentBounds[0].united(polygonPixelBounds(result.view, piece.polygonVoxel));
+      }
+    }
+    slice.vertexCount = GLsizei(vertices.size()) - slice.firstVertex;
     for (std::size_t back = 1; back <= 2 && back <= k; ++back) {
       slice.recentBounds[back] = slices[k - back].recentBounds[0];
     }
@@ -150,7 +166,9 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, impl_->volumeTexture->id());
+  // One brick: bound for the whole frame (drawSlicePolygon binds each piece's brick otherwise).
+  gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, impl_->volumeTexture->brickTexture(0));
+  impl_->uniforms->bindBrick(0);
 
   FrameContext frame;
   frame.settings = &settings;
@@ -160,7 +178,7 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   frame.dims = impl_->dims;
   frame.spacing = impl_->spacing;
   frame.valueRange = impl_->valueRange;
-  frame.volumeTexture = impl_->volumeTexture->id();
+  frame.volume = &*impl_->volumeTexture;
   frame.sliceVertexArray = impl_->sliceVertexArray.id();
   frame.screenVertexArray = impl_->screenVertexArray.id();
   frame.programs = &impl_->programs;

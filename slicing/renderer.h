@@ -15,6 +15,7 @@
 #include "core/camera.h"
 #include "core/color.h"
 #include "core/frame.h"
+#include "core/limits.h"
 #include "core/options.h"
 #include "core/volume.h"
 
@@ -74,8 +75,12 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Uploads the volume as a 3D texture (replacing any previous one).
-  void setVolume(const Volume& volume);
+  // Uploads the volume as 3D textures (replacing any previous ones): one brick when it fits
+  // one texture of at most `maxTextureBytes` (--max-texture-mib), else as many as needed
+  // (core/brick_layout.h). Frames are the same bytes either way.
+  void setVolume(const Volume& volume, std::uint64_t maxTextureBytes = limits::kMaxTextureBytes);
+  // Bricks of the current volume's texture (0 before setVolume).
+  std::size_t brickCount() const;
   RenderResult render(const RenderSettings& settings);
 
   // The programs built so far (tests count recompiles).

@@ -39,7 +39,8 @@ TechniqueInfo silhouetteTechniqueInfo() {
           {isoOption(), pipelineOption()},
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<SilhouetteTechnique>(); },
-          /*usesGradients=*/false, /*checkValues=*/{}};
+          /*usesGradients=*/false,
+          /*checkValues=*/{}};
 }
 
 BrickOccupancy SilhouetteTechnique::occupancy(const FrameContext& frame) const {
@@ -62,6 +63,7 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
   const float iso = float(frame.options->number("iso"));
   programs_.finish = &finishProgram(frame, {"techniques/silhouette/silhouette.glsl"});
   if (pipeline_ == SlicingPipeline::Tiles) {
+    requireOneBrick(frame, "--pipeline tiles", "use --pipeline fast or paper (the same pixels)");
     // The march writes every pixel's record once: nothing to clear, no depth buffer.
     programs_.march =
         &marchProgram(frame, sources(), "techniques/silhouette/march.comp", kMarchShape);
