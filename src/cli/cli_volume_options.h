@@ -16,13 +16,14 @@
 namespace vsil::cli {
 
 struct VolumeOptions {
-  std::string dims;                       // --dims XxYxZ (raw files)
-  std::string type;                       // --type uint8|uint16|int16|float32 (raw files)
-  std::string spacing;                    // --spacing a,b,c (raw files; default 1,1,1)
-  std::string endian;                     // --endian little|big (raw files; default little)
-  std::optional<long long> maxMemoryMiB;  // --max-memory MiB; unset keeps VolumeLimits' default
-  std::string crop;                       // --crop X0:X1,Y0:Y1,Z0:Z1 (half-open voxel ranges)
-  std::optional<long long> stride;        // --stride N (every Nth sample per axis)
+  std::string dims;                        // --dims XxYxZ (raw files)
+  std::string type;                        // --type uint8|uint16|int16|float32 (raw files)
+  std::string spacing;                     // --spacing a,b,c (raw files; default 1,1,1)
+  std::string endian;                      // --endian little|big (raw files; default little)
+  std::optional<long long> maxMemoryMiB;   // --max-memory MiB; unset keeps VolumeLimits' default
+  std::string crop;                        // --crop X0:X1,Y0:Y1,Z0:Z1 (half-open voxel ranges)
+  std::optional<long long> stride;         // --stride N (every Nth sample per axis)
+  std::optional<long long> maxTextureMiB;  // --max-texture-mib N (the largest brick texture)
 };
 
 // Adds --dims, --type, --spacing, --endian (group "Raw volume layout"), --crop, --stride and

@@ -51,7 +51,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   RenderJob job(glOptions);
   Volume loaded = loadVolume(flags.input, load);
   progress.step("uploading the volume");
-  const Volume& volume = job.setVolume(std::move(loaded), flags.input);
+  const Volume& volume = job.setVolume(std::move(loaded), flags.input, load.limits.maxTextureBytes);
   progress.finish();
   RenderOutput output = job.render(request, loadOptions.limits);
   for (const auto& warning : output.warnings) std::cerr << "vsil: warning: " << warning << "\n";
