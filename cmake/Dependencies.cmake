@@ -7,6 +7,24 @@ function(vsil_require found what package)
   endif()
 endfunction()
 
+# A library Debian ships without a CMake config that works (or none): finds HEADER (in the
+# PATH_SUFFIXES folders) and each of LIBRARIES, requires them all from `package`, and makes the
+# INTERFACE target `target` carrying them, in that link order.
+function(vsil_import_library target what package)
+  cmake_parse_arguments(arg "" "HEADER" "PATH_SUFFIXES;LIBRARIES" ${ARGN})
+  string(MAKE_C_IDENTIFIER "${target}" id)
+  string(TOUPPER "${id}" id)
+  find_path(${id}_INCLUDE_DIR ${arg_HEADER} PATH_SUFFIXES ${arg_PATH_SUFFIXES})
+  vsil_require(${id}_INCLUDE_DIR "${what} headers" ${package})
+  add_library(${target} INTERFACE IMPORTED)
+  target_include_directories(${target} INTERFACE ${${id}_INCLUDE_DIR})
+  foreach(library ${arg_LIBRARIES})
+    find_library(${id}_${library}_LIBRARY ${library})
+    vsil_require(${id}_${library}_LIBRARY "${what} (lib${library})" ${package})
+    target_link_libraries(${target} INTERFACE ${${id}_${library}_LIBRARY})
+  endforeach()
+endfunction()
+
 find_package(PkgConfig QUIET)
 
 # OpenGL back ends (slicing/gl_context.h): OSMesa and headless EGL. Each is built when its
@@ -49,15 +67,8 @@ endif()
 message(STATUS "vsil GL back ends: osmesa ${VSIL_OSMESA_BUILT}, egl ${VSIL_EGL_BUILT}")
 
 # FFTW (single precision, with its threads library): Gaussian broadening in postfx.
-find_path(FFTW_INCLUDE_DIR fftw3.h)
-find_library(FFTW_FLOAT_LIBRARY fftw3f)
-find_library(FFTW_FLOAT_THREADS_LIBRARY fftw3f_threads)
-vsil_require(FFTW_INCLUDE_DIR "FFTW headers" libfftw3-dev)
-vsil_require(FFTW_FLOAT_LIBRARY "FFTW (single precision)" libfftw3-dev)
-vsil_require(FFTW_FLOAT_THREADS_LIBRARY "FFTW threads" libfftw3-dev)
-add_library(vsil::fftw INTERFACE IMPORTED)
-target_include_directories(vsil::fftw INTERFACE ${FFTW_INCLUDE_DIR})
-target_link_libraries(vsil::fftw INTERFACE ${FFTW_FLOAT_THREADS_LIBRARY} ${FFTW_FLOAT_LIBRARY})
+vsil_import_library(vsil::fftw "FFTW (single precision, threads)" libfftw3-dev HEADER fftw3.h
+                    LIBRARIES fftw3f_threads fftw3f)
 
 # OpenCV core/imgproc/imgcodecs: image files, distance transforms. Debian's per-module -dev
 # packages ship no CMake config, so the modules are found one by one.
@@ -91,7 +102,22 @@ find_package(tinyxml2 QUIET)
 vsil_require(tinyxml2_FOUND "TinyXML-2 (VTK XML files)" libtinyxml2-dev)
 
 find_package(ZLIB QUIET)
-vsil_require(ZLIB_FOUND "zlib (compressed VTI and NRRD payloads)" zlib1g-dev)
+vsil_require(ZLIB_FOUND "zlib (compressed VTI, NRRD and MetaImage payloads)" zlib1g-dev)
+
+# VTI files written with vtkLZ4DataCompressor and vtkLZMADataCompressor.
+vsil_import_library(vsil::lz4 "LZ4 (VTI files compressed with LZ4)" liblz4-dev HEADER lz4.h
+                    LIBRARIES lz4)
+find_package(LibLZMA QUIET)
+vsil_require(LIBLZMA_FOUND "liblzma (VTI files compressed with LZMA)" liblzma-dev)
+# NIfTI-1/-2 files. Debian's NIFTIConfig.cmake names the nifti tools, which libnifti2-dev does
+# not install, so find_package(NIFTI) fails: vsil_import_library finds them directly.
+vsil_import_library(vsil::nifti "nifticlib (NIfTI files)" libnifti2-dev HEADER nifti2_io.h
+                    PATH_SUFFIXES nifti LIBRARIES nifti2 znz)
+target_link_libraries(vsil::nifti INTERFACE ZLIB::ZLIB m)
+# DICOM series (GDCM, with its codecs for compressed transfer syntaxes). Debian's
+# GDCMConfig.cmake, like NIfTI's, fails without the command-line tools (libgdcm-tools).
+vsil_import_library(vsil::gdcm "GDCM (DICOM series)" libgdcm-dev HEADER gdcmImageReader.h
+                    PATH_SUFFIXES gdcm-3.0 LIBRARIES gdcmMSFF gdcmDSED gdcmDICT gdcmCommon)
 
 find_package(Threads REQUIRED)
 

@@ -124,7 +124,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
 
   RenderJob job(glOptions);
   // The render's memory is checked from the file's header, before any payload is read.
-  job.load(renderFlags.input, RenderJob::loadOptionsFor(base, loadOptions));
+  printVolumeWarnings(job.load(renderFlags.input, RenderJob::loadOptionsFor(base, loadOptions)));
   const fs::path outDir = flags.outDir;
   if (!flags.outDir.empty()) prepareOutDir(outDir);
   std::optional<VideoFile> video;

@@ -9,8 +9,8 @@ namespace vsil::cli {
 
 void addRenderOptions(CLI::App& command, RenderFlags& flags) {
   command.add_option("input", flags.input,
-                     "Volume file (.nrrd .nhdr .vti .vtk, raw with --dims/--type) or "
-                     "gen:NAME[:N]; default " +
+                     "Volume file (" + std::string(kVolumeFileKinds) +
+                         "; raw with --dims/--type) or gen:NAME[:N]; default " +
                          std::string(kDefaultInput));
   addTechniqueOptions(command, flags.technique, flags.techniqueOptions);
   command.add_flag("--no-empty-space-skipping", flags.noEmptySpaceSkipping,

@@ -1,6 +1,7 @@
 #include "cli/cli_volume_options.h"
 
 #include <array>
+#include <iostream>
 #include <limits>
 
 #include "core/error.h"
@@ -99,6 +100,9 @@ void addVolumeOptions(CLI::App& command, VolumeOptions& options) {
                      "cut the volume into 3D textures (bricks) of at most this many MiB (default " +
                          std::to_string(limits::kMaxTextureBytes >> 20) +
                          ", the most one texture holds here); the images are the same");
+  command.add_option("--series", options.series,
+                     "DICOM: the Series Instance UID to read from a folder holding several (by "
+                     "default the series with the most slices; `vsil info` lists the others)");
   command.add_option("--max-memory", options.maxMemoryMiB,
                      "refuse work needing more than this many MiB of memory (default: half the "
                      "physical memory, " +
@@ -126,6 +130,7 @@ LoadOptions toLoadOptions(const VolumeOptions& options) {
     load.limits.maxTextureBytes = std::uint64_t(mib) << 20;
   }
   if (!options.crop.empty()) load.region = parseCrop(options.crop);
+  load.series = options.series;
   if (options.stride) {
     const long long stride = *options.stride;
     if (stride < 1 || stride > limits::kMaxStride) {
@@ -165,6 +170,11 @@ LoadOptions toLoadOptions(const VolumeOptions& options) {
   layout.bigEndian = options.endian == "big";
   load.raw = layout;
   return load;
+}
+
+void printVolumeWarnings(const Volume& volume) {
+  for (const std::string& warning : volume.warnings)
+    std::cerr << "vsil: warning: " << warning << "\n";
 }
 
 }  // namespace vsil::cli

@@ -24,10 +24,11 @@ struct VolumeOptions {
   std::string crop;                        // --crop X0:X1,Y0:Y1,Z0:Z1 (half-open voxel ranges)
   std::optional<long long> stride;         // --stride N (every Nth sample per axis)
   std::optional<long long> maxTextureMiB;  // --max-texture-mib N (the largest brick texture)
+  std::string series;                      // --series UID (DICOM folders with several series)
 };
 
-// Adds --dims, --type, --spacing, --endian (group "Raw volume layout"), --crop, --stride and
-// --max-memory.
+// Adds --dims, --type, --spacing, --endian (group "Raw volume layout"), --crop, --stride,
+// --max-texture-mib, --series and --max-memory.
 void addVolumeOptions(CLI::App& command, VolumeOptions& options);
 
 // Checks the flags together and turns them into LoadOptions. Throws InputError naming the flag
@@ -58,5 +59,30 @@ Json describeRead(const Volume& volume) {
   }
   return read.empty() ? Json() : read;
 }
+
+// For `info --json` and `render --meta-out`: what the file said about itself, {"format",
+// "rescale": {"slope", "intercept"}, "orientations": [{"name", "space", "axes",
+// "world_from_index" (4 rows of 4)}]} as they apply; null for generated volumes.
+template <typename Json>
+Json describeFile(const Volume& volume) {
+  Json file = Json::object();
+  if (!volume.format.empty()) file["format"] = volume.format;
+  if (volume.rescale) {
+    file["rescale"] = {{"slope", volume.rescale->slope}, {"intercept", volume.rescale->intercept}};
+  }
+  for (const Orientation& o : volume.orientations) {
+    Json rows = Json::array();
+    for (int r = 0; r < 4; ++r) {
+      rows.push_back({o.worldFromIndex[0][r], o.worldFromIndex[1][r], o.worldFromIndex[2][r],
+                      o.worldFromIndex[3][r]});
+    }
+    file["orientations"].push_back(
+        {{"name", o.name}, {"space", o.space}, {"axes", o.axes}, {"world_from_index", rows}});
+  }
+  return file.empty() ? Json() : file;
+}
+
+// Prints the volume's reading warnings to stderr, "vsil: warning: ..." each.
+void printVolumeWarnings(const Volume& volume);
 
 }  // namespace vsil::cli

@@ -104,6 +104,8 @@ nlohmann::ordered_json toJson(const Volume& volume, const Summary& s) {
   };
   if (auto read = describeRead<nlohmann::ordered_json>(volume); !read.is_null())
     json["read"] = read;
+  if (auto file = describeFile<nlohmann::ordered_json>(volume); !file.is_null())
+    json["file"] = file;
   json["min"] = s.range.min;
   json["max"] = s.range.max;
   json["mean"] = s.mean;
@@ -116,8 +118,9 @@ nlohmann::ordered_json toJson(const Volume& volume, const Summary& s) {
 
 std::string toText(const Volume& volume, const Summary& s) {
   std::ostringstream out;
-  out << "source    " << volume.source << "\n"
-      << "name      " << volume.name << "\n"
+  out << "source    " << volume.source << "\n";
+  if (!volume.format.empty()) out << "format    " << volume.format << "\n";
+  out << "name      " << volume.name << "\n"
       << "dims      " << volume.dims.x << " x " << volume.dims.y << " x " << volume.dims.z << " ("
       << volume.voxelCount() << " samples)\n"
       << "type      " << sampleTypeName(volume.type());
@@ -126,6 +129,15 @@ std::string toText(const Volume& volume, const Summary& s) {
         << " samples rounded)";
   }
   out << "\n";
+  if (volume.rescale) {
+    out << "rescale   value = " << volume.rescale->slope << " * stored + "
+        << volume.rescale->intercept << "\n";
+  }
+  for (const Orientation& o : volume.orientations) {
+    out << "placement " << o.name << " (" << o.space << "), axes " << o.axes << ", origin "
+        << o.worldFromIndex[3].x << " " << o.worldFromIndex[3].y << " " << o.worldFromIndex[3].z
+        << "\n";
+  }
   if (volume.subset) {
     const VolumeSubset& subset = *volume.subset;
     out << "read      --crop " << subset.cropText() << " --stride " << subset.stride << " of "
@@ -221,6 +233,7 @@ void runInfo(const InfoOptions& options) {
     load.progress = progress.callback();
     volume = loadVolume(options.volume, load);
     progress.finish();  // before stdout, which a terminal shows on the same lines
+    printVolumeWarnings(*volume);
     summary = summarize(*volume);
   }
   // Printed only once everything succeeded: an error leaves stdout empty.
@@ -241,8 +254,8 @@ const CommandRegistration registerInfoCommand(20, [](CLI::App& app) {
       "info",
       "Print a volume's size, type, spacing and value statistics; with --gl, the OpenGL context");
   command->add_option("volume", options->volume,
-                      "volume file (.nrrd .nhdr .vti .vtk, raw with "
-                      "--dims/--type) or gen:NAME[:N]");
+                      "volume file (" + std::string(kVolumeFileKinds) +
+                          "; raw with --dims/--type) or gen:NAME[:N]");
   command->add_flag("--json", options->json, "machine-readable output");
   addVolumeOptions(*command, options->load);
   addGlOptions(*command, options->gl, /*valueOptional=*/true);

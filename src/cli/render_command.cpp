@@ -50,6 +50,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   load.progress = progress.callback();
   RenderJob job(glOptions);
   Volume loaded = loadVolume(flags.input, load);
+  printVolumeWarnings(loaded);
   progress.step("uploading the volume");
   const Volume& volume = job.setVolume(std::move(loaded), flags.input, load.limits.maxTextureBytes);
   progress.finish();
@@ -64,6 +65,9 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
     meta["parameters"]["out"] = outputs.out;
     if (auto read = describeRead<nlohmann::json>(volume); !read.is_null()) {
       meta["dataset"]["read"] = read;
+    }
+    if (auto file = describeFile<nlohmann::json>(volume); !file.is_null()) {
+      meta["dataset"]["file"] = file;
     }
     meta["timings_ms"]["total"] =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -24,8 +24,8 @@
 namespace vsil {
 
 // The types a volume keeps its samples in, in the data's own units. Files with other types
-// convert when read (io/sample_codec.h): float64 (and, later, 32/64-bit integers) to Float32,
-// counting the samples whose value changed (Volume::inexactSamples).
+// convert when read (io/sample_codec.h): float64 and 32/64-bit integers to Float32, counting
+// the samples whose value changed (Volume::inexactSamples).
 enum class SampleType { UInt8, Int8, UInt16, Int16, Float32 };
 inline constexpr SampleType kSampleTypes[] = {SampleType::UInt8, SampleType::Int8,
                                               SampleType::UInt16, SampleType::Int16,
@@ -91,6 +91,24 @@ constexpr SampleType sampleTypeFor() {
     static_assert(sizeof(C) == 0, "not a sample type");
 }
 
+// A linear map a file asks to apply to its stored values (NIfTI scl_slope / scl_inter, DICOM
+// Rescale Slope / Intercept): value = slope * stored + intercept.
+struct Rescale {
+  double slope = 1.0;
+  double intercept = 0.0;
+  bool identity() const { return slope == 1.0 && intercept == 0.0; }
+};
+
+// A file's transform from sample indices (i, j, k) to world coordinates, e.g. a NIfTI sform.
+struct Orientation {
+  std::string name;                // "qform", "sform", "patient" (DICOM)
+  std::string space;               // what the world frame is: "scanner", "MNI152", "LPS", ...
+  glm::dmat4 worldFromIndex{1.0};  // column-major, as GLM; world = M * (i, j, k, 1)
+  // The world axis each index axis runs most along, e.g. "RAS": i toward Right, j toward
+  // Anterior, k toward Superior (the letters name the positive direction).
+  std::string axes;
+};
+
 class Volume {
  public:
   std::string name;    // dataset name: a file's base name without extension, or the generator's
@@ -99,10 +117,24 @@ class Volume {
   glm::dvec3 spacing{1.0};  // distance between sample centres along x, y, z (any unit)
   // The file's sample type when the volume keeps another ("float64" kept as float32), else "".
   std::string fileType;
-  // Samples whose value changed in that conversion (float64 values that float32 rounds).
+  // Samples whose value changed in that conversion (float64 values that float32 rounds,
+  // integers beyond 2^24 that it cannot hold).
   std::uint64_t inexactSamples = 0;
+  // The file's rescale, when it has one that changes values (the volume then keeps float32 and
+  // its samples are the rescaled values, e.g. CT in Hounsfield units).
+  std::optional<Rescale> rescale;
   // Set when only part of the file was read (--crop, --stride): which part.
   std::optional<VolumeSubset> subset;
+  // The file's format and variant, for `vsil info` and --meta-out ("NIfTI-1 (.nii.gz)"); ""
+  // for generated volumes and arrays.
+  std::string format;
+  // What the reader found worth telling but not refusing (samples float32 rounded, other DICOM
+  // series in the folder), one line each; the commands print them as warnings.
+  std::vector<std::string> warnings;
+  // The file's placement of the samples in a world frame, when it states one (NIfTI qform and
+  // sform, DICOM patient position): recorded, not applied — vsil renders in index space
+  // scaled by the spacing.
+  std::vector<Orientation> orientations;
 
   // Sizes the samples for `dims` in `type`, all zero (replacing any previous samples).
   void allocate(SampleType type);

@@ -226,6 +226,8 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
   const Payload payload = locatePayload(path, header, fileSize);
   const std::uint64_t expected = payloadBytes(dims, type);
   const std::string layout = " (" + describeLayout(dims, type) + ")";
+  const std::string format =
+      "NRRD (" + encoding + ", " + (payload.path == path ? "attached" : "detached") + ")";
 
   if (encoding == "raw") {
     std::uint64_t offset = payload.offset;
@@ -245,6 +247,7 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
                                 std::to_string(expected) + " expected" + layout);
     }
     Volume volume = startVolume(path, dims, type, spacing, options);
+    volume.format = format;
     SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
     readUncompressed(FileReader(payload.path), offset, sink, options);
     return volume;
@@ -263,6 +266,7 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
     const std::string what = "gzip " + payload.label;
     checkInflatable(path, what, payload.size, inflated);
     Volume volume = startVolume(path, dims, type, spacing, options);
+    volume.format = format;
     SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
     // Streamed: compressed pieces in, inflated pieces straight into the sink, which keeps only
     // the samples of the subset (a compressed stream cannot be entered in the middle).
@@ -296,6 +300,7 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
                                 " bytes, too many for ascii text of" + layout);
     }
     Volume volume = startVolume(path, dims, type, spacing, options);
+    volume.format = format;
     SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
     const auto bytes = readFileBytes(payload.path, payload.offset, payload.size);
     const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());

@@ -3,21 +3,26 @@
 #include <filesystem>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "io/file_access.h"
 #include "io/readers.h"
 
 namespace vsil::io {
 
 Volume startVolume(const std::string& path, glm::ivec3 fileDims, StoredType type,
-                   glm::dvec3 spacing, const LoadOptions& options) {
-  const SampleType kept = keptSampleType(type);
+                   glm::dvec3 spacing, const LoadOptions& options, Rescale rescale) {
+  const SampleType kept = keptSampleType(type, rescale);
   const VolumeSubset subset = planVolume(path, fileDims, kept, options.limits, options.region);
   Volume volume;
-  volume.name = std::filesystem::path(path).stem().string();
+  std::filesystem::path stem = std::filesystem::path(path).stem();
+  if (std::filesystem::path(path).extension() == ".gz") stem = stem.stem();  // name.nii.gz
+  volume.name = stem.string();
   volume.source = path;
   volume.dims = subset.dims();
   volume.spacing = spacing * double(subset.stride);
   if (type != storedTypeOf(kept)) volume.fileType = storedTypeName(type);
+  if (!rescale.identity()) volume.rescale = rescale;
   if (!subset.whole()) volume.subset = subset;
   volume.allocate(kept);
   return volume;
@@ -28,6 +33,11 @@ VolumeSubset subsetOf(const Volume& volume) {
   VolumeSubset whole;
   whole.fileDims = whole.hi = volume.dims;
   return whole;
+}
+
+glm::dmat4 fileFromKept(const VolumeSubset& subset) {
+  return glm::scale(glm::translate(glm::dmat4(1.0), glm::dvec3(subset.lo)),
+                    glm::dvec3(subset.stride));
 }
 
 void readUncompressed(const FileReader& file, std::uint64_t offset, SampleSink& sink,

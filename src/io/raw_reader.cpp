@@ -19,6 +19,7 @@ Volume readRaw(const std::string& path, const RawLayout& layout, const LoadOptio
                               describeLayout(layout.dims, type) + ")");
   }
   Volume volume = startVolume(path, layout.dims, type, layout.spacing, options);
+  volume.format = "raw (headerless)";
   SampleSink sink(path, volume, subsetOf(volume), type, layout.bigEndian);
   readUncompressed(FileReader(path), 0, sink, options);
   return volume;

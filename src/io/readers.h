@@ -18,16 +18,22 @@ class FileReader;
 Volume readNrrd(const std::string& path, const LoadOptions& options);       // .nrrd, .nhdr
 Volume readVti(const std::string& path, const LoadOptions& options);        // VTK XML ImageData
 Volume readLegacyVtk(const std::string& path, const LoadOptions& options);  // STRUCTURED_POINTS
+Volume readMetaImage(const std::string& path, const LoadOptions& options);  // .mhd, .mha
+Volume readNifti(const std::string& path, const LoadOptions& options);      // .nii, .hdr/.img, .gz
+Volume readDicomSeries(const std::string& path, const LoadOptions& options);  // folder, slice
 Volume readRaw(const std::string& path, const RawLayout& layout, const LoadOptions& options);
 
 // A new volume read from `path`: name = the file's base name without extension, source = the
 // path; dims, sample type, spacing (times the stride) and subset from the file's `fileDims`,
-// `type` and `spacing` and options.region, checked against options.limits (planVolume) before
-// its samples are allocated.
+// `type` (through `rescale`) and `spacing` and options.region, checked against options.limits
+// (planVolume) before its samples are allocated.
 Volume startVolume(const std::string& path, glm::ivec3 fileDims, StoredType type,
-                   glm::dvec3 spacing, const LoadOptions& options);
+                   glm::dvec3 spacing, const LoadOptions& options, Rescale rescale = {});
 // The subset a volume from startVolume keeps (the whole file when it has none).
 VolumeSubset subsetOf(const Volume& volume);
+// From the kept samples' indices to the file's (file = lo + stride · kept): a file's
+// world-from-index transform times this places the kept samples (Volume::orientations).
+glm::dmat4 fileFromKept(const VolumeSubset& subset);
 
 // Reads the samples `sink` keeps from an uncompressed payload at `offset` of `file`: only the
 // rows it keeps, each from its first to its last kept sample, in pieces of a few MiB.

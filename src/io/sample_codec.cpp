@@ -18,11 +18,20 @@ std::size_t storedSize(StoredType type) {
     case StoredType::Int16:
       return 2;
     case StoredType::Float32:
+    case StoredType::Int32:
+    case StoredType::UInt32:
       return 4;
     case StoredType::Float64:
+    case StoredType::Int64:
+    case StoredType::UInt64:
       return 8;
   }
   return 1;
+}
+
+bool isWideInteger(StoredType type) {
+  return type == StoredType::Int32 || type == StoredType::UInt32 || type == StoredType::Int64 ||
+         type == StoredType::UInt64;
 }
 
 const char* storedTypeName(StoredType type) {
@@ -39,6 +48,14 @@ const char* storedTypeName(StoredType type) {
       return "float32";
     case StoredType::Float64:
       return "float64";
+    case StoredType::Int32:
+      return "int32";
+    case StoredType::UInt32:
+      return "uint32";
+    case StoredType::Int64:
+      return "int64";
+    case StoredType::UInt64:
+      return "uint64";
   }
   return "unknown";
 }
@@ -55,9 +72,17 @@ SampleType keptSampleType(StoredType type) {
       return SampleType::Int16;
     case StoredType::Float32:
     case StoredType::Float64:
+    case StoredType::Int32:
+    case StoredType::UInt32:
+    case StoredType::Int64:
+    case StoredType::UInt64:
       return SampleType::Float32;
   }
   return SampleType::Float32;
+}
+
+SampleType keptSampleType(StoredType type, const Rescale& rescale) {
+  return rescale.identity() ? keptSampleType(type) : SampleType::Float32;
 }
 
 StoredType storedTypeOf(SampleType type) {
@@ -98,13 +123,37 @@ void parseTextSamples(const std::string& where, std::string_view text, StoredTyp
   const char* end = text.data() + text.size();
   auto isSpace = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; };
   const bool isFloat = type == StoredType::Float32 || type == StoredType::Float64;
-  const double lo = type == StoredType::UInt8 || type == StoredType::UInt16 ? 0.0
-                    : type == StoredType::Int8                              ? -128.0
-                                                                            : -32768.0;
-  const double hi = type == StoredType::UInt8    ? 255.0
-                    : type == StoredType::Int8   ? 127.0
-                    : type == StoredType::UInt16 ? 65535.0
-                                                 : 32767.0;
+  // Integer ranges as doubles; text integers beyond 2^53 are read as the nearest double.
+  double lo = 0.0, hi = 0.0;
+  switch (type) {
+    case StoredType::UInt8:
+      hi = 255.0;
+      break;
+    case StoredType::Int8:
+      lo = -128.0, hi = 127.0;
+      break;
+    case StoredType::UInt16:
+      hi = 65535.0;
+      break;
+    case StoredType::Int16:
+      lo = -32768.0, hi = 32767.0;
+      break;
+    case StoredType::Int32:
+      lo = -0x1p31, hi = 0x1p31 - 1;
+      break;
+    case StoredType::UInt32:
+      hi = 0x1p32 - 1;
+      break;
+    case StoredType::Int64:
+      lo = -0x1p63, hi = 0x1p63;
+      break;
+    case StoredType::UInt64:
+      hi = 0x1p64;
+      break;
+    case StoredType::Float32:
+    case StoredType::Float64:
+      break;
+  }
   for (std::uint64_t i = 0; i < count; ++i) {
     while (p < end && isSpace(*p)) ++p;
     if (p == end) {

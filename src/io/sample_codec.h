@@ -11,13 +11,30 @@ namespace vsil::io {
 
 class SampleSink;
 
-// What a file may hold. Every type but Float64 is kept as it is; Float64 is kept as Float32
-// when every value is finite in float (rounded values are counted: Volume::inexactSamples).
-enum class StoredType { UInt8, Int8, UInt16, Int16, Float32, Float64 };
+// What a file may hold. UInt8 .. Float32 are kept as they are; the others are kept as Float32
+// (keptSampleType), counting the samples whose value changed (Volume::inexactSamples): Float64
+// when every value is finite in float, and the 32- and 64-bit integers, exact up to 2^24.
+enum class StoredType {
+  UInt8,
+  Int8,
+  UInt16,
+  Int16,
+  Float32,
+  Float64,
+  Int32,
+  UInt32,
+  Int64,
+  UInt64
+};
+
+// Whether `type` is one of the 32- and 64-bit integer types kept as Float32.
+bool isWideInteger(StoredType type);
 
 std::size_t storedSize(StoredType type);
 const char* storedTypeName(StoredType type);
 SampleType keptSampleType(StoredType type);
+// The type a volume keeps for `type` read through `rescale`: Float32 unless it is the identity.
+SampleType keptSampleType(StoredType type, const Rescale& rescale);
 StoredType storedTypeOf(SampleType type);
 
 // Payload bytes for `dims` samples of `type`, once planVolume has passed (so the product cannot

@@ -43,20 +43,56 @@ void checkFinite(const std::string& where, std::uint64_t index, double value) {
   if (std::isinf(value)) badSample(where, index, "is infinite");
 }
 
+// Throws unless `value` is finite and within float32's range; `what` ("" or "rescaled ")
+// names it in the message.
+void checkFloat32(const std::string& where, std::uint64_t index, double value, const char* what) {
+  checkFinite(where, index, value);
+  if (std::abs(value) > double(std::numeric_limits<float>::max())) {
+    badSample(where, index, what + ("(" + std::to_string(value) + ") is beyond the float32 range"));
+  }
+}
+
+// Whether float32 `kept` holds the integer `value` exactly (every integer up to 2^24 does).
+// Compared as integers: the float of a 64-bit value may be 2^63 or 2^64, beyond its type.
+template <typename Integer>
+bool exactInFloat32(Integer value, float kept) {
+  if constexpr (sizeof(Integer) <= 4) {
+    return std::int64_t(kept) == std::int64_t(value);
+  } else {
+    const double bound = std::is_signed_v<Integer> ? 0x1p63 : 0x1p64;
+    return double(kept) < bound && Integer(kept) == value;
+  }
+}
+
+// `count` file samples of the 32- or 64-bit integer type `Integer` into floats; returns how
+// many float32 rounded.
+template <typename Integer>
+std::uint64_t convertWideIntegers(float* out, const std::uint8_t* in, std::size_t inStep,
+                                  std::size_t count, bool swap) {
+  std::uint64_t inexact = 0;
+  for (std::size_t i = 0; i < count; ++i, in += inStep) {
+    const Integer value = load<Integer>(in, swap);
+    out[i] = float(value);
+    inexact += !exactInFloat32(value, out[i]);
+  }
+  return inexact;
+}
+
 }  // namespace
 
 SampleSink::SampleSink(const std::string& where, Volume& volume, const VolumeSubset& subset,
-                       StoredType fileType, bool bigEndian)
+                       StoredType fileType, bool bigEndian, Rescale rescale)
     : where_(where),
       volume_(volume),
       subset_(subset),
       fileType_(fileType),
       swap_(bigEndian != (std::endian::native == std::endian::big)),
+      rescale_(rescale),
       size_(storedSize(fileType)),
       fileSamples_(std::uint64_t(subset.fileDims.x) * std::uint64_t(subset.fileDims.y) *
                    std::uint64_t(subset.fileDims.z)),
       whole_(subset.whole()) {
-  if (volume.type() != keptSampleType(fileType) || volume.dims != subset.dims() ||
+  if (volume.type() != keptSampleType(fileType, rescale) || volume.dims != subset.dims() ||
       volume.sampleCount() != volume.voxelCount()) {
     throw std::logic_error("SampleSink: the volume is not allocated for the subset");
   }
@@ -76,21 +112,68 @@ bool SampleSink::rowKept(std::uint64_t row) const {
   return subset_.keeps(1, int(row % fy)) && subset_.keeps(2, int(row / fy));
 }
 
+template <typename FileC>
+void SampleSink::decodeViaDouble(float* out, const std::uint8_t* in, std::size_t inStep,
+                                 std::size_t count, std::uint64_t firstSample) {
+  const bool rescaled = !rescale_.identity();  // else the stored value as is (-0 stays -0)
+  const char* what = rescaled ? "rescaled " : "";
+  std::uint64_t inexact = 0;
+  for (std::size_t i = 0; i < count; ++i, in += inStep) {
+    const double stored = double(load<FileC>(in, swap_));
+    const double value = rescaled ? rescale_.slope * stored + rescale_.intercept : stored;
+    checkFloat32(where_, firstSample + i * subset_.stride, value, what);
+    out[i] = float(value);
+    inexact += double(out[i]) != value;
+  }
+  if (inexact) inexact_ += inexact;
+}
+
 template <typename Out>
 void SampleSink::decode(Out* out, const std::uint8_t* in, std::size_t inStep, std::size_t count,
                         std::uint64_t firstSample) {
   if constexpr (std::is_same_v<Out, float>) {
+    if (!rescale_.identity()) {
+      switch (fileType_) {
+        case StoredType::UInt8:
+          return decodeViaDouble<std::uint8_t>(out, in, inStep, count, firstSample);
+        case StoredType::Int8:
+          return decodeViaDouble<std::int8_t>(out, in, inStep, count, firstSample);
+        case StoredType::UInt16:
+          return decodeViaDouble<std::uint16_t>(out, in, inStep, count, firstSample);
+        case StoredType::Int16:
+          return decodeViaDouble<std::int16_t>(out, in, inStep, count, firstSample);
+        case StoredType::Int32:
+          return decodeViaDouble<std::int32_t>(out, in, inStep, count, firstSample);
+        case StoredType::UInt32:
+          return decodeViaDouble<std::uint32_t>(out, in, inStep, count, firstSample);
+        case StoredType::Int64:
+          return decodeViaDouble<std::int64_t>(out, in, inStep, count, firstSample);
+        case StoredType::UInt64:
+          return decodeViaDouble<std::uint64_t>(out, in, inStep, count, firstSample);
+        case StoredType::Float32:
+          return decodeViaDouble<float>(out, in, inStep, count, firstSample);
+        case StoredType::Float64:
+          return decodeViaDouble<double>(out, in, inStep, count, firstSample);
+      }
+    }
     if (fileType_ == StoredType::Float64) {
+      return decodeViaDouble<double>(out, in, inStep, count, firstSample);
+    }
+    if (isWideInteger(fileType_)) {
       std::uint64_t inexact = 0;
-      for (std::size_t i = 0; i < count; ++i, in += inStep) {
-        const double value = load<double>(in, swap_);
-        checkFinite(where_, firstSample + i * subset_.stride, value);
-        if (std::abs(value) > double(std::numeric_limits<float>::max())) {
-          badSample(where_, firstSample + i * subset_.stride,
-                    "(" + std::to_string(value) + ") is beyond the float32 range");
-        }
-        out[i] = float(value);
-        inexact += double(out[i]) != value;
+      switch (fileType_) {
+        case StoredType::Int32:
+          inexact = convertWideIntegers<std::int32_t>(out, in, inStep, count, swap_);
+          break;
+        case StoredType::UInt32:
+          inexact = convertWideIntegers<std::uint32_t>(out, in, inStep, count, swap_);
+          break;
+        case StoredType::Int64:
+          inexact = convertWideIntegers<std::int64_t>(out, in, inStep, count, swap_);
+          break;
+        default:
+          inexact = convertWideIntegers<std::uint64_t>(out, in, inStep, count, swap_);
+          break;
       }
       if (inexact) inexact_ += inexact;
       return;
@@ -178,11 +261,19 @@ void SampleSink::putValue(std::uint64_t index, double value) {
     if (!subset_.keeps(0, x) || !subset_.keeps(1, y) || !subset_.keeps(2, z)) return;
     kept = volume_.index(subset_.keptIndex(0, x), subset_.keptIndex(1, y), subset_.keptIndex(2, z));
   }
+  const bool rescaled = !rescale_.identity();
+  if (rescaled) {
+    value = rescale_.slope * value + rescale_.intercept;
+    checkFloat32(where_, index, value, "rescaled ");
+  }
   volume_.visit([&](auto samples) {
     using Out = typename decltype(samples)::value_type;
     samples[kept] = Out(value);
     if constexpr (std::is_same_v<Out, float>) {
-      if (fileType_ == StoredType::Float64 && double(samples[kept]) != value) ++inexact_;
+      if ((rescaled || fileType_ == StoredType::Float64 || isWideInteger(fileType_)) &&
+          double(samples[kept]) != value) {
+        ++inexact_;
+      }
     }
   });
 }
@@ -231,6 +322,12 @@ void SampleSink::finishAppending() {
 
 void SampleSink::finish() {
   volume_.inexactSamples = inexact_;
+  if (inexact_ > 0) {
+    volume_.warnings.push_back(
+        where_ + ": " + std::to_string(inexact_) + " of " + std::to_string(volume_.voxelCount()) +
+        " samples lost precision as float32 (the file's " + storedTypeName(fileType_) +
+        (rescale_.identity() ? std::string() : ", rescaled") + ")");
+  }
 }
 
 }  // namespace vsil::io

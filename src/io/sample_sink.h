@@ -17,9 +17,10 @@ namespace vsil::io {
 
 class SampleSink {
  public:
-  // `volume` holds subset.dims() samples of keptSampleType(fileType) (Volume::allocate).
+  // `volume` holds subset.dims() samples of keptSampleType(fileType, rescale)
+  // (Volume::allocate); each stored value v is kept as rescale.slope * v + rescale.intercept.
   SampleSink(const std::string& where, Volume& volume, const VolumeSubset& subset,
-             StoredType fileType, bool bigEndian);
+             StoredType fileType, bool bigEndian, Rescale rescale = {});
 
   const std::string& where() const { return where_; }
   std::uint64_t fileSamples() const { return fileSamples_; }
@@ -61,10 +62,16 @@ class SampleSink {
   // After the last append: throws InputError unless every sample of the file arrived. Records
   // the conversion's inexact samples in the volume.
   void finishAppending();
-  // Records the conversion's inexact samples in the volume (after put / putValue).
+  // Records the conversion's inexact samples in the volume, with a warning when there are any
+  // (after put / putValue).
   void finish();
 
  private:
+  // File samples of type FileC through the rescale (in double) into float32, each checked
+  // finite and within float range, counting those float32 rounds.
+  template <typename FileC>
+  void decodeViaDouble(float* out, const std::uint8_t* in, std::size_t inStep, std::size_t count,
+                       std::uint64_t firstSample);
   template <typename Out>
   void decode(Out* out, const std::uint8_t* in, std::size_t inStep, std::size_t count,
               std::uint64_t firstSample);
@@ -77,6 +84,7 @@ class SampleSink {
   VolumeSubset subset_;
   StoredType fileType_;
   bool swap_;  // the file's byte order differs from this machine's
+  Rescale rescale_;
   std::size_t size_;
   std::uint64_t fileSamples_;
   bool whole_;

@@ -1,5 +1,6 @@
 #include "io/volume_loader.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/error.h"
@@ -17,16 +18,34 @@ Volume loadVolume(const std::string& spec, const LoadOptions& options) {
   if (spec.empty()) throw InputError("no volume given (a file path or gen:NAME[:N])");
   if (options.raw) return io::readRaw(spec, *options.raw, options);
 
-  const std::string extension = io::toLower(std::filesystem::path(spec).extension().string());
+  std::string extension = io::toLower(std::filesystem::path(spec).extension().string());
+  if (extension == ".gz") {  // name.nii.gz: the extension before .gz says the format
+    extension = io::toLower(std::filesystem::path(spec).stem().extension().string()) + ".gz";
+  }
   if (extension == ".nrrd" || extension == ".nhdr") return io::readNrrd(spec, options);
   if (extension == ".vti") return io::readVti(spec, options);
   if (extension == ".vtk") return io::readLegacyVtk(spec, options);
+  if (extension == ".mhd" || extension == ".mha") return io::readMetaImage(spec, options);
+  for (const char* nifti : {".nii", ".nii.gz", ".hdr", ".hdr.gz", ".img", ".img.gz"}) {
+    if (extension == nifti) return io::readNifti(spec, options);
+  }
 
-  io::regularFileSize(spec);  // a missing file or a directory says so first
+  // A folder is a DICOM series (one named like a volume file was refused above: "is a
+  // directory").
+  std::error_code error;
+  if (extension == ".dcm" || extension == ".dicom" || std::filesystem::is_directory(spec, error)) {
+    return io::readDicomSeries(spec, options);
+  }
+  // DICOM files often have no extension: "DICM" after the 128-byte preamble says it.
+  if (io::regularFileSize(spec) >= 132) {  // a missing file says so first
+    std::uint8_t magic[4] = {};
+    io::FileReader(spec).readAt(128, magic);
+    if (std::equal(magic, magic + 4, "DICM")) return io::readDicomSeries(spec, options);
+  }
   throwInputError(spec, "unknown volume format" +
                             (extension.empty() ? std::string() : " " + io::quote(extension)) +
-                            " (known: .nrrd, .nhdr, .vti, .vtk, gen:NAME[:N]; a headerless raw "
-                            "file needs --dims and --type)");
+                            " (known: " + kVolumeFileKinds +
+                            ", gen:NAME[:N]; a headerless raw file needs --dims and --type)");
 }
 
 }  // namespace vsil

@@ -3,7 +3,9 @@
 // form optionally compressed by vtkZLibDataCompressor, with UInt32 or UInt64 headers.
 // Format notes: docs.vtk.org "VTK File Formats" (XML section) and the Kitware wiki
 // "VTK_XML_Formats"; a binary block starts with a byte count, or with the compression header
-// [#blocks][block size][last partial block size][compressed size of each block].
+// [#blocks][block size][last partial block size][compressed size of each block]; blocks are
+// zlib streams (vtkZLibDataCompressor), LZ4 blocks (vtkLZ4DataCompressor) or xz streams
+// (vtkLZMADataCompressor), io/block_codec.h.
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -17,6 +19,7 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "io/base64.h"
+#include "io/block_codec.h"
 #include "io/file_access.h"
 #include "io/inflate.h"
 #include "io/readers.h"
@@ -32,6 +35,7 @@ struct Encoding {
   bool bigEndian = false;
   std::size_t headerWordSize = 4;  // UInt32 or UInt64 block headers
   bool compressed = false;
+  BlockCodec codec = BlockCodec::Zlib;  // when compressed
 };
 
 std::string attribute(const XMLElement* element, const char* name, const char* fallback = "") {
@@ -55,8 +59,14 @@ StoredType parseVtkType(const std::string& path, const std::string& name) {
   if (name == "Int16") return StoredType::Int16;
   if (name == "Float32") return StoredType::Float32;
   if (name == "Float64") return StoredType::Float64;  // converted to float32 when finite
+  // Converted to float32, exact up to 2^24 (the others counted).
+  if (name == "Int32") return StoredType::Int32;
+  if (name == "UInt32") return StoredType::UInt32;
+  if (name == "Int64") return StoredType::Int64;
+  if (name == "UInt64") return StoredType::UInt64;
   throwInputError(path, "DataArray type " + quote(name) +
-                            " is not supported (UInt8, Int8, UInt16, Int16, Float32, Float64)");
+                            " is not supported (UInt8, Int8, UInt16, Int16, Int32, UInt32, Int64, "
+                            "UInt64, Float32, Float64)");
 }
 
 // "x0 x1 y0 y1 z0 z1" -> samples per axis.
@@ -155,7 +165,8 @@ class BlockReader {
     }
     readHeader(3 + blocks);  // the header is all there
     const std::uint64_t dataStart = (3 + blocks) * wordSize;
-    checkInflatable(path_, "zlib data", block_.size() - dataStart, expected);
+    checkDecompressible(path_, std::string(blockCodecName(encoding_.codec)) + " data",
+                        encoding_.codec, block_.size() - dataStart, expected);
     inflateBlocks(dataStart, blocks, blockSize, last, sink);
   }
 
@@ -184,8 +195,8 @@ class BlockReader {
     return value;
   }
 
-  // The zlib blocks, in batches of a few MiB of compressed bytes; within a batch the blocks are
-  // inflated on every core (each block is an independent stream whose output has its own place
+  // The compressed blocks, in batches of a few MiB of compressed bytes; within a batch the blocks
+  // are inflated on every core (each block is an independent stream whose output has its own place
   // in the volume). Errors are those a block-by-block reading meets first: the lowest block's.
   void inflateBlocks(std::uint64_t dataStart, std::uint64_t blocks, std::uint64_t blockSize,
                      std::uint64_t lastSize, SampleSink& sink) {
@@ -195,6 +206,7 @@ class BlockReader {
     const bool aligned = blockSize % sampleSize == 0;
     const int threads = aligned ? limits::workerThreads() : 1;
     SampleSink::Appender inOrder(sink, 0);
+    const std::string codecName = blockCodecName(encoding_.codec);
     const std::uint64_t compressedTotal = block_.size() - dataStart;
     std::vector<std::uint8_t> batchBytes;
     std::uint64_t offset = dataStart;  // of block `first`
@@ -226,15 +238,9 @@ class BlockReader {
             const std::uint64_t outSize = b + 1 == blocks ? lastSize : blockSize;
             SampleSink::Appender own(sink, b * blockSize / sampleSize);
             SampleSink::Appender& appender = aligned ? own : inOrder;
-            bool given = false;
-            inflateStream(
-                path_, "zlib block " + std::to_string(b), DeflateWrapper::Zlib, outSize,
-                [&] {
-                  const auto piece = given ? std::span<const std::uint8_t>() : compressed;
-                  given = true;
-                  return piece;
-                },
-                [&](std::span<const std::uint8_t> out) { appender.append(out); });
+            decompressBlock(path_, codecName + " block " + std::to_string(b), encoding_.codec,
+                            compressed, outSize,
+                            [&](std::span<const std::uint8_t> out) { appender.append(out); });
           } catch (...) {
             errors[std::size_t(thread)] = {b, std::current_exception()};
             for (std::uint64_t seen = failed; b < seen && !failed.compare_exchange_weak(seen, b);) {
@@ -253,7 +259,8 @@ class BlockReader {
                            [](const auto& a, const auto& b) { return a.first < b.first; });
       if (error->second) std::rethrow_exception(error->second);
       if (truncated) {
-        throwInputError(path_, "zlib block " + std::to_string(*truncated) + " is truncated (" +
+        throwInputError(path_, codecName + " block " + std::to_string(*truncated) +
+                                   " is truncated (" +
                                    std::to_string(block_.size() - (offset + bytes)) + " of " +
                                    std::to_string(word(3 + *truncated)) + " bytes)");
       }
@@ -352,9 +359,14 @@ Volume readVti(const std::string& path, const LoadOptions& options) {
   }
   encoding.headerWordSize = headerType == "UInt64" ? 8 : 4;
   const std::string compressor = attribute(root, "compressor");
-  if (!compressor.empty() && compressor != "vtkZLibDataCompressor") {
-    throwInputError(
-        path, "compressor " + quote(compressor) + " is not supported (only vtkZLibDataCompressor)");
+  if (compressor == "vtkLZ4DataCompressor") {
+    encoding.codec = BlockCodec::Lz4;
+  } else if (compressor == "vtkLZMADataCompressor") {
+    encoding.codec = BlockCodec::Lzma;
+  } else if (!compressor.empty() && compressor != "vtkZLibDataCompressor") {
+    throwInputError(path, "compressor " + quote(compressor) +
+                              " is not supported (vtkZLibDataCompressor, vtkLZ4DataCompressor, "
+                              "vtkLZMADataCompressor)");
   }
   encoding.compressed = !compressor.empty();
 
@@ -392,9 +404,15 @@ Volume readVti(const std::string& path, const LoadOptions& options) {
   const glm::dvec3 spacing = parseSpacing(path, "Spacing", attribute(image, "Spacing", "1 1 1"));
   const std::uint64_t expected = payloadBytes(dims, type);
   const std::string layout = " (" + describeLayout(dims, type) + ")";
-  auto start = [&] { return startVolume(path, dims, type, spacing, options); };
-
   const std::string format = attribute(array, "format", "ascii");
+  auto start = [&] {
+    Volume volume = startVolume(path, dims, type, spacing, options);
+    volume.format =
+        "VTK XML ImageData (" + format +
+        (encoding.compressed ? std::string(", ") + blockCodecName(encoding.codec) : "") + ")";
+    return volume;
+  };
+
   const char* text = array->GetText();
   if (format == "ascii") {
     Volume volume = start();

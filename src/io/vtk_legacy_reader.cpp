@@ -161,6 +161,7 @@ Volume readLegacyVtk(const std::string& path, const LoadOptions& options) {
                                 describeLayout(dims, type) + ")");
     }
     Volume volume = startVolume(path, dims, type, header.spacing, options);
+    volume.format = "legacy VTK STRUCTURED_POINTS (BINARY)";
     SampleSink sink(path, volume, subsetOf(volume), type, /*bigEndian=*/true);
     readUncompressed(FileReader(path), header.dataOffset, sink, options);
     return volume;
@@ -169,6 +170,7 @@ Volume readLegacyVtk(const std::string& path, const LoadOptions& options) {
   // not needed.
   const std::uint64_t wanted = points * 64 + 4096;
   Volume volume = startVolume(path, dims, type, header.spacing, options);
+  volume.format = "legacy VTK STRUCTURED_POINTS (ASCII)";
   SampleSink sink(path, volume, subsetOf(volume), type, /*bigEndian=*/true);
   const auto bytes = readFileBytes(path, header.dataOffset, std::min(available, wanted));
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());

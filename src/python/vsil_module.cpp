@@ -176,7 +176,7 @@ void parseKeywords(CLI::App& app, const py::kwargs& kwargs, const std::string& f
 }
 
 // The keywords every volume-loading call takes: the volume flags of the CLI (dims, type,
-// spacing, endian, crop, stride, max_memory).
+// spacing, endian, crop, stride, series, max_memory).
 LoadOptions loadOptionsFromKeywords(const py::kwargs& kwargs, const std::string& function) {
   CLI::App app;
   cli::VolumeOptions options;
@@ -191,6 +191,9 @@ PyVolume load(const std::string& spec, const py::kwargs& kwargs) {
   {
     py::gil_scoped_release release;
     loaded = loadVolume(spec, options);
+  }
+  for (const std::string& warning : loaded.warnings) {
+    if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) != 0) throw py::error_already_set();
   }
   return {std::make_shared<Volume>(std::move(loaded))};
 }
@@ -248,7 +251,7 @@ class PythonRenderer {
                          " is chosen when the Renderer is made: vsil.Renderer(" + key + "=...)");
       }
     }
-    for (const char* key : {"dims", "type", "spacing", "endian", "crop", "stride"}) {
+    for (const char* key : {"dims", "type", "spacing", "endian", "crop", "stride", "series"}) {
       if (!isPath && kwargs.contains(key)) {
         throw InputError("vsil.Renderer.render: " + std::string(key) +
                          " applies when a file is read: vsil.load(path, " + key + "=...)");
@@ -418,6 +421,12 @@ PYBIND11_MODULE(vsil, m) {
                              })
       .def_property_readonly("name", [](const PyVolume& v) { return v.volume->name; })
       .def_property_readonly("source", [](const PyVolume& v) { return v.volume->source; })
+      .def_property_readonly(
+          "format", [](const PyVolume& v) { return v.volume->format; },
+          "the file's format and variant, '' for generated volumes")
+      .def_property_readonly(
+          "warnings", [](const PyVolume& v) { return v.volume->warnings; },
+          "what reading the file warned about (also issued as UserWarning)")
       .def_property_readonly("dtype", [](const PyVolume& v) { return dtypeOf(v.volume->type()); })
       .def_property_readonly("value_range",
                              [](const PyVolume& v) {

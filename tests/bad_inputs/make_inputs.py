@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the bad-input corpus beside this script (committed; run again only to change it).
 Each file is small; cases.json says which command reads it and the exact error it must get."""
-import base64, gzip, os, struct, zlib
+import base64, gzip, lzma, os, struct, zlib
 
 here = os.path.dirname(os.path.abspath(__file__))
 
@@ -37,6 +37,16 @@ block = struct.pack('<4I', 1, 8, 0, len(packed)) + packed
 write('zlib_bomb.vti', (vti_head % ' compressor="vtkZLibDataCompressor"' +
                         '<DataArray type="UInt8" format="appended" offset="0"/>\n' + vti_tail +
                         '<AppendedData encoding="raw">_').encode() + block + b'</AppendedData></VTKFile>\n')
+# LZ4 and LZMA (xz) blocks get zlib's bomb check: a hand-made LZ4 block whose one match repeats
+# a zero byte ~25000 times, and 1 MiB of zeros in xz, each promised as 8 bytes.
+lz4_bomb = bytes([0x1f, 0x00, 0x01, 0x00]) + bytes([255] * 100) + bytes([0, 0x50]) + bytes(5)
+xz_bomb = lzma.compress(bytes(1 << 20), format=lzma.FORMAT_XZ)
+for name, compressor, packed in (('lz4_bomb.vti', 'vtkLZ4DataCompressor', lz4_bomb),
+                                 ('lzma_bomb.vti', 'vtkLZMADataCompressor', xz_bomb)):
+    block = struct.pack('<4I', 1, 8, 0, len(packed)) + packed
+    write(name, (vti_head % (' compressor="%s"' % compressor) +
+                 '<DataArray type="UInt8" format="appended" offset="0"/>\n' + vti_tail +
+                 '<AppendedData encoding="raw">_').encode() + block + b'</AppendedData></VTKFile>\n')
 write('bad_base64.vti', vti_head % '' + '<DataArray type="UInt8" format="binary">CAAAAA**AQIDBAUGBw==</DataArray>\n' + vti_tail + '</VTKFile>\n')
 
 vtk = '# vtk DataFile Version 3.0\nbad\n%s\nDATASET STRUCTURED_POINTS\nDIMENSIONS %s\nPOINT_DATA %s\nSCALARS s %s\nLOOKUP_TABLE default\n'
@@ -66,3 +76,92 @@ rules = ('attribute density from data { high = trapezoid(0.2, 0.5, 1, 1) }\n'
 write('rules_missing_spheres.rules', rules % 'missing_spheres.png')
 write('rules_bad_spheres.rules', rules % 'not_an_image.png')
 write('not_an_image.png', 'this is not a PNG\n')
+
+# MetaImage (.mha attached, .mhd detached): truncated data, a DimSize larger than the data file,
+# a zlib bomb, a CompressedDataSize past the end, several channels, a 2D image, a missing data
+# file, a list of slice files.
+mha = 'ObjectType = Image\nNDims = %s\nDimSize = %s\n%sElementType = MET_UCHAR\nElementDataFile = %s\n'
+write('truncated.mha', (mha % (3, '4 4 4', '', 'LOCAL')).encode() + bytes(10))
+write('lying_dimsize.mhd', mha % (3, '8 8 8', '', 'lying_dimsize.raw'))
+write('lying_dimsize.raw', bytes(64))
+write('zlib_bomb.mha', (mha % (3, '4 4 4', 'CompressedData = True\n', 'LOCAL')).encode() +
+      zlib.compress(bytes(1 << 20), 9))
+write('bad_compressed_size.mha', (mha % (3, '4 4 4', 'CompressedData = True\nCompressedDataSize = 999999\n',
+                                         'LOCAL')).encode() + zlib.compress(bytes(64), 9))
+write('multichannel.mha', (mha % (3, '2 2 2', 'ElementNumberOfChannels = 3\n', 'LOCAL')).encode() + bytes(24))
+write('image_2d.mha', (mha % (2, '4 4', '', 'LOCAL')).encode() + bytes(16))
+write('missing_data.mhd', mha % (3, '4 4 4', '', 'no_such_data.raw'))
+write('slice_list.mhd', mha % (3, '4 4 4', '', 'LIST'))
+
+# NIfTI-1 (.nii, .nii.gz, .hdr/.img): truncated data, a 4D series, complex samples, a negative
+# size, a vox_offset far past any header, a cut gzip stream, a pair without its .img, text named
+# .nii, sizes past the memory limit.
+def nifti1(dims=(4, 4, 4), datatype=2, bitpix=8, vox_offset=352.0, extra_dims=(), magic=b'n+1\0'):
+    header = bytearray(348)
+    struct.pack_into('<i', header, 0, 348)
+    dim = [3 + len(extra_dims)] + list(dims) + list(extra_dims)
+    struct.pack_into('<8h', header, 40, *(dim + [1] * (8 - len(dim))))
+    struct.pack_into('<hh', header, 70, datatype, bitpix)
+    struct.pack_into('<8f', header, 76, 1, 1, 1, 1, 0, 0, 0, 0)
+    struct.pack_into('<f', header, 108, vox_offset)
+    header[344:348] = magic
+    return bytes(header) + (bytes(4) if magic == b'n+1\0' else b'')
+
+
+write('nifti_truncated.nii', nifti1() + bytes(10))
+write('nifti_4d.nii', nifti1(extra_dims=(5,)) + bytes(320))
+write('nifti_complex.nii', nifti1(datatype=32, bitpix=64) + bytes(512))
+write('nifti_negative_dim.nii', nifti1(dims=(4, -4, 4)) + bytes(64))
+write('nifti_vox_offset.nii', nifti1(vox_offset=1e12) + bytes(64))
+noise = bytes((i * 7919 + (i >> 3) * 104729) % 251 for i in range(16 * 16 * 8))
+whole = gzip.compress(nifti1(dims=(16, 16, 8)) + noise, 9, mtime=0)
+write('nifti_cut.nii.gz', whole[:len(whole) * 3 // 4])
+write('nifti_pair_no_img.hdr', nifti1(vox_offset=0.0, magic=b'ni1\0'))
+write('nifti_text.nii', 'this is not a NIfTI file, only text named like one\n' * 10)
+write('nifti_oversized.nii', nifti1(dims=(30000, 30000, 30000)) + bytes(64))
+
+
+# DICOM series (folders; written with pydicom): a missing slice, a slice cut short, no DICOM at
+# all, slices of two sizes, a header promising 65535 x 65535 slices, colour (RGB) pixels.
+def dicom_series(folder, count=3, positions=None, rows=3, columns=4, pixels=None, rgb=False,
+                 orientation=(1.0, 0.0, 0.0, 0.0, 1.0, 0.0)):
+    from pydicom.dataset import Dataset, FileMetaDataset
+    from pydicom.uid import ExplicitVRLittleEndian, generate_uid
+    path = os.path.join(here, folder)
+    os.makedirs(path, exist_ok=True)
+    series = generate_uid(entropy_srcs=['bad', folder])
+    for k in range(count):
+        meta = FileMetaDataset()
+        meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.2'
+        meta.MediaStorageSOPInstanceUID = generate_uid(entropy_srcs=['bad', folder, str(k)])
+        meta.TransferSyntaxUID = ExplicitVRLittleEndian
+        ds = Dataset()
+        ds.file_meta = meta
+        ds.is_little_endian, ds.is_implicit_VR = True, False
+        ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
+        ds.Modality, ds.SeriesInstanceUID, ds.InstanceNumber = 'CT', series, k + 1
+        ds.ImageOrientationPatient = list(orientation)
+        ds.ImagePositionPatient = [0.0, 0.0, float(positions[k] if positions else 2 * k)]
+        ds.PixelSpacing = [1.0, 1.0]
+        r, c = (rows[k], columns[k]) if isinstance(rows, list) else (rows, columns)
+        ds.Rows, ds.Columns = r, c
+        ds.SamplesPerPixel = 3 if rgb else 1
+        ds.PhotometricInterpretation = 'RGB' if rgb else 'MONOCHROME2'
+        if rgb:
+            ds.PlanarConfiguration = 0
+        ds.BitsAllocated = ds.BitsStored = 8 if rgb else 16
+        ds.HighBit, ds.PixelRepresentation = (7 if rgb else 15), 0
+        ds.PixelData = pixels if pixels is not None else bytes((3 if rgb else 2) * r * c)
+        ds.save_as(os.path.join(path, 'slice%d.dcm' % k), write_like_original=False)
+
+
+dicom_series('dicom_missing_slice', count=4, positions=[0, 2, 4, 8])
+dicom_series('dicom_truncated')
+with open(os.path.join(here, 'dicom_truncated', 'slice1.dcm'), 'r+b') as f:
+    f.truncate(os.path.getsize(f.name) - 10)
+os.makedirs(os.path.join(here, 'dicom_none'), exist_ok=True)
+write('dicom_none/readme.txt', 'no DICOM here\n')
+dicom_series('dicom_mixed_sizes', rows=[3, 3, 5], columns=[4, 4, 4])
+dicom_series('dicom_huge', rows=65535, columns=65535, pixels=bytes(8))
+dicom_series('dicom_rgb', rgb=True)
+dicom_series('dicom_no_normal', orientation=(1.0, 0.0, 0.0, 1.0, 0.0, 0.0))

@@ -30,13 +30,31 @@ enum class FileFormat {
   VtiInlineBase64Zlib,
   VtiAscii,
   VtkBinary,
-  VtkAscii
+  VtkAscii,
+  MetaImageRaw,
+  MetaImageZlib,
+  MetaImageBigEndianDetached,
+  VtiAppendedLz4,
+  VtiAppendedLzma
 };
 
 const char* formatName(FileFormat f) {
-  static const char* names[] = {
-      "Raw",        "NrrdRaw",         "NrrdGzip", "NrrdAscii", "VtiAppendedRaw", "VtiAppendedZlib",
-      "VtiOddZlib", "VtiInlineBase64", "VtiAscii", "VtkBinary", "VtkAscii"};
+  static const char* names[] = {"Raw",
+                                "NrrdRaw",
+                                "NrrdGzip",
+                                "NrrdAscii",
+                                "VtiAppendedRaw",
+                                "VtiAppendedZlib",
+                                "VtiOddZlib",
+                                "VtiInlineBase64",
+                                "VtiAscii",
+                                "VtkBinary",
+                                "VtkAscii",
+                                "MetaImageRaw",
+                                "MetaImageZlib",
+                                "MetaImageMsbDetached",
+                                "VtiAppendedLz4",
+                                "VtiAppendedLzma"};
   return names[int(f)];
 }
 
@@ -47,13 +65,15 @@ std::string asciiValues(const std::vector<float>& values) {
 }
 
 // VTK's zlib block layout (UInt32 header): [#blocks][block size][last size][sizes...] data.
-Bytes zlibBlocks(const Bytes& data, std::size_t blockSize) {
+// VTK's compressed block layout, each block compressed by `compress` (zlib by default).
+Bytes zlibBlocks(
+    const Bytes& data, std::size_t blockSize,
+    Bytes (*compress)(const Bytes&) = [](const Bytes& b) { return test::deflateBytes(b, false); }) {
   std::vector<Bytes> blocks;
   for (std::size_t at = 0; at < data.size(); at += blockSize) {
-    blocks.push_back(test::deflateBytes(
-        Bytes(data.begin() + std::ptrdiff_t(at),
-              data.begin() + std::ptrdiff_t(std::min(data.size(), at + blockSize))),
-        false));
+    blocks.push_back(
+        compress(Bytes(data.begin() + std::ptrdiff_t(at),
+                       data.begin() + std::ptrdiff_t(std::min(data.size(), at + blockSize)))));
   }
   Bytes out;
   test::appendWord(out, blocks.size(), 4, false);
@@ -127,6 +147,17 @@ std::pair<std::string, LoadOptions> writeVolume(FileFormat format,
                       "</AppendedData>"),
               options};
     }
+    case FileFormat::VtiAppendedLz4:
+    case FileFormat::VtiAppendedLzma: {
+      const bool lz4 = format == FileFormat::VtiAppendedLz4;
+      return {vti(lz4 ? " compressor=\"vtkLZ4DataCompressor\""
+                      : " compressor=\"vtkLZMADataCompressor\"",
+                  appendedArray,
+                  "<AppendedData encoding=\"raw\">_" +
+                      test::asText(zlibBlocks(little, 600, lz4 ? test::lz4Bytes : test::xzBytes)) +
+                      "</AppendedData>"),
+              options};
+    }
     case FileFormat::VtiInlineBase64Zlib: {
       // VTK encodes the header and the data separately.
       const Bytes blocks = zlibBlocks(little, 700);
@@ -158,6 +189,26 @@ std::pair<std::string, LoadOptions> writeVolume(FileFormat format,
                     (binary ? test::asText(test::encodeSamples(values, SampleType::UInt16, true))
                             : asciiValues(values)));
       return {path.string(), options};
+    }
+    case FileFormat::MetaImageRaw:
+    case FileFormat::MetaImageZlib:
+    case FileFormat::MetaImageBigEndianDetached: {
+      const bool zlib = format == FileFormat::MetaImageZlib;
+      const bool big = format == FileFormat::MetaImageBigEndianDetached;
+      const std::string header =
+          "ObjectType = Image\nNDims = 3\nDimSize = " + dims +
+          "\nElementSpacing = 0.5 1 2\nElementType = MET_USHORT\nBinaryDataByteOrderMSB = " +
+          (big ? "True" : "False") + "\nCompressedData = " + (zlib ? "True" : "False") +
+          "\nElementDataFile = ";
+      if (big) {
+        test::writeFile(dir / "v.raw", test::encodeSamples(values, SampleType::UInt16, true));
+        test::writeFile(dir / "v.mhd", header + "v.raw\n");
+        return {(dir / "v.mhd").string(), options};
+      }
+      test::writeFile(
+          dir / "v.mha",
+          header + "LOCAL\n" + test::asText(zlib ? test::deflateBytes(little, false) : little));
+      return {(dir / "v.mha").string(), options};
     }
   }
   return {};
@@ -238,7 +289,10 @@ INSTANTIATE_TEST_SUITE_P(EveryReader, CropStrideRead,
                                            FileFormat::VtiAppendedRaw, FileFormat::VtiAppendedZlib,
                                            FileFormat::VtiAppendedZlibOddBlocks,
                                            FileFormat::VtiInlineBase64Zlib, FileFormat::VtiAscii,
-                                           FileFormat::VtkBinary, FileFormat::VtkAscii),
+                                           FileFormat::VtkBinary, FileFormat::VtkAscii,
+                                           FileFormat::MetaImageRaw, FileFormat::MetaImageZlib,
+                                           FileFormat::MetaImageBigEndianDetached,
+                                           FileFormat::VtiAppendedLz4, FileFormat::VtiAppendedLzma),
                          [](const auto& info) { return std::string(formatName(info.param)); });
 
 // Float samples are checked for NaN as they are decoded: a NaN outside the crop is never

@@ -135,9 +135,9 @@ TEST(InputErrors, UnknownTypesInEveryFormat) {
   const std::string vti =
       scratchFile("t.vti",
                   "<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 0 0 0 0 0\"><Piece>"
-                  "<PointData><DataArray type=\"Int32\" format=\"ascii\">1</DataArray></PointData>"
+                  "<PointData><DataArray type=\"Bit\" format=\"ascii\">1</DataArray></PointData>"
                   "</Piece></ImageData></VTKFile>");
-  expectInputError([&] { loadVolume(vti); }, vti + ": ", {"type 'Int32' is not supported"});
+  expectInputError([&] { loadVolume(vti); }, vti + ": ", {"type 'Bit' is not supported"});
   const std::string vtk = scratchFile("t.vtk",
                                       "# vtk DataFile Version 3.0\nt\nASCII\n"
                                       "DATASET STRUCTURED_POINTS\nDIMENSIONS 1 1 1\n"
@@ -373,7 +373,9 @@ TEST(InputErrors, MissingFilesDirectoriesEmptyAndUnreadableFiles) {
   std::filesystem::create_directories(dir / "folder.nrrd");
   const std::string folder = (dir / "folder.nrrd").string();
   expectInputError([&] { loadVolume(folder); }, folder + ": is a directory", {});
-  expectInputError([&] { loadVolume(dir.string()); }, dir.string() + ": is a directory", {});
+  // A folder without an extension is read as a DICOM series.
+  expectInputError([&] { loadVolume(dir.string()); },
+                   dir.string() + ": is a folder without files (a DICOM series", {});
 
   for (const char* name : {"empty.nrrd", "empty.vti", "empty.vtk"}) {
     const std::string empty = (dir / name).string();

@@ -7,10 +7,13 @@
 #include <filesystem>
 #include <fstream>
 #include <span>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <lz4.h>
+#include <lzma.h>
 #include <zlib.h>
 
 #include "core/error.h"
@@ -67,6 +70,14 @@ inline Bytes encodeSamples(const std::vector<float>& values, SampleType type, bo
   return out;
 }
 
+// 32- or 64-bit integers (`size` bytes each, two's complement) in the given byte order.
+inline Bytes encodeIntegers(const std::vector<std::int64_t>& values, std::size_t size,
+                            bool bigEndian) {
+  Bytes out;
+  for (std::int64_t v : values) appendWord(out, std::uint64_t(v), size, bigEndian);
+  return out;
+}
+
 // A volume's samples as floats (Volume::value), to compare with the values a test wrote.
 inline std::vector<float> floatsOf(const Volume& volume) {
   std::vector<float> values(volume.sampleCount());
@@ -86,6 +97,26 @@ inline Bytes deflateBytes(const Bytes& in, bool gzip) {
   deflate(&s, Z_FINISH);
   out.resize(s.total_out);
   deflateEnd(&s);
+  return out;
+}
+
+// One LZ4 block (vtkLZ4DataCompressor's format).
+inline Bytes lz4Bytes(const Bytes& in) {
+  Bytes out(std::size_t(LZ4_compressBound(int(in.size()))));
+  const int size =
+      LZ4_compress_default(reinterpret_cast<const char*>(in.data()),
+                           reinterpret_cast<char*>(out.data()), int(in.size()), int(out.size()));
+  out.resize(std::size_t(size));
+  return out;
+}
+
+// One xz stream (vtkLZMADataCompressor's format: lzma_easy_buffer_encode).
+inline Bytes xzBytes(const Bytes& in) {
+  Bytes out(lzma_stream_buffer_bound(in.size()));
+  std::size_t size = 0;
+  lzma_easy_buffer_encode(6, LZMA_CHECK_CRC64, nullptr, in.data(), in.size(), out.data(), &size,
+                          out.size());
+  out.resize(size);
   return out;
 }
 
@@ -116,6 +147,60 @@ inline std::vector<float> testValues(glm::ivec3 dims, SampleType type) {
     if (type == SampleType::Float32) values[i] = values[i] * 0.37f - 20.5f;
   }
   return values;
+}
+
+// One line of a fixture manifest (tests/io/<format>/fixtures.txt, written by that folder's
+// make_fixtures.py without vsil): a file and what a reader must find in it; `rest` holds the
+// line's further, format-specific fields.
+struct FixtureExpectation {
+  std::string file;
+  glm::ivec3 dims{0};
+  glm::dvec3 spacing{0.0};
+  std::string keptType;
+  std::string fileType;  // "" when kept as stored ("-" in the manifest)
+  std::uint64_t inexact = 0;
+  double sum = 0, first = 0, last = 0;  // of the samples as kept, summed in file order
+  std::vector<std::string> rest;
+};
+
+inline std::vector<FixtureExpectation> readFixtureManifest(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<FixtureExpectation> fixtures;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    FixtureExpectation f;
+    fields >> f.file >> f.dims.x >> f.dims.y >> f.dims.z >> f.spacing.x >> f.spacing.y >>
+        f.spacing.z >> f.keptType >> f.fileType >> f.inexact >> f.sum >> f.first >> f.last;
+    if (f.fileType == "-") f.fileType.clear();
+    for (std::string field; fields >> field;) f.rest.push_back(field);
+    fixtures.push_back(f);
+  }
+  return fixtures;
+}
+
+// Checks `volume` against the manifest line: dims, spacing, types, rounding, and the samples'
+// sum (in double, in file order, as make_fixtures.py adds them), first and last.
+inline void expectFixtureRead(const Volume& volume, const FixtureExpectation& f) {
+  EXPECT_EQ(volume.dims, f.dims);
+  EXPECT_EQ(volume.spacing, f.spacing);
+  EXPECT_EQ(sampleTypeName(volume.type()), f.keptType);
+  EXPECT_EQ(volume.fileType, f.fileType);
+  EXPECT_EQ(volume.inexactSamples, f.inexact);
+  double sum = 0;
+  for (std::size_t i = 0; i < volume.sampleCount(); ++i) sum += double(volume.value(i));
+  EXPECT_EQ(sum, f.sum);
+  EXPECT_EQ(double(volume.value(0)), f.first);
+  EXPECT_EQ(double(volume.value(volume.sampleCount() - 1)), f.last);
+}
+
+// A fixture's file name as a test name ("int16_gzip.nii.gz" -> "int16_gzip_nii_gz").
+inline std::string fixtureTestName(std::string file) {
+  for (char& c : file) {
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  }
+  return file;
 }
 
 // Expects `load()` to throw an InputError whose message is one line, starts with `prefix` and

@@ -1,0 +1,171 @@
+// DICOM series (folders of slices): the committed fixtures of tests/io/dicom/, written by
+// pydicom and gdcmconv (make_fixtures.py: uncompressed, RLE, lossless JPEG, JPEG-LS, an oblique
+// series, two series in one folder, a missing slice). File names are shuffled and Instance
+// Numbers run against the slice order, so only sorting by position along the normal reads
+// them right; the manifest holds the values computed with numpy, not vsil.
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "io/volume_loader.h"
+#include "io_test_files.h"
+#include "reference/test_support.h"
+
+namespace vsil {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kDicomFixtures = fs::path(VSIL_SOURCE_DIR) / "tests" / "io" / "dicom";
+
+struct DicomFixture {
+  std::string folder;
+  std::string series;  // "" for the folder's default
+  glm::ivec3 dims{0};
+  glm::dvec3 spacing{0.0};
+  double sum = 0, first = 0, last = 0;
+  std::string axes;
+  glm::dvec3 origin{0.0};
+};
+
+std::vector<DicomFixture> dicomFixtures() {
+  std::ifstream in(kDicomFixtures / "fixtures.txt");
+  std::vector<DicomFixture> fixtures;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    DicomFixture f;
+    fields >> f.folder >> f.dims.x >> f.dims.y >> f.dims.z >> f.spacing.x >> f.spacing.y >>
+        f.spacing.z >> f.sum >> f.first >> f.last >> f.axes >> f.origin.x >> f.origin.y >>
+        f.origin.z;
+    if (const std::size_t colon = f.folder.find(':'); colon != std::string::npos) {
+      f.series = f.folder.substr(colon + 1);
+      f.folder.resize(colon);
+    }
+    fixtures.push_back(f);
+  }
+  return fixtures;
+}
+
+class DicomFixtureRead : public ::testing::TestWithParam<DicomFixture> {};
+
+TEST_P(DicomFixtureRead, ReadsTheSeriesInSlicePositionOrder) {
+  const DicomFixture& f = GetParam();
+  LoadOptions options;
+  options.series = f.series;
+  const Volume volume = loadVolume((kDicomFixtures / f.folder).string(), options);
+  EXPECT_EQ(volume.dims, f.dims);
+  EXPECT_NEAR(volume.spacing.x, f.spacing.x, 1e-9);
+  EXPECT_NEAR(volume.spacing.y, f.spacing.y, 1e-9);
+  EXPECT_NEAR(volume.spacing.z, f.spacing.z, 1e-6);
+  EXPECT_EQ(volume.type(), SampleType::Float32);  // rescaled to Hounsfield units
+  ASSERT_TRUE(volume.rescale);
+  EXPECT_TRUE(volume.format.starts_with("DICOM series (CT, ")) << volume.format;
+  double sum = 0;
+  for (std::size_t i = 0; i < volume.sampleCount(); ++i) sum += double(volume.value(i));
+  EXPECT_EQ(sum, f.sum);
+  EXPECT_EQ(double(volume.value(0)), f.first);
+  EXPECT_EQ(double(volume.value(volume.sampleCount() - 1)), f.last);
+  ASSERT_EQ(volume.orientations.size(), 1u);
+  const Orientation& patient = volume.orientations[0];
+  EXPECT_EQ(patient.space, "LPS");
+  EXPECT_EQ(patient.axes, f.axes);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(patient.worldFromIndex[3][i], f.origin[i], 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(Fixtures, DicomFixtureRead, ::testing::ValuesIn(dicomFixtures()),
+                         [](const auto& info) {
+                           return info.param.series.empty() ? info.param.folder
+                                                            : info.param.folder + "_chosen";
+                         });
+
+TEST(DicomReader, EveryFixtureIsListed) {
+  EXPECT_EQ(dicomFixtures().size(), 7u);
+}
+
+TEST(DicomReader, TheCompressedSeriesDecodeToTheUncompressedOne) {
+  const Volume plain = loadVolume((kDicomFixtures / "ct_series").string());
+  for (const char* folder : {"ct_rle", "ct_jpeg", "ct_jpegls"}) {
+    const Volume compressed = loadVolume((kDicomFixtures / folder).string());
+    EXPECT_EQ(test::floatsOf(compressed), test::floatsOf(plain)) << folder;
+  }
+  EXPECT_NE(loadVolume((kDicomFixtures / "ct_jpegls").string()).format.find("JPEG-LS"),
+            std::string::npos);
+}
+
+TEST(DicomReader, ASliceFileStandsForItsSeries) {
+  const fs::path folder = kDicomFixtures / "two_series";
+  const Volume all = loadVolume(folder.string());
+  ASSERT_EQ(all.warnings.size(), 1u);
+  EXPECT_NE(all.warnings[0].find("2 series; reading"), std::string::npos) << all.warnings[0];
+  EXPECT_NE(all.warnings[0].find("--series"), std::string::npos);
+  // IM0007 is one of the small series' slices (make_fixtures.py numbers them from 6).
+  const Volume small = loadVolume((folder / "IM0007").string());
+  EXPECT_EQ(small.dims.z, 3);
+  EXPECT_TRUE(small.warnings.size() == 1u);  // the other series is still named
+  // Named relative to the working folder, as a user in that folder types it.
+  const fs::path before = fs::current_path();
+  fs::current_path(folder);
+  const Volume relative = loadVolume("IM0007");
+  fs::current_path(before);
+  EXPECT_EQ(test::floatsOf(relative), test::floatsOf(small));
+}
+
+TEST(DicomReader, CropAndStrideDecodeOnlyTheKeptSlices) {
+  const std::string folder = (kDicomFixtures / "ct_jpegls").string();
+  const Volume whole = loadVolume(folder);
+  LoadOptions options;
+  options.region.crop = {ReadRegion::Range{1, 4}, ReadRegion::Range{0, 3}, ReadRegion::Range{1, 5}};
+  options.region.cropText = "1:4,0:3,1:5";
+  options.region.stride = 2;
+  const Volume part = loadVolume(folder, options);
+  ASSERT_EQ(part.dims, glm::ivec3(2, 2, 2));
+  for (int z = 0; z < 2; ++z) {
+    for (int y = 0; y < 2; ++y) {
+      for (int x = 0; x < 2; ++x) {
+        EXPECT_EQ(part.value(part.index(x, y, z)),
+                  whole.value(whole.index(1 + 2 * x, 2 * y, 1 + 2 * z)));
+      }
+    }
+  }
+  const glm::dvec4 kept = part.orientations[0].worldFromIndex * glm::dvec4(1, 1, 1, 1);
+  const glm::dvec4 file = whole.orientations[0].worldFromIndex * glm::dvec4(3, 2, 3, 1);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(kept[i], file[i], 1e-9);
+}
+
+TEST(DicomReader, RefusesWhatItCannotReadRight) {
+  const std::string missing = (kDicomFixtures / "missing_slice").string();
+  test::expectInputError([&] { loadVolume(missing); },
+                         missing + ": slices are unevenly spaced: 5 between positions 105 and 110",
+                         {"a missing slice?"});
+  const std::string none = (kDicomFixtures / "no_dicom").string();
+  test::expectInputError([&] { loadVolume(none); },
+                         none + ": holds no DICOM image slices (1 file looked at)", {});
+  LoadOptions options;
+  options.series = "1.2.3";
+  const std::string two = (kDicomFixtures / "two_series").string();
+  test::expectInputError([&] { loadVolume(two, options); },
+                         two + ": has no series '1.2.3' (series: ", {});
+  // A slice cut short: GDCM cannot read it, and the message names it.
+  const fs::path cut = test::scratchDir() / "cut";
+  fs::create_directories(cut);
+  for (const auto& entry : fs::directory_iterator(kDicomFixtures / "ct_series")) {
+    fs::copy_file(entry.path(), cut / entry.path().filename(),
+                  fs::copy_options::overwrite_existing);
+  }
+  fs::resize_file(cut / "IM0002", fs::file_size(cut / "IM0002") - 10);
+  test::expectInputError([&] { loadVolume(cut.string()); }, cut.string() + ": ", {"IM0002"});
+}
+
+TEST(DicomReader, LimitsAreCheckedBeforeAnySliceIsDecoded) {
+  LoadOptions options;
+  options.limits.maxBytes = 100;  // the 4x3x5 float32 series needs 240 bytes of samples
+  const std::string folder = (kDicomFixtures / "ct_series").string();
+  test::expectInputError([&] { loadVolume(folder, options); },
+                         folder + ": reading 4x3x5 float32 samples", {"--max-memory"});
+}
+
+}  // namespace
+}  // namespace vsil
