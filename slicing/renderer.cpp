@@ -54,6 +54,9 @@ void Renderer::validateSettings(const RenderSettings& settings) {
 
 struct Renderer::Impl {
   gl::GlContext* context = nullptr;
+  const Volume* volume = nullptr;  // what volumeTexture holds (setVolume)
+  std::uint64_t maxTextureBytes = 0;
+  BrickLayout::Bricking bricking = BrickLayout::Bricking::Compact;
   std::optional<VolumeTexture> volumeTexture;
   std::optional<BrickRanges> brickRanges;
   std::optional<EmptySpaceSkipping> emptySpace;
@@ -69,6 +72,19 @@ struct Renderer::Impl {
   gl::VertexArrayName sliceVertexArray;
   gl::VertexArrayName screenVertexArray;
   std::map<std::string, std::unique_ptr<Technique>> techniques;
+
+  // Uploads `volume` in the layout `bricking` asks for; gradients and halo masks follow
+  // (volumeGeneration).
+  void uploadVolume(BrickLayout::Bricking how) {
+    gradients.reset(nullptr, volume->spacing);
+    volumeTexture.reset();
+    volumeTexture.emplace(*volume, maxTextureBytes, limits::kUploadSlabBytes, how);
+    bricking = how;
+    gradients.reset(&*volumeTexture, volume->spacing);
+    if (!uniforms) uniforms.emplace();
+    uniforms->uploadBricks(volumeTexture->layout());
+    ++volumeGeneration;
+  }
 
   Technique& technique(const TechniqueInfo& info) {
     auto it = techniques.find(info.name);
@@ -101,13 +117,9 @@ const gl::ProgramCache& Renderer::programs() const {
 }
 
 void Renderer::setVolume(const Volume& volume, std::uint64_t maxTextureBytes) {
-  impl_->gradients.reset(nullptr, volume.spacing);
-  impl_->volumeTexture.reset();
-  impl_->volumeTexture.emplace(volume, maxTextureBytes);
-  impl_->gradients.reset(&*impl_->volumeTexture, volume.spacing);
-  if (!impl_->uniforms) impl_->uniforms.emplace();
-  impl_->uniforms->uploadBricks(impl_->volumeTexture->layout());
-  ++impl_->volumeGeneration;
+  impl_->volume = &volume;
+  impl_->maxTextureBytes = maxTextureBytes;
+  impl_->uploadVolume(BrickLayout::Bricking::Compact);
   impl_->brickRanges.emplace(volume);
   impl_->dims = volume.dims;
   impl_->spacing = volume.spacing;
@@ -121,6 +133,17 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   const TechniqueInfo& info = findTechnique(settings.technique);
   Technique& technique = impl_->technique(info);
   const OptionReader options(info.options, settings.options, impl_->derivedDefaults);
+  // Bricks the frame cannot follow: the volume in one texture when it fits (else the
+  // technique refuses). It stays so for later frames (the same bytes either way).
+  if (impl_->volumeTexture->brickCount() > 1 &&
+      impl_->bricking == BrickLayout::Bricking::Compact && info.needsOneTexture &&
+      info.needsOneTexture(options)) {
+    impl_->bricking = BrickLayout::Bricking::OneIfItFits;  // asked once per volume
+    if (fitsOneTexture(impl_->dims, impl_->volumeTexture->internalFormat(),
+                       impl_->maxTextureBytes)) {
+      impl_->uploadVolume(BrickLayout::Bricking::OneIfItFits);
+    }
+  }
 
   RenderResult result;
   result.view = makeView(settings.camera, impl_->dims, impl_->spacing, settings.size);

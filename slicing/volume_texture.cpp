@@ -125,8 +125,16 @@ std::string dimsText(glm::ivec3 d) {
 
 }  // namespace
 
+bool fitsOneTexture(glm::ivec3 dims, GLenum internalFormat, std::uint64_t maxTextureBytes) {
+  GLint maxSize = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
+  const BrickLayout layout = BrickLayout::choose(dims, texelSize(internalFormat), maxTextureBytes,
+                                                 maxSize, BrickLayout::Bricking::OneIfItFits);
+  return layout.size() == 1 && textureFits(layout.bricks()[0].size, internalFormat);
+}
+
 VolumeTexture::VolumeTexture(const Volume& volume, std::uint64_t maxTextureBytes,
-                             std::size_t slabBytes)
+                             std::size_t slabBytes, BrickLayout::Bricking bricking)
     : dims_(volume.dims), internalFormat_(textureFormatFor(volume)) {
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
@@ -135,7 +143,7 @@ VolumeTexture::VolumeTexture(const Volume& volume, std::uint64_t maxTextureBytes
   }
   const std::size_t texel = texelSize(internalFormat_);
   try {
-    layout_ = BrickLayout::choose(dims_, texel, maxTextureBytes, maxSize);
+    layout_ = BrickLayout::choose(dims_, texel, maxTextureBytes, maxSize, bricking);
   } catch (const std::invalid_argument&) {
     throwInputError(volume.source, "no 8x8x8 brick fits the texture limit of " +
                                        std::to_string(maxTextureBytes >> 20) + " MiB");

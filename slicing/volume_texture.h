@@ -25,6 +25,10 @@ std::size_t texelSize(GLenum internalFormat);
 // (GL_PROXY_TEXTURE_3D: llvmpipe refuses textures beyond about 1.75 GiB, limits.h).
 bool textureFits(glm::ivec3 dims, GLenum internalFormat);
 
+// Whether a volume of `dims` fits one texture of `internalFormat` (padded to powers of two)
+// within `maxTextureBytes` and what the context can create.
+bool fitsOneTexture(glm::ivec3 dims, GLenum internalFormat, std::uint64_t maxTextureBytes);
+
 // The samples of the box [origin, origin + size) (x fastest, then y, then z) as texels of
 // `internalFormat`, into `out` (size.x·size.y·size.z·texelSize bytes): half-float bits for
 // GL_R16F (exact: the caller chose it by textureFormatFor), floats for GL_R32F. The box may
@@ -33,17 +37,19 @@ bool textureFits(glm::ivec3 dims, GLenum internalFormat);
 void convertTexels(const Volume& volume, glm::ivec3 origin, glm::ivec3 size, GLenum internalFormat,
                    std::span<std::byte> out);
 
-// The volume as bricked 3D textures (core/brick_layout.h): one brick when the whole volume,
-// padded to powers of two, fits one texture within `maxTextureBytes`; else as many as needed.
-// Throws InputError naming the volume's source when no brick fits (textureFits), before
-// allocating any.
+// The volume as bricked 3D textures (core/brick_layout.h BrickLayout::choose): one brick when
+// the whole volume, padded to powers of two, fits one texture within `maxTextureBytes` and
+// wastes little to padding (or whenever it fits, with Bricking::OneIfItFits); else the fewest
+// bricks that stay close to the voxels. Throws InputError naming the volume's source when no
+// brick fits (textureFits), before allocating any.
 class VolumeTexture {
  public:
   // `slabBytes`: about how many bytes of texels each converted slab holds (tests make it small
   // to cross many slab borders).
-  explicit VolumeTexture(const Volume& volume,
-                         std::uint64_t maxTextureBytes = limits::kMaxTextureBytes,
-                         std::size_t slabBytes = limits::kUploadSlabBytes);
+  explicit VolumeTexture(
+      const Volume& volume, std::uint64_t maxTextureBytes = limits::kMaxTextureBytes,
+      std::size_t slabBytes = limits::kUploadSlabBytes,
+      BrickLayout::Bricking bricking = BrickLayout::Bricking::Compact);
   const BrickLayout& layout() const { return layout_; }
   std::size_t brickCount() const { return textures_.size(); }
   GLuint brickTexture(std::size_t brick) const { return textures_[brick].id(); }

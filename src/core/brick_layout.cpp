@@ -16,39 +16,104 @@ constexpr int kMinStorage = 8;
 struct AxisBricks {
   std::vector<int> origin, size;
   std::vector<double> low, high;
-  std::int64_t texels() const {
-    std::int64_t sum = 0;
-    for (int s : size) sum += s;
-    return sum;
-  }
-  int largest() const { return *std::max_element(size.begin(), size.end()); }
+  std::int64_t texelSum = 0;  // of size
+  int largestSize = 0;
+  std::int64_t texels() const { return texelSum; }
+  int largest() const { return largestSize; }
+  std::size_t count() const { return size.size(); }
 };
 
-// Bricks of texture size `storage` along an axis of `dim` voxels (one brick, padded to a power
-// of two, when that is no larger).
-AxisBricks axisBricks(int dim, int storage) {
+// The bricks along an axis of `dim` voxels with texture sizes `sizes` (powers of two; every
+// one but the last larger than 2·kV). Brick i owns the positions from its start b_i − 0.5 (b_0
+// = −∞) to b_{i+1} − 0.5, b_{i+1} = b_i + size_i − 2·kV, and stores from origin_i =
+// max(0, b_i − kV); the last brick's size is where its stored voxels end, as given.
+AxisBricks axisFromSizes(const std::vector<int>& sizes) {
   AxisBricks axis;
-  if (nextPowerOfTwo(dim) <= storage) {
-    axis.origin = {0};
-    axis.size = {nextPowerOfTwo(dim)};
-    axis.low = {-kUnbounded};
-    axis.high = {kUnbounded};
-    return axis;
-  }
-  const int valid = storage - 2 * kV;
-  const int count = (dim + valid - 1) / valid;
-  for (int i = 0; i < count; ++i) {
-    const int origin = std::max(0, i * valid - kV);
-    const int end = std::min(dim, (i + 1) * valid + kV);  // voxels it must hold
-    axis.origin.push_back(origin);
-    axis.size.push_back(i + 1 < count ? storage : nextPowerOfTwo(end - origin));
-    axis.low.push_back(i == 0 ? -kUnbounded : i * valid - 0.5);
-    axis.high.push_back(i + 1 == count ? kUnbounded : (i + 1) * valid - 0.5);
+  int start = 0;
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    const bool last = i + 1 == sizes.size();
+    axis.origin.push_back(std::max(0, start - kV));
+    axis.size.push_back(sizes[i]);
+    axis.low.push_back(i == 0 ? -kUnbounded : start - 0.5);
+    start += sizes[i] - 2 * kV;
+    axis.high.push_back(last ? kUnbounded : start - 0.5);
+    axis.texelSum += sizes[i];
+    axis.largestSize = std::max(axis.largestSize, sizes[i]);
   }
   return axis;
 }
 
+// Bricks of texture size `storage` along an axis of `dim` voxels, the last one the smallest
+// power of two that holds the rest (one brick, padded to a power of two, when that is no
+// larger than `storage`).
+AxisBricks axisBricks(int dim, int storage) {
+  if (nextPowerOfTwo(dim) <= storage) return axisFromSizes({nextPowerOfTwo(dim)});
+  std::vector<int> sizes;
+  int start = 0;
+  while (dim - std::max(0, start - kV) > storage) {
+    sizes.push_back(storage);
+    start += storage - 2 * kV;
+  }
+  sizes.push_back(nextPowerOfTwo(dim - std::max(0, start - kV)));
+  return axisFromSizes(sizes);
+}
+
+// The ways to cut an axis considered by choose: for each largest size S (up to maxSide), bricks
+// of S while the rest does not fit one, then a tail of smaller powers of two — the smallest
+// that holds the rest, or the largest below it followed by another tail (300 with S = 256:
+// 256 + 64; 400: 256 + 128 + 32 rather than 256 + 256). Pruned to the options no other beats
+// in brick count, texels and largest brick at once.
+std::vector<AxisBricks> axisOptions(int dim, int maxSide) {
+  std::vector<std::vector<int>> sequences;
+  const int whole = nextPowerOfTwo(dim);
+  if (whole <= std::max(kMinStorage, maxSide)) sequences.push_back({whole});
+  for (int s = kMinStorage; s <= maxSide && s < whole; s *= 2) {
+    std::vector<int> sizes;
+    int start = 0;
+    while (dim - std::max(0, start - kV) > s) {
+      sizes.push_back(s);
+      start += s - 2 * kV;
+    }
+    // The tail: at each step either end with the smallest power of two holding the rest, or
+    // place the largest one below it (at least kMinStorage) and go on.
+    for (;;) {
+      const int rest = dim - std::max(0, start - kV);
+      std::vector<int> ended = sizes;
+      ended.push_back(nextPowerOfTwo(rest));
+      sequences.push_back(std::move(ended));
+      const int below = nextPowerOfTwo(rest) / 2;
+      if (below < kMinStorage || below >= rest) break;
+      sizes.push_back(below);
+      start += below - 2 * kV;
+    }
+  }
+  std::vector<AxisBricks> options;
+  for (const auto& sizes : sequences) options.push_back(axisFromSizes(sizes));
+  std::vector<AxisBricks> kept;
+  for (std::size_t i = 0; i < options.size(); ++i) {
+    const AxisBricks& a = options[i];
+    bool beaten = false;
+    for (std::size_t j = 0; j < options.size() && !beaten; ++j) {
+      const AxisBricks& b = options[j];
+      const bool noWorse = b.count() <= a.count() && b.texels() <= a.texels() &&
+                           b.largest() <= a.largest();
+      const bool better = b.count() < a.count() || b.texels() < a.texels() ||
+                          b.largest() < a.largest();
+      // Equal options: keep the first.
+      beaten = noWorse && (better || j < i);
+    }
+    if (!beaten) kept.push_back(a);
+  }
+  return kept;
+}
+
 BrickLayout fromAxes(glm::ivec3 dims, const std::array<AxisBricks, 3>& axes);
+
+// The voxels and overlap copies `count` bricks along an axis of `dim` voxels store, at least
+// kSmallestCutSide (below it no cut holds an axis in fewer texels than the next power of two).
+double storedSide(int dim, std::size_t count) {
+  return std::max(double(BrickLayout::kSmallestCutSide), dim + 2.0 * kV * double(count - 1));
+}
 
 }  // namespace
 
@@ -69,34 +134,54 @@ BrickLayout BrickLayout::withStorage(glm::ivec3 dims, glm::ivec3 storage) {
 }
 
 BrickLayout BrickLayout::choose(glm::ivec3 dims, std::size_t texelBytes,
-                                std::uint64_t maxTextureBytes, int maxTextureSide) {
+                                std::uint64_t maxTextureBytes, int maxTextureSide,
+                                Bricking bricking) {
   const std::uint64_t maxTexels = maxTextureBytes / std::max<std::size_t>(texelBytes, 1);
   const glm::ivec3 whole(nextPowerOfTwo(dims.x), nextPowerOfTwo(dims.y), nextPowerOfTwo(dims.z));
-  if (glm::all(glm::lessThanEqual(whole, glm::ivec3(maxTextureSide))) &&
-      std::uint64_t(whole.x) * whole.y * whole.z <= maxTexels) {
+  const std::uint64_t voxels = std::uint64_t(dims.x) * dims.y * dims.z;
+  const std::uint64_t wholeTexels = std::uint64_t(whole.x) * whole.y * whole.z;
+  const bool wholeFits =
+      glm::all(glm::lessThanEqual(whole, glm::ivec3(maxTextureSide))) && wholeTexels <= maxTexels;
+  const double wholeStored = storedSide(dims.x, 1) * storedSide(dims.y, 1) * storedSide(dims.z, 1);
+  if (wholeFits &&
+      (bricking == Bricking::OneIfItFits || double(wholeTexels) <= kMaxWaste * wholeStored ||
+       (wholeTexels - voxels) * texelBytes <= kSmallWasteBytes)) {
     return withStorage(dims, whole);
   }
-  // Each brick costs a draw call per slice piece: counted as this many texels.
-  constexpr double kTexelsPerBrick = 1 << 16;
   std::array<std::vector<AxisBricks>, 3> options;
   for (int a = 0; a < 3; ++a) {
-    for (int s = kMinStorage; s <= std::max(kMinStorage, maxTextureSide); s *= 2) {
-      options[a].push_back(axisBricks(dims[a], s));
-      if (s >= whole[a]) break;
-    }
+    options[std::size_t(a)] = axisOptions(dims[a], std::max(kMinStorage, maxTextureSide));
   }
+  // Among the layouts within kMaxWaste of the voxels they must store (overlap included), the
+  // fewest bricks (each costs a draw per slice piece), then the fewest texels. When none is
+  // (only small bricks fit), the fewest texels with a cost per brick.
+  constexpr double kTexelsPerBrick = 1 << 16;
   const AxisBricks* best[3] = {nullptr, nullptr, nullptr};
-  double bestCost = 0;
+  bool bestWithin = false;
+  double bestBricks = 0, bestTexels = 0;
   for (const auto& x : options[0]) {
     for (const auto& y : options[1]) {
       for (const auto& z : options[2]) {
         if (std::uint64_t(x.largest()) * y.largest() * z.largest() > maxTexels) continue;
-        const double bricks = double(x.size.size() * y.size.size() * z.size.size());
-        const double cost =
-            double(x.texels()) * double(y.texels()) * double(z.texels()) + bricks * kTexelsPerBrick;
-        if (!best[0] || cost < bestCost) {
+        const double bricks = double(x.count() * y.count() * z.count());
+        const double texels = double(x.texels()) * double(y.texels()) * double(z.texels());
+        const double stored =
+            storedSide(dims.x, x.count()) * storedSide(dims.y, y.count()) *
+            storedSide(dims.z, z.count());
+        const bool within = texels <= kMaxWaste * stored;
+        bool better = false;
+        if (!best[0] || within != bestWithin) {
+          better = !best[0] || within;
+        } else if (within) {
+          better = bricks < bestBricks || (bricks == bestBricks && texels < bestTexels);
+        } else {
+          better = texels + bricks * kTexelsPerBrick < bestTexels + bestBricks * kTexelsPerBrick;
+        }
+        if (better) {
           best[0] = &x, best[1] = &y, best[2] = &z;
-          bestCost = cost;
+          bestWithin = within;
+          bestBricks = bricks;
+          bestTexels = texels;
         }
       }
     }
@@ -139,6 +224,11 @@ std::uint64_t BrickLayout::texels() const {
   std::uint64_t sum = 0;
   for (const Brick& b : bricks_) sum += std::uint64_t(b.size.x) * b.size.y * b.size.z;
   return sum;
+}
+
+double BrickLayout::storedTexels() const {
+  return storedSide(dims_.x, std::size_t(counts_.x)) * storedSide(dims_.y, std::size_t(counts_.y)) *
+         storedSide(dims_.z, std::size_t(counts_.z));
 }
 
 std::uint64_t BrickLayout::largestTexels() const {

@@ -3,10 +3,10 @@
 // Pure arithmetic on the dimensions, no GL: the memory check before reading
 // (limits::renderVolumeBytes) and the upload use the same layout.
 //
-// Along each axis, bricks of `valid` = S − 4 voxels, S a power of two (the texture's size along
-// that axis): brick i owns the sample positions [i·valid − 0.5, (i+1)·valid − 0.5] (the first
-// from −∞, the last to +∞; the slice polygons are cut on these planes) and stores the voxels
-// [origin, origin + size) with origin = max(0, i·valid − 2): two voxels of overlap on each side,
+// Along each axis, bricks of texture sizes S_i, powers of two: brick i owns the sample positions
+// [b_i − 0.5, b_{i+1} − 0.5] with b_0 = 0 and b_{i+1} = b_i + S_i − 4 (the first from −∞, the
+// last to +∞; the slice polygons are cut on these planes) and stores the voxels
+// [origin, origin + S_i) with origin = max(0, b_i − 2): two voxels of overlap on each side,
 // enough for the trilinear taps of a sample and of its central-difference neighbours one voxel
 // away. Voxels past the volume's end are stored as copies of the last one (what CLAMP_TO_EDGE
 // would read). A texture's size is a power of two along every axis so that a sample's
@@ -38,12 +38,29 @@ class BrickLayout {
   // brick-local coordinate is then exact in float for volumes up to 8192 voxels per side.
   static constexpr float kSampleQuantum = 1.0f / 1024.0f;
 
+  // Total texels a layout may take, relative to the voxels and overlap copies it stores.
+  static constexpr double kMaxWaste = 1.3;
+  // Axes shorter than this count as this long in that bound: the smallest brick (8 texels,
+  // 4 voxels of its own) cannot hold them in fewer texels than the next power of two.
+  static constexpr int kSmallestCutSide = 32;
+  // Padding of one texture small enough to keep (bytes beyond the voxels'): below it, one
+  // brick draws fewer pieces than a tighter cut.
+  static constexpr std::uint64_t kSmallWasteBytes = std::uint64_t(64) << 20;
+
   // One brick (each axis padded to a power of two) when that texture fits in
-  // `maxTextureBytes` and `maxTextureSide`; else the bricks, each within both, whose textures
-  // hold the fewest texels (with a small cost per brick, since each brick costs a draw per
-  // slice). Throws std::invalid_argument when not even 8³ texels fit.
+  // `maxTextureBytes` and `maxTextureSide` and its padding is within kMaxWaste of the voxels or
+  // below kSmallWasteBytes (or, with Bricking::OneIfItFits, whenever it fits: for what cannot
+  // follow bricks, the tiles march); else, among the layouts whose bricks each fit, the fewest
+  // bricks whose texels are within kMaxWaste of the voxels and overlap they store (storedTexels; each brick
+  // costs a draw per slice piece), then the fewest texels. Along an axis the bricks are one
+  // power of two, then smaller ones at the end: 300 voxels take 256 + 64 texels, 400 take
+  // 256 + 128 + 32. Throws std::invalid_argument when not even 8³ texels fit.
+  enum class Bricking { Compact, OneIfItFits };
   static BrickLayout choose(glm::ivec3 dims, std::size_t texelBytes, std::uint64_t maxTextureBytes,
-                            int maxTextureSide);
+                            int maxTextureSide, Bricking bricking = Bricking::Compact);
+  // The voxels and overlap copies the layout stores, each axis counted as at least
+  // kSmallestCutSide: what kMaxWaste is a bound on.
+  double storedTexels() const;
   // The layout with texture size `storage` (powers of two, each > 2·kOverlap) along each axis.
   static BrickLayout withStorage(glm::ivec3 dims, glm::ivec3 storage);
   BrickLayout() = default;

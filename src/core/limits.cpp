@@ -38,14 +38,17 @@ std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth) {
 }
 
 std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample, bool gradients,
-                                std::uint64_t maxTextureBytes) {
+                                std::uint64_t maxTextureBytes, bool oneTexture) {
   const glm::u64vec3 d(glm::max(dims, glm::ivec3(0)));
   const std::uint64_t voxels = d.x * d.y * d.z;
   const std::uint64_t textureBytes = bytesPerSample == 1 ? 2 : 4;
   std::uint64_t texels = voxels;
   if (voxels > 0) {
     try {
-      texels = BrickLayout::choose(dims, textureBytes, maxTextureBytes, kMaxVolumeSide).texels();
+      texels = BrickLayout::choose(dims, textureBytes, maxTextureBytes, kMaxVolumeSide,
+                                   oneTexture ? BrickLayout::Bricking::OneIfItFits
+                                              : BrickLayout::Bricking::Compact)
+                   .texels();
     } catch (const std::invalid_argument&) {
       // No layout: the upload refuses it with its own error; count the voxels.
     }

@@ -63,10 +63,13 @@ inline constexpr std::size_t kGradientCpuBytesPerVoxel = 8;
 inline constexpr std::size_t kRenderBytesPerPixel = 128;
 inline constexpr std::size_t kUploadSlabBytes = std::size_t(8) << 20;
 std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth);
-// The texture counts the texels of the bricks it is cut into (core/brick_layout.h; each a power
-// of two along every axis), `maxTextureBytes` being the largest brick (--max-texture-mib).
+// The texture counts the texels of the bricks it is cut into (core/brick_layout.h
+// BrickLayout::choose; each a power of two along every axis), `maxTextureBytes` being the
+// largest brick (--max-texture-mib); with `oneTexture` (a render that cannot follow bricks,
+// TechniqueInfo::needsOneTexture) one texture padded to powers of two when it fits.
 std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample, bool gradients = false,
-                                std::uint64_t maxTextureBytes = kMaxTextureBytes);
+                                std::uint64_t maxTextureBytes = kMaxTextureBytes,
+                                bool oneTexture = false);
 // An upper bound of the slices a frame draws: ceil(|dims| * samplesPerVoxel) + 1.
 std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel);
 

@@ -44,7 +44,7 @@ TEST(MaxTextureMib, TilesRefuseBricksWithOneLineAndNoFile) {
   EXPECT_EQ(result.exitCode, 2);
   EXPECT_EQ(result.err,
             "vsil: --pipeline tiles needs the volume in one texture, and this volume takes 11 "
-            "bricks (11x1x1); use --pipeline fast or paper (the same pixels)\n");
+            "bricks (1x1x11); use --pipeline fast or paper (the same pixels)\n");
   EXPECT_FALSE(fs::exists(out));
 }
 

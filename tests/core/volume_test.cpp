@@ -309,13 +309,17 @@ TEST(Limits, RenderVolumeBytesCountSamplesTextureRangesAndSlabs) {
   EXPECT_EQ(limits::renderVolumeBytes(dims, 1, /*gradients=*/true),
             voxels * (3 + limits::kGradientBytesPerTexel + limits::kGradientCpuBytesPerVoxel) +
                 ranges + slabs);
-  // A texture is a power of two along each axis (core/brick_layout.h): 300³ in one brick of
-  // 512³ texels.
+  // A texture is a power of two along each axis (core/brick_layout.h): 300³ in bricks of
+  // 256 + 64 texels along each axis (320³), not one of 512³ (4.97 times the voxels) — unless
+  // the render needs one texture (the tiles march, illustrate's halos).
   const glm::ivec3 odd(300);
   const std::uint64_t oddVoxels = 300ull * 300 * 300;
   const std::uint64_t oddRanges =
       8 * (38ull * 38 * 38 + limits::kMaxWorkerThreads * (38ull * 300 + 38ull * 38));
   EXPECT_EQ(limits::renderVolumeBytes(odd, 1),
+            oddVoxels + 320ull * 320 * 320 * 2 + oddRanges + 2 * limits::kUploadSlabBytes);
+  EXPECT_EQ(limits::renderVolumeBytes(odd, 1, false, limits::kMaxTextureBytes,
+                                      /*oneTexture=*/true),
             oddVoxels + 512ull * 512 * 512 * 2 + oddRanges + 2 * limits::kUploadSlabBytes);
   // 1024³ of 8-bit data takes bricks (one texture would be 2 GiB): a few percent of overlap.
   const std::uint64_t big = 1024ull * 1024 * 1024;

@@ -2,8 +2,12 @@
 // bytes: state, depth, shade and colour, for every technique and pipeline that takes bricks.
 // The brick borders cross the spheres' silhouettes, and the slice planes cross the borders at
 // odd angles (perspective and orthographic views off every axis). What cannot follow the
-// bricks (the tiles march, illustrate's halos) refuses with an InputError.
+// bricks (the tiles march, illustrate's halos) takes the volume in one texture when it fits and
+// refuses with an InputError otherwise.
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -21,8 +25,8 @@ namespace {
 
 using test::GlTest;
 
-// Bytes of one brick texture small enough for 4 bricks per axis of a 100³ volume (32³ texels
-// of R32F or smaller): 64 bricks.
+// Bytes of one brick texture small enough for 4 or 5 bricks per axis of a 100³ volume (32³
+// texels of R32F or smaller): 100 bricks (4·5·5, smaller ones at the ends).
 constexpr std::uint64_t kSmallBrickBytes = 32 * 32 * 32 * 4;
 
 struct Case {
@@ -140,6 +144,45 @@ TEST_F(BrickedVolume, WhatCannotFollowTheBricksRefuses) {
   whole.setVolume(*volume_);
   EXPECT_NO_THROW(whole.render(tiles));
   EXPECT_NO_THROW(whole.render(halo));
+}
+
+// A volume that fits one texture but would waste most of it to padding (260³ 8-bit: 512³
+// texels) is cut into bricks of 256 + 8 texels per axis; the tiles march, which cannot follow
+// bricks, gets it in one texture and draws the pixels the fast pipeline draws on the bricks.
+TEST(BrickedVolumeLayout, PaddedVolumeIsBrickedAndTilesGetItInOneTexture) {
+  Volume volume;
+  volume.source = "ball:260";
+  volume.dims = glm::ivec3(260);
+  volume.allocate(SampleType::UInt8);
+  const std::span<std::uint8_t> samples = volume.samples<std::uint8_t>();
+  const glm::dvec3 centre(141.0, 118.0, 127.0);  // off the brick border at 252
+  for (int z = 0; z < 260; ++z) {
+    for (int y = 0; y < 260; ++y) {
+      for (int x = 0; x < 260; ++x) {
+        const double r = glm::length(glm::dvec3(x, y, z) - centre);
+        samples[volume.index(x, y, z)] = std::uint8_t(std::clamp(255.0 - 2.0 * r, 0.0, 255.0));
+      }
+    }
+  }
+  Renderer renderer(test::sharedGlContext());
+  renderer.setVolume(volume);
+  ASSERT_EQ(renderer.brickCount(), 8u);
+  RenderSettings settings;
+  settings.technique = "silhouette";
+  settings.options = test::isoOptions(findTechnique("silhouette"), 40.0);
+  settings.options["pipeline"] = std::string("fast");
+  settings.size = {48, 40};
+  settings.samplesPerVoxel = 0.37;
+  settings.camera.azimuthDeg = 31.0;
+  settings.camera.elevationDeg = 12.0;
+  const RenderResult fast = renderer.render(settings);
+  EXPECT_EQ(renderer.brickCount(), 8u);
+  EXPECT_GT(cv::countNonZero(fast.frame.state), 100);
+  settings.options["pipeline"] = std::string("tiles");
+  const RenderResult tiles = renderer.render(settings);
+  EXPECT_EQ(renderer.brickCount(), 1u);
+  expectSameBytes(fast.frame.state, tiles.frame.state, "state");
+  expectSameBytes(fast.frame.depth, tiles.frame.depth, "depth");
 }
 
 }  // namespace

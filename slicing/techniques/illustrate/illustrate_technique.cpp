@@ -40,7 +40,12 @@ TechniqueInfo illustrateTechniqueInfo() {
           FrameOutputs{.state = false, .color = true, .depth = false},
           [] { return std::make_unique<IllustrateTechnique>(); },
           /*usesGradients=*/true,
-          /*checkValues=*/{}};
+          /*checkValues=*/{},
+          // The halo taps reach farther than a brick's overlap.
+          /*needsOneTexture=*/[](const OptionReader& options) {
+            return illustrationFromOptions(illustrateOptions(), options)
+                .effects.has(Effect::Halo);
+          }};
 }
 
 std::vector<std::string> illustrateDefines(const Illustration& illustration) {

@@ -17,7 +17,8 @@ TechniqueInfo mipTechniqueInfo() {
           FrameOutputs{.state = false, .color = true, .depth = false},
           [] { return std::make_unique<MipTechnique>(false); },
           /*usesGradients=*/false,
-          /*checkValues=*/checkWindowOrTf};
+          /*checkValues=*/checkWindowOrTf,
+          /*needsOneTexture=*/{}};
 }
 
 TechniqueInfo demipTechniqueInfo() {
@@ -28,7 +29,8 @@ TechniqueInfo demipTechniqueInfo() {
           FrameOutputs{.state = false, .color = true, .depth = true},
           [] { return std::make_unique<MipTechnique>(true); },
           /*usesGradients=*/false,
-          /*checkValues=*/checkDemipValues};
+          /*checkValues=*/checkDemipValues,
+          /*needsOneTexture=*/{}};
 }
 
 BrickOccupancy MipTechnique::occupancy(const FrameContext& frame) const {

@@ -14,7 +14,8 @@ TechniqueInfo rightAngleTechniqueInfo() {
            pipelineOption()},
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<RightAngleTechnique>(); },
-          /*usesGradients=*/false, /*checkValues=*/{}};
+          /*usesGradients=*/false, /*checkValues=*/{},
+          /*needsOneTexture=*/tilesNeedOneTexture};
 }
 
 BrickOccupancy RightAngleTechnique::occupancy(const FrameContext& frame) const {

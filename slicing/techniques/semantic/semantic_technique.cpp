@@ -68,7 +68,8 @@ TechniqueInfo semanticTechniqueInfo() {
           FrameOutputs{.state = false, .color = true, .depth = false},
           [] { return std::make_unique<SemanticTechnique>(); },
           /*usesGradients=*/true,
-          /*checkValues=*/{}};
+          /*checkValues=*/{},
+          /*needsOneTexture=*/{}};
 }
 
 gl::ProgramSpec semanticProgram(const CompiledRules& compiled, bool flat, bool planeShow) {

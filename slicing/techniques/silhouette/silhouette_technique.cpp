@@ -40,7 +40,8 @@ TechniqueInfo silhouetteTechniqueInfo() {
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<SilhouetteTechnique>(); },
           /*usesGradients=*/false,
-          /*checkValues=*/{}};
+          /*checkValues=*/{},
+          /*needsOneTexture=*/tilesNeedOneTexture};
 }
 
 BrickOccupancy SilhouetteTechnique::occupancy(const FrameContext& frame) const {
