@@ -43,18 +43,30 @@ AxisBricks axisFromSizes(const std::vector<int>& sizes) {
   return axis;
 }
 
+// The voxels from the brick that starts at `start` to the end of an axis of `dim` voxels.
+int restFrom(int dim, int start) {
+  return dim - std::max(0, start - kV);
+}
+
+// Bricks of size `storage` from the start of an axis of `dim` voxels while the rest does not
+// fit one; `start` becomes the first position the next brick owns.
+std::vector<int> fullBricks(int dim, int storage, int& start) {
+  std::vector<int> sizes;
+  start = 0;
+  while (restFrom(dim, start) > storage) {
+    sizes.push_back(storage);
+    start += storage - 2 * kV;
+  }
+  return sizes;
+}
+
 // Bricks of texture size `storage` along an axis of `dim` voxels, the last one the smallest
 // power of two that holds the rest (one brick, padded to a power of two, when that is no
 // larger than `storage`).
 AxisBricks axisBricks(int dim, int storage) {
-  if (nextPowerOfTwo(dim) <= storage) return axisFromSizes({nextPowerOfTwo(dim)});
-  std::vector<int> sizes;
   int start = 0;
-  while (dim - std::max(0, start - kV) > storage) {
-    sizes.push_back(storage);
-    start += storage - 2 * kV;
-  }
-  sizes.push_back(nextPowerOfTwo(dim - std::max(0, start - kV)));
+  std::vector<int> sizes = fullBricks(dim, storage, start);
+  sizes.push_back(nextPowerOfTwo(restFrom(dim, start)));
   return axisFromSizes(sizes);
 }
 
@@ -68,16 +80,12 @@ std::vector<AxisBricks> axisOptions(int dim, int maxSide) {
   const int whole = nextPowerOfTwo(dim);
   if (whole <= std::max(kMinStorage, maxSide)) sequences.push_back({whole});
   for (int s = kMinStorage; s <= maxSide && s < whole; s *= 2) {
-    std::vector<int> sizes;
     int start = 0;
-    while (dim - std::max(0, start - kV) > s) {
-      sizes.push_back(s);
-      start += s - 2 * kV;
-    }
+    std::vector<int> sizes = fullBricks(dim, s, start);
     // The tail: at each step either end with the smallest power of two holding the rest, or
     // place the largest one below it (at least kMinStorage) and go on.
     for (;;) {
-      const int rest = dim - std::max(0, start - kV);
+      const int rest = restFrom(dim, start);
       std::vector<int> ended = sizes;
       ended.push_back(nextPowerOfTwo(rest));
       sequences.push_back(std::move(ended));
