@@ -40,6 +40,11 @@ cv::Mat composeColorOverBackground(const cv::Mat4f& color, const Rgba& backgroun
 
 }  // namespace
 
+const char* fillModeName(FillMode fill) {
+  static const char* const names[] = {"none", "flat", "shaded", "tone"};
+  return names[int(fill)];
+}
+
 cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& options,
                             FftGaussianBlur& blur, const cv::Mat1b& lines) {
   const Rgba background = options.background.value_or(kDefaultBackground);
@@ -49,6 +54,7 @@ cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& opti
                       (options.fill == FillMode::None || options.fillColor.a == 255);
   const cv::Vec4b lineColor = options.lineColor.bgra(), fillColor = options.fillColor.bgra();
   const bool shaded = options.fill == FillMode::Shaded && !frame.shade.empty();
+  const bool toned = options.fill == FillMode::Tone && !frame.tone.empty();
   cv::Mat4b image(frame.state.size(), background.bgra());
   for (int y = 0; y < image.rows; ++y) {
     cv::Vec4b* out = image[y];
@@ -65,6 +71,12 @@ cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& opti
         const float shade = frame.shade(y, x);
         const double k = std::isnan(shade) ? 1.0 : std::clamp(double(shade), 0.0, 1.0);
         for (int c = 0; c < 3; ++c) fill[c] = cv::saturate_cast<std::uint8_t>(fill[c] * k);
+      }
+      if (toned && !std::isnan(frame.tone(y, x)[0])) {
+        const cv::Vec3f& rgb = frame.tone(y, x);
+        for (int c = 0; c < 3; ++c) {  // BGR order
+          fill[c] = cv::saturate_cast<std::uint8_t>(std::lround(rgb[2 - c] * 255.0));
+        }
       }
       out[x] = fill;
     }

@@ -1,8 +1,9 @@
 #pragma once
 // Composition of an illustration. For techniques that return pixel states (silhouette,
 // rightangle): broadened lines in the line colour over the fill of the Filled pixels (none, a
-// flat colour, or that colour shaded by the diffuse shade) over the background. For techniques that
-// return colour (FrameBuffers::color, premultiplied): that colour over the background.
+// flat colour, that colour shaded by the diffuse shade, or the tone-shaded colour the technique
+// computed, FrameBuffers::tone) over the background. For techniques that return colour
+// (FrameBuffers::color, premultiplied): that colour over the background.
 // The result is 8-bit BGRA (BGR when every colour is opaque), ready for writePng.
 #include <optional>
 
@@ -15,7 +16,11 @@
 
 namespace vsil {
 
-enum class FillMode { None, Flat, Shaded };
+// What Filled pixels show: nothing; the fill colour; the fill colour times the headlight shade
+// |n·v| (FrameBuffers::shade); the fill colour tone-shaded and distance-blended by the technique
+// (FrameBuffers::tone; the render must ask for it, RenderSettings::toneFill).
+enum class FillMode { None, Flat, Shaded, Tone };
+const char* fillModeName(FillMode fill);
 
 struct PostfxOptions {
   WidthLaw width = WidthLaw::fixed(3);

@@ -28,6 +28,10 @@ entries=(
   "nk_bonsai_w2|$data/bonsai.vti|--iso 40 --view 30,10 --width 2 --fill shaded --fill-color #d9c7a0"
   # Fig. 9: depth-dependent width on a close-up, lines thicker where the object comes nearer.
   "nk_hydrogen_depthlaw|$data/hydrogen_atom_128x128x128_uint8.nhdr|--iso 20 --view 60,30 --zoom 2.2 --width-near 8 --width-far 1 --fill shaded --fill-color #f0d0c0"
+  # Exact silhouettes on a tone-shaded iso-surface (--fill tone: Ebert & Rheingans' tone shading,
+  # then with distance blending as well).
+  "nk_engine_tone|$data/engine.vti|--iso 80 --view 40,25 --width 2 --fill tone --fill-color #d9c7a0"
+  "nk_bonsai_tone_distance|$data/bonsai.vti|--iso 40 --view 30,10 --width 2 --fill tone --fill-color #d9c7a0 --param k_ds=0.6,k_de=1"
   # Ebert & Rheingans: the plain lit composite (gaseous illumination, Fig. 1-2) and one picture
   # per style preset, named after the figure it mirrors (over white: the gallery's background
   # wins over fig6's own dark blue, so its distance blending fades towards white).

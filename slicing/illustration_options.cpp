@@ -22,7 +22,8 @@ bool declares(const std::vector<OptionSpec>& declared, const std::string& name) 
 OptionSpec parameterOption(std::vector<std::string> allowed, std::string owner) {
   return OptionSpec::list("param",
                           "illustration parameters NAME=VALUE,... by the paper's names (k_gc, "
-                          "k_ss, k_ta, ...; README, volume illustration); repeatable")
+                          "k_ss, k_ta, ...; README, volume illustration; with --fill tone the "
+                          "tone, distance and lighting ones); repeatable")
       .validatedBy(
           [allowed = std::move(allowed), owner = std::move(owner)](const OptionValue& value) {
             ParameterValues ignored;
@@ -123,10 +124,11 @@ IllustrationStyle styleFromOptions(const std::vector<OptionSpec>& declared,
 }
 
 Illustration illustrationFromOptions(const std::vector<OptionSpec>& declared,
-                                     const OptionReader& options) {
+                                     const OptionReader& options,
+                                     const IllustrationStyle& defaults) {
   const bool styled =
       declares(declared, "style") && options.given("style") && !options.text("style").empty();
-  const IllustrationStyle base = styled ? loadStyle(options.text("style")) : IllustrationStyle{};
+  const IllustrationStyle base = styled ? loadStyle(options.text("style")) : defaults;
   return resolveIllustration(base, styleFromOptions(declared, options),
                              styled ? options.text("style") : "");
 }

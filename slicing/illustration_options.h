@@ -26,8 +26,9 @@ OptionSpec sketchColorOption();
 // declare are left alone.
 IllustrationStyle styleFromOptions(const std::vector<OptionSpec>& declared,
                                    const OptionReader& options);
-// The style (--style) resolved with the other options over it.
+// The style (--style, else `defaults`) resolved with the other options over it.
 Illustration illustrationFromOptions(const std::vector<OptionSpec>& declared,
-                                     const OptionReader& options);
+                                     const OptionReader& options,
+                                     const IllustrationStyle& defaults = {});
 
 }  // namespace vsil

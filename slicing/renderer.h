@@ -40,9 +40,13 @@ struct RenderSettings {
   // sample in occupied space is composited.
   bool earlyRayTermination = true;
   // The colour the frame will be composed over (`--background`) when the caller chose one;
-  // techniques that blend towards it read FrameContext::background (illustrate's distance
-  // colour blending, c_b). Unset: the technique's own choice (a style's), else white.
+  // techniques that blend towards it read FrameContext::background (distance colour blending's
+  // c_b: illustrate's, the tone fill's). Unset: the technique's own choice (a style's), else white.
   std::optional<Rgba> background;
+  // `--fill tone` (postfx/compose.h): the object colour c_o (`--fill-color`) in which the
+  // techniques that return pixel states tone-shade each first hit (slicing/tone_fill.h), into
+  // FrameBuffers::tone. Unset: they do not.
+  std::optional<Rgba> toneFill;
   // The technique's options by name (its entry in technique_table.h declares them); options
   // not given take their declared defaults, the iso value the volume's default.
   OptionValues options;

@@ -105,12 +105,19 @@ vec3 gradientVoxel(vec3 voxel) {
               sampleVolume(voxel + vec3(0, 0, 1)) - sampleVolume(voxel - vec3(0, 0, 1))) * 0.5;
 }
 
+// The iso-surface's outward unit normal n = −∇f/|∇f| in eye space (out of the denser side, as
+// shaders/illustration.glsl takes it); 0 where the gradient vanishes.
+vec3 outwardNormalEye(vec3 voxel) {
+  vec3 gradientEye = eyeFromVoxelGradient * gradientVoxel(voxel);
+  float length2 = dot(gradientEye, gradientEye);
+  return length2 > 0.0 ? gradientEye * -inversesqrt(length2) : vec3(0.0);
+}
+
 // |n·v|: 1 where the iso-surface faces the viewer, 0 where the view grazes it. A vanishing
 // gradient has no direction; it counts as facing the viewer.
 float facingRatio(vec3 voxel, vec3 eye) {
-  vec3 normalEye = eyeFromVoxelGradient * gradientVoxel(voxel);
-  float length2 = dot(normalEye, normalEye);
-  if (length2 <= 0.0) return 1.0;
+  vec3 n = outwardNormalEye(voxel);
+  if (n == vec3(0.0)) return 1.0;
   vec3 toEye = orthographic != 0 ? vec3(0.0, 0.0, 1.0) : -normalize(eye);
-  return abs(dot(normalEye * inversesqrt(length2), toEye));
+  return abs(dot(n, toEye));
 }

@@ -1,13 +1,14 @@
 // illustration.glsl: the Ebert–Rheingans formulas (IEEE Vis 2000), once, for every pass that
-// applies them: illustrate's slice pass (techniques/illustrate/composite.frag). Parameters are uniforms named as in the
-// paper (src/core/illustration.h lists them with defaults and ranges), so changing one never
-// recompiles; which effects run is decided by the caller's #defines. The CPU reference
-// (tests/reference/illustrate_reference.cpp) writes every formula again.
+// applies them: illustrate's slice pass (techniques/illustrate/composite.frag) and the tone fill
+// of the pixel-state techniques (tone_fill.frag, slicing/tone_fill.h). Parameters are uniforms
+// named as in the paper (src/core/illustration.h lists them with defaults and ranges), so
+// changing one never recompiles; which effects run is decided by the caller's #defines. The CPU
+// references (tests/reference/illustration_formulas.h) write every formula again.
 //
-// All vectors in one space (world axes for illustrate): n the outward unit
-// normal, −∇f/|∇f| (the paper's "gradient" is the surface normal, which points out of the denser
-// side: data that is denser inside its features, as CT and most simulations are), 0 where the
-// gradient vanishes; v towards the viewer; the lights' directions towards the lights.
+// All vectors in one space (world axes for illustrate, eye space for the tone fill): n the
+// outward unit normal, −∇f/|∇f| (the paper's "gradient" is the surface normal, which points out
+// of the denser side: data that is denser inside its features, as CT and most simulations are),
+// 0 where the gradient vanishes; v towards the viewer; the lights' directions towards the lights.
 
 #ifndef MAX_LIGHTS
 #define MAX_LIGHTS 8

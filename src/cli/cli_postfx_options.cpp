@@ -8,7 +8,8 @@ vsil::FillMode parseFillMode(const std::string& text, const std::string& flagNam
   if (text == "none") return vsil::FillMode::None;
   if (text == "flat") return vsil::FillMode::Flat;
   if (text == "shaded") return vsil::FillMode::Shaded;
-  throwInputError(flagName, "'" + text + "' is not a fill mode (none, flat or shaded)");
+  if (text == "tone") return vsil::FillMode::Tone;
+  throwInputError(flagName, "'" + text + "' is not a fill mode (none, flat, shaded or tone)");
 }
 
 void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options) {
@@ -60,13 +61,14 @@ void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options) {
   command.add_option_function<std::string>(
       "--fill",
       [&options](const std::string& text) { options.fill = parseFillMode(text, "--fill"); },
-      "what filled (inside) pixels show: none, flat or shaded");
+      "what filled (inside) pixels show: none, flat, shaded (by |n.v|) or tone (tone shading "
+      "and distance blending; --param, --light)");
   command.add_option_function<std::string>(
       "--fill-color",
       [&options](const std::string& text) {
         options.fillColor = vsil::parseColor(text, "--fill-color");
       },
-      "colour of --fill flat / shaded");
+      "colour of --fill flat / shaded / tone");
 }
 
 }  // namespace vsil::cli

@@ -11,7 +11,7 @@ namespace vsil::cli {
 // `options` must outlive the parse; it keeps its defaults for flags not given.
 void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options);
 
-// Parses a fill mode name (none, flat, shaded); InputError naming `flagName` otherwise.
+// Parses a fill mode name (none, flat, shaded, tone); InputError naming `flagName` otherwise.
 vsil::FillMode parseFillMode(const std::string& text, const std::string& flagName);
 
 }  // namespace vsil::cli

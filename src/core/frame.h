@@ -23,6 +23,10 @@ struct FrameBuffers {
   cv::Mat1f depth;
   // Diffuse shade in [0, 1] of the first iso-surface hit (Filled pixels), NaN elsewhere.
   cv::Mat1f shade;
+  // Tone-shaded colour of the first iso-surface hit (Filled pixels), straight RGB (red first),
+  // not clamped; NaN elsewhere. Only when the render asked for it (RenderSettings::toneFill,
+  // `--fill tone`); empty otherwise.
+  cv::Mat3f tone;
   // Techniques that composite colour (illustrate, mip, semantic) fill this, premultiplied RGBA.
   cv::Mat4f color;
 

@@ -13,4 +13,18 @@ void writePng(const std::filesystem::path& path, const cv::Mat& image);
 // missing or not a decodable image.
 cv::Mat readImage(const std::filesystem::path& path);
 
+// The width and height a PNG file's header (its first chunk, IHDR) declares, read without
+// decoding the image, so that a caller can refuse a huge one before any allocation. Throws
+// InputError naming the path when the file is missing, empty, not a PNG, or declares a side of
+// 0 or beyond 2^31 − 1 pixels (invalid PNG).
+cv::Size readPngSize(const std::filesystem::path& path);
+
+// Reads a PNG image as stored (as readImage), after readPngSize's checks and a walk over its
+// chunks: a file that is truncated, holds a chunk whose CRC does not match, ends without IEND or
+// is larger than an image of its declared size can need is refused with one line naming the
+// path, before OpenCV's decoder sees it (libpng prints its own line on stderr for such files).
+// What the chunk walk cannot see (valid chunks around an invalid compressed stream) still fails
+// as "not a readable PNG image", after libpng's line.
+cv::Mat readPng(const std::filesystem::path& path);
+
 }  // namespace vsil

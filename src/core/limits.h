@@ -32,6 +32,11 @@ inline constexpr int kMaxFrames = 100000;
 inline constexpr std::size_t kMaxHeaderBytes = std::size_t(1) << 20;
 // --stride accepts 1 .. this (a larger stride keeps one sample per axis of any volume).
 inline constexpr int kMaxStride = 1 << 16;
+// demip's equirectangular sphere map (--sphere-map FILE.png), kept as RGBA32F (16 bytes per
+// pixel): at most this many pixels per side and kMaxSphereMapPixels in all (128 MiB), plenty
+// for a colour sphere (its legend is a disc a tenth of the image across).
+inline constexpr int kMaxSphereMapSide = 4096;
+inline constexpr std::int64_t kMaxSphereMapPixels = std::int64_t(4096) * 2048;
 // --max-memory accepts 1 MiB .. 1 TiB.
 inline constexpr std::int64_t kMaxMemoryMiBFlag = std::int64_t(1) << 20;
 

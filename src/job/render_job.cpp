@@ -29,11 +29,6 @@ nlohmann::json matrixRowMajor(const glm::dmat4& m) {
   return rows;
 }
 
-const char* fillName(FillMode fill) {
-  static const char* const names[] = {"none", "flat", "shaded"};
-  return names[int(fill)];
-}
-
 double maxLineWidth(const PostfxOptions& postfx) {
   return std::max(postfx.width.near, postfx.width.far);
 }
@@ -76,7 +71,11 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
   if (technique.outputs.state) {
     parameters["width_near"] = request.postfx.width.near;
     parameters["width_far"] = request.postfx.width.far;
-    parameters["fill"] = fillName(request.postfx.fill);
+    parameters["fill"] = fillModeName(request.postfx.fill);
+    if (request.postfx.fill != FillMode::Tone) {  // the tone fill's options shape nothing else
+      parameters.erase("param");
+      parameters.erase("light");
+    }
     if (request.postfx.fill != FillMode::None) {
       parameters["fill_color"] = request.postfx.fillColor.hex();
     }
@@ -193,10 +192,11 @@ Renderer& RenderJob::renderer() {
 namespace {
 
 // The render settings as the renderer needs them: the background (what distance colour
-// blending blends towards) is a composition flag the technique reads.
+// blending blends towards) and the tone fill are composition flags the technique reads.
 RenderSettings settingsFor(const RenderRequest& request) {
   RenderSettings settings = request.settings;
   if (request.postfx.background) settings.background = request.postfx.background;
+  if (request.postfx.fill == FillMode::Tone) settings.toneFill = request.postfx.fillColor;
   return settings;
 }
 
@@ -204,6 +204,17 @@ RenderSettings settingsFor(const RenderRequest& request) {
 
 void RenderJob::checkRequest(const RenderRequest& request, const VolumeLimits& limits) {
   Renderer::validateSettings(request.settings);
+  // The tone fill's parameters and lights shape nothing else (tone_fill.h).
+  if (request.postfx.fill != FillMode::Tone &&
+      findTechnique(request.settings.technique).outputs.state) {
+    for (const char* option : {"param", "light"}) {
+      if (request.settings.options.contains(option)) {
+        throwInputError(std::string("--") + option,
+                        "only with --fill tone (it shapes the tone fill of technique '" +
+                            request.settings.technique + "')");
+      }
+    }
+  }
   const WidthLaw& law = request.postfx.width;
   if (law.isFixed()) {
     law.validate("--width");

@@ -77,6 +77,31 @@ write('rules_missing_spheres.rules', rules % 'missing_spheres.png')
 write('rules_bad_spheres.rules', rules % 'not_an_image.png')
 write('not_an_image.png', 'this is not a PNG\n')
 
+# Sphere maps (demip --sphere-map FILE.png): an empty file, a PNG whose header declares an image
+# 0 pixels wide, and one whose header declares 100000x50000 pixels and holds nothing more (it
+# must be refused from the header, before anything is decoded or allocated).
+def png_chunk(kind, data):
+    return struct.pack('>I', len(data)) + kind + data + struct.pack('>I', zlib.crc32(kind + data))
+
+
+def png_header(width, height):
+    return b'\x89PNG\r\n\x1a\n' + png_chunk(b'IHDR', struct.pack('>IIBBBBB', width, height, 8, 2, 0, 0, 0))
+
+
+write('empty_map.png', b'')
+write('zero_width_map.png', png_header(0, 16) + png_chunk(b'IEND', b''))
+write('huge_map.png', png_header(100000, 50000))
+
+# A whole 16x8 RGB PNG, then cut inside its image data, and one with a byte of the image data
+# changed (its chunk's CRC no longer matches): refused from the chunk walk, before libpng would
+# print a line of its own.
+rows = b''.join(b'\x00' + b''.join(bytes((x * 16, y * 32, 128)) for x in range(16)) for y in range(8))
+whole = png_header(16, 8) + png_chunk(b'IDAT', zlib.compress(rows, 9)) + png_chunk(b'IEND', b'')
+write('truncated_map.png', whole[:60])
+corrupt = bytearray(whole)
+corrupt[45] ^= 0xff  # inside the IDAT chunk's data
+write('corrupt_map.png', bytes(corrupt))
+
 # MetaImage (.mha attached, .mhd detached): truncated data, a DimSize larger than the data file,
 # a zlib bomb, a CompressedDataSize past the end, several channels, a 2D image, a missing data
 # file, a list of slice files.

@@ -3,71 +3,30 @@
 // finished) or absent. A sequence of a few seconds (frames of a 96³ generated volume at 256²,
 // PNGs and a Motion JPEG video) is started in a child process and sent SIGINT or SIGTERM at
 // points spread over its run time.
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
-#include <thread>
 
 #include <gtest/gtest.h>
 #include <opencv2/videoio.hpp>
 
 #include "reference/test_support.h"
 
-extern char** environ;
-
 namespace vsil {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 constexpr int kFrames = 24;
 
-struct ChildRun {
-  int status = 0;
-  double seconds = 0;
-};
-
 // Runs the sequence into `dir`; sends `signal` after `delay` seconds (never, if negative).
-ChildRun animateInto(const fs::path& dir, double delay, int signal) {
-  const std::string binary = test::vsilBinary().string();
-  std::vector<std::string> args = {binary,
-                                   "animate",
-                                   "gen:blobs:96",
-                                   "--size",
-                                   "256x256",
-                                   "--frames",
-                                   std::to_string(kFrames),
-                                   "--orbit",
-                                   "360",
-                                   "--out-dir",
-                                   (dir / "frames").string(),
-                                   "--video",
-                                   (dir / "movie.avi").string()};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const auto start = Clock::now();
-  EXPECT_EQ(posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
-  if (delay >= 0) {
-    std::this_thread::sleep_for(std::chrono::duration<double>(delay));
-    ::kill(pid, signal);
-  }
-  ChildRun run;
-  EXPECT_EQ(::waitpid(pid, &run.status, 0), pid);
-  run.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  return run;
+test::InterruptedRun animateInto(const fs::path& dir, double delay, int signal) {
+  return test::runVsilInterrupted(
+      {"animate", "gen:blobs:96", "--size", "256x256", "--frames", std::to_string(kFrames),
+       "--orbit", "360", "--out-dir", (dir / "frames").string(), "--video",
+       (dir / "movie.avi").string()},
+      delay, signal);
 }
 
 int videoFrames(const fs::path& path) {
@@ -103,7 +62,7 @@ int checkFrames(const fs::path& dir) {
 TEST(InterruptedAnimate, KeepsTheFramesWrittenAndNoHalfVideo) {
   // Uninterrupted: how long the whole run takes here, and what it writes.
   const fs::path full = test::scratchDir();
-  const ChildRun complete = animateInto(full, -1, 0);
+  const test::InterruptedRun complete = animateInto(full, -1, 0);
   ASSERT_TRUE(WIFEXITED(complete.status) && WEXITSTATUS(complete.status) == 0) << complete.status;
   EXPECT_EQ(checkFrames(full), kFrames);
   EXPECT_EQ(videoFrames(full / "movie.avi"), kFrames);
@@ -114,7 +73,7 @@ TEST(InterruptedAnimate, KeepsTheFramesWrittenAndNoHalfVideo) {
       const fs::path dir =
           test::scratchDir() / (std::to_string(signal) + "_" + std::to_string(int(fraction * 100)));
       fs::create_directories(dir);
-      const ChildRun run = animateInto(dir, fraction * complete.seconds, signal);
+      const test::InterruptedRun run = animateInto(dir, fraction * complete.seconds, signal);
       SCOPED_TRACE("signal " + std::to_string(signal) + " after " +
                    std::to_string(fraction * complete.seconds) + " s");
       const int frames = checkFrames(dir);

@@ -2,64 +2,30 @@
 // output at the target path survives untouched (core/atomic_file.h). A render of a few seconds
 // (a 128³ generated volume at 1024x1024, three outputs) is started in a child process and sent
 // SIGTERM or SIGINT at points spread over its run time: while generating, rendering, and writing.
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-#include <thread>
 
 #include <gtest/gtest.h>
 
 #include "reference/test_support.h"
 
-extern char** environ;
-
 namespace vsil {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 const std::string kPrevious = "a previous good output, not a PNG";
 
-struct RenderRun {
-  int status = 0;
-  double seconds = 0;
-};
-
 // Runs the big render into `dir`; sends `signal` after `delay` seconds (never, if negative).
-RenderRun renderInto(const fs::path& dir, double delay, int signal) {
-  const std::string binary = test::vsilBinary().string();
-  const std::string out = (dir / "out.png").string(), state = (dir / "state.png").string(),
-                    meta = (dir / "meta.json").string();
-  std::vector<std::string> args = {
-      binary,  "render", "gen:blobs:128", "--size", "1024x1024",  "--width", "4",
-      "--out", out,      "--state-out",   state,    "--meta-out", meta};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const auto start = Clock::now();
-  EXPECT_EQ(posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
-  if (delay >= 0) {
-    std::this_thread::sleep_for(std::chrono::duration<double>(delay));
-    ::kill(pid, signal);
-  }
-  RenderRun run;
-  EXPECT_EQ(::waitpid(pid, &run.status, 0), pid);
-  run.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  return run;
+test::InterruptedRun renderInto(const fs::path& dir, double delay, int signal) {
+  return test::runVsilInterrupted(
+      {"render", "gen:blobs:128", "--size", "1024x1024", "--width", "4", "--out",
+       (dir / "out.png").string(), "--state-out", (dir / "state.png").string(), "--meta-out",
+       (dir / "meta.json").string()},
+      delay, signal);
 }
 
 void writePrevious(const fs::path& dir) {
@@ -72,7 +38,7 @@ TEST(InterruptedRender, LeavesThePreviousOutputsAndNoTemporaries) {
   const fs::path dir = test::scratchDir();
   // Uninterrupted: how long the whole run takes here, and that it replaces the outputs.
   writePrevious(dir);
-  const RenderRun full = renderInto(dir, -1, 0);
+  const test::InterruptedRun full = renderInto(dir, -1, 0);
   ASSERT_TRUE(WIFEXITED(full.status) && WEXITSTATUS(full.status) == 0) << full.status;
   EXPECT_NE(test::readFileBytes(dir / "out.png"), kPrevious);
 
@@ -81,7 +47,7 @@ TEST(InterruptedRender, LeavesThePreviousOutputsAndNoTemporaries) {
   for (double fraction : {0.1, 0.5, 0.85, 0.95, 0.99}) {
     for (int signal : {SIGTERM, SIGINT}) {
       writePrevious(dir);
-      const RenderRun run = renderInto(dir, fraction * full.seconds, signal);
+      const test::InterruptedRun run = renderInto(dir, fraction * full.seconds, signal);
       SCOPED_TRACE("signal " + std::to_string(signal) + " after " +
                    std::to_string(fraction * full.seconds) + " s");
       std::vector<std::string> names;

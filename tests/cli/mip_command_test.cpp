@@ -69,6 +69,27 @@ TEST(MipCommand, DemipWritesTheFirstHitDepthAndEveryParameter) {
   EXPECT_GT(withDepth, 100);
 }
 
+// --sphere-map FILE.png: the render reads the map, the metadata names the file and its size,
+// and --legend draws it (the inset's pixels take the map's one colour).
+TEST(MipCommand, DemipReadsAPngSphereMapAndRecordsIt) {
+  const auto dir = test::scratchDir();
+  const std::string map = (dir / "map.png").string(), out = (dir / "d.png").string(),
+                    meta = (dir / "meta.json").string();
+  writePng(map, cv::Mat3b(6, 12, cv::Vec3b(0, 200, 0)));  // green (BGR)
+  const auto result =
+      test::runVsil("render gen:blobs:48 --technique demip --sphere-weight 1 --sphere-map " + map +
+                    " --legend --size 80x80 --out " + out + " --meta-out " + meta);
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto json = nlohmann::json::parse(test::readFileBytes(meta));
+  const auto& p = json["parameters"];
+  EXPECT_EQ(p["sphere_map"], map);
+  EXPECT_EQ(p["sphere_map_file"]["path"], map);
+  EXPECT_EQ(p["sphere_map_file"]["size"], nlohmann::json::parse("[12, 6]"));
+  const cv::Mat image = readImage(out);
+  // The legend's disc around (80 − 2 − 8 − 1, 80 − 2 − 8 − 1), off its white cross.
+  EXPECT_EQ(image.at<cv::Vec3b>(66, 66), cv::Vec3b(0, 200, 0));
+}
+
 TEST(MipCommand, MipRefusesADepthImageBeforeAnyWork) {
   const auto dir = test::scratchDir();
   const auto result =

@@ -44,6 +44,9 @@ TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
 
   const auto meta = nlohmann::json::parse(test::readFileBytes(dir / "meta.json"));
   EXPECT_EQ(meta["parameters"]["technique"], "silhouette");
+  EXPECT_EQ(meta["parameters"]["fill"], "none");
+  EXPECT_FALSE(meta["parameters"].contains("param")) << "only with --fill tone";
+  EXPECT_FALSE(meta["parameters"].contains("tone_fill"));
   EXPECT_EQ(meta["dataset"]["name"], "sphere");
   EXPECT_EQ(meta["dataset"]["dims"], nlohmann::json({48, 48, 48}));
   EXPECT_EQ(meta["camera"]["viewport"], nlohmann::json({96, 80}));
@@ -135,11 +138,10 @@ TEST(RenderCommand, EmptySpaceSkippingChangesNoByte) {
       for (int skipping = 0; skipping < 2; ++skipping) {
         const auto out = dir / (std::string(technique) + std::to_string(skipping) + ".png");
         const auto meta = dir / "meta.json";
-        const auto result =
-            test::runVsil("render gen:blobs:64 --size 120x100 --width 4 --technique " +
-                          std::string(technique) + " --pipeline " + pipeline +
-                          (skipping ? "" : " --no-empty-space-skipping") + " --out " +
-                          out.string() + " --meta-out " + meta.string());
+        const auto result = test::runVsil(
+            "render gen:blobs:64 --size 120x100 --width 4 --technique " + std::string(technique) +
+            " --pipeline " + pipeline + (skipping ? "" : " --no-empty-space-skipping") + " --out " +
+            out.string() + " --meta-out " + meta.string());
         ASSERT_EQ(result.exitCode, 0) << result.err;
         images[skipping] = test::readFileBytes(out);
         const auto parameters = nlohmann::json::parse(test::readFileBytes(meta))["parameters"];
@@ -166,6 +168,40 @@ TEST(RenderCommand, SameCommandTwiceGivesIdenticalBytes) {
     }
     EXPECT_EQ(outputs[0], outputs[1]) << technique;
   }
+}
+
+// --fill tone end to end: lit from straight above, the top of a sphere's fill is yellow and the
+// bottom blue (R + G − 2B), and the metadata records the fill and what shaped it.
+TEST(RenderCommand, ToneFillIsWarmWhereLitAndRecorded) {
+  const auto dir = test::scratchDir();
+  const auto result = test::runVsil(
+      "render gen:sphere:48 --size 96x96 --iso 0.5 --ortho --zoom 2 --width 1 --fill tone "
+      "--fill-color '#606060' --light 0,90 --param k_ty=0.4 --out " +
+      (dir / "tone.png").string() + " --meta-out " + (dir / "meta.json").string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const cv::Mat image = cv::imread((dir / "tone.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(image.type(), CV_8UC3);
+  // Rows a quarter of the sphere's projected radius (about 28 px around the centre) above and
+  // below the middle, inside the outline.
+  const auto warmth = [&](int row) {
+    double sum = 0;
+    for (int x = 40; x < 56; ++x) {
+      const cv::Vec3b bgr = image.at<cv::Vec3b>(row, x);
+      sum += double(bgr[2]) + double(bgr[1]) - 2.0 * double(bgr[0]);
+    }
+    return sum / 16;
+  };
+  const double top = warmth(30), bottom = warmth(66);
+  EXPECT_GT(top, 20) << "yellow where lit";
+  EXPECT_LT(bottom, -20) << "blue on the far side";
+  const auto meta = nlohmann::json::parse(test::readFileBytes(dir / "meta.json"));
+  const auto& parameters = meta["parameters"];
+  EXPECT_EQ(parameters["fill"], "tone");
+  EXPECT_EQ(parameters["fill_color"], "#606060ff");
+  EXPECT_EQ(parameters["tone_fill"]["parameters"]["k_ty"], 0.4);
+  EXPECT_EQ(parameters["tone_fill"]["parameters"]["k_tb"], 0.3) << "illustrate's default";
+  EXPECT_EQ(parameters["tone_fill"]["lights"], nlohmann::json::parse("[[0, 90]]"));
+  EXPECT_EQ(parameters["param"], nlohmann::json::parse(R"(["k_ty=0.4"])")) << "as given";
 }
 
 struct BadRender {

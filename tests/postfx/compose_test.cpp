@@ -50,6 +50,26 @@ TEST(Compose, LinesFillAndBackground) {
   EXPECT_EQ(composeIllustration(frame, options, blur).type(), CV_8UC4);
 }
 
+TEST(Compose, ToneFillShowsTheTechniquesColourAtFilledPixels) {
+  FrameBuffers frame = test::discsFrame({100, 100}, {{{50.3, 49.6}, 30, 0.5}});
+  // Red fading to green from left to right (straight RGB), red beyond 1 left of x = 50.
+  frame.tone.create(frame.state.size());
+  for (int y = 0; y < 100; ++y) {
+    for (int x = 0; x < 100; ++x) frame.tone(y, x) = cv::Vec3f(1.5f - x / 100.0f, x / 100.0f, 0);
+  }
+  PostfxOptions options;
+  options.width = WidthLaw::fixed(3);
+  options.background = Rgba{0, 0, 255, 255};
+  options.fill = FillMode::Tone;
+  FftGaussianBlur blur;
+  const cv::Mat image = composeIllustration(frame, options, blur);
+  ASSERT_EQ(image.type(), CV_8UC3);
+  EXPECT_EQ(image.at<cv::Vec3b>(50, 61), cv::Vec3b(0, 156, 227)) << "BGR of (0.89, 0.61, 0)";
+  EXPECT_EQ(image.at<cv::Vec3b>(50, 31), cv::Vec3b(0, 79, 255)) << "(1.19, 0.31, 0) clamped";
+  EXPECT_EQ(image.at<cv::Vec3b>(2, 2), cv::Vec3b(255, 0, 0)) << "Empty: background";
+  EXPECT_EQ(fillModeName(FillMode::Tone), std::string("tone"));
+}
+
 struct ParsedFlags {
   PostfxOptions options;
   std::string error;  // "" when parsing succeeded
@@ -80,6 +100,7 @@ TEST(PostfxFlags, FixedAndAdaptiveWidths) {
   EXPECT_EQ(adaptive.options.width.near, 2);
   EXPECT_EQ(adaptive.options.width.far, 12);
   EXPECT_EQ(adaptive.options.fill, FillMode::Shaded);
+  EXPECT_EQ(parseFlags({"--fill", "tone"}).options.fill, FillMode::Tone);
 }
 
 TEST(PostfxFlags, ImpossibleValuesNameTheFlag) {

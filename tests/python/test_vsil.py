@@ -39,8 +39,10 @@ def decode_depth(path):
         {"technique": "silhouette", "iso": 0.45, "width_near": 5, "width_far": 1, "fill": "shaded"},
         {"technique": "illustrate", "effects": "boundary,silhouette,tone", "view": (40, 10)},
         {"technique": "demip", "size": (96, 64)},
+        {"technique": "rightangle", "iso": 0.45, "fill": "tone", "param": "k_ty=0.4,k_ds=0.5",
+         "light": (30, 70)},
     ],
-    ids=["silhouette", "illustrate", "demip"],
+    ids=["silhouette", "illustrate", "demip", "rightangle_tone_fill"],
 )
 def test_render_matches_the_command_line_byte_for_byte(tmp_path, renderer, options):
     options = {"size": (120, 90), **options}

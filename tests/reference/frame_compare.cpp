@@ -19,6 +19,14 @@ bool sameAt(const cv::Mat& a, const cv::Mat& b, int y, int x) {
       return a.at<std::uint8_t>(y, x) == b.at<std::uint8_t>(y, x);
     case CV_32FC1:
       return sameFloat(a.at<float>(y, x), b.at<float>(y, x));
+    case CV_32FC3: {
+      const auto& p = a.at<cv::Vec3f>(y, x);
+      const auto& q = b.at<cv::Vec3f>(y, x);
+      for (int c = 0; c < 3; ++c) {
+        if (!sameFloat(p[c], q[c])) return false;
+      }
+      return true;
+    }
     case CV_32FC4: {
       const auto& p = a.at<cv::Vec4f>(y, x);
       const auto& q = b.at<cv::Vec4f>(y, x);
@@ -39,7 +47,8 @@ int differingPixels(const FrameBuffers& a, const FrameBuffers& b) {
   for (int y = 0; y < size.height; ++y) {
     for (int x = 0; x < size.width; ++x) {
       const bool same = sameAt(a.state, b.state, y, x) && sameAt(a.depth, b.depth, y, x) &&
-                        sameAt(a.shade, b.shade, y, x) && sameAt(a.color, b.color, y, x);
+                        sameAt(a.shade, b.shade, y, x) && sameAt(a.tone, b.tone, y, x) &&
+                        sameAt(a.color, b.color, y, x);
       differing += same ? 0 : 1;
     }
   }

@@ -1,5 +1,5 @@
 #pragma once
-// Comparing frames of any technique by what it returns (states, depth, shade, colour).
+// Comparing frames of any technique by what it returns (states, depth, shade, tone, colour).
 #include "core/frame.h"
 #include "core/options.h"
 #include "slicing/technique_table.h"

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/illustration.h"
+#include "illustration_formulas.h"
 #include "slice_sampler.h"
 #include "slicing/gradient_texture.h"
 #include "slicing/illustration_options.h"
@@ -20,70 +21,6 @@ glm::ivec3 nearestTexel(glm::vec3 voxel, glm::ivec3 dims) {
   return glm::clamp(glm::ivec3(glm::floor(voxel + 0.5f)), glm::ivec3(0), dims - 1);
 }
 
-// The paper's formulas, one function each (Ebert–Rheingans 2000; ../shared/papers/README.md).
-struct Formulas {
-  const Illustration& ill;
-  std::vector<glm::vec3> lights;  // towards the lights, world axes
-  glm::vec3 sketch, background;
-
-  float p(const char* name) const { return float(ill[name]); }
-
-  // I_G: ambient plus diffuse from every light.
-  glm::vec3 lit(glm::vec3 c, glm::vec3 n) const {
-    float diffuse = 0;
-    for (const glm::vec3& l : lights) diffuse += std::max(glm::dot(n, l), 0.0f);
-    return c * (p("k_a") + p("k_d") * diffuse);
-  }
-  // o_g = o_v·(k_gc + k_gs·|∇f|^k_ge)
-  float boundary(float o, float m) const {
-    return o * (p("k_gc") + p("k_gs") * std::pow(m, p("k_ge")));
-  }
-  // o_s = o·(k_sc + k_ss·(1 − |∇f_n·V|)^k_se)
-  float silhouette(float o, float facing) const {
-    return o * (p("k_sc") + p("k_ss") * std::pow(std::max(1.0f - facing, 0.0f), p("k_se")));
-  }
-  // Oriented fading in HSV: saturation ×(1 − k_fs·f), value ×(1 − k_fv·(1 − f)), opacity
-  // ×(1 − k_fo·f), f = |n·v|^k_fe. Done through HSV here (the shader stays in RGB).
-  void fading(glm::vec3& c, float& o, float facing) const {
-    const float f = std::pow(facing, p("k_fe"));
-    const float value = std::max({c.r, c.g, c.b});
-    const float lowest = std::min({c.r, c.g, c.b});
-    const float saturation = value > 0 ? (value - lowest) / value : 0.0f;
-    const float newSaturation = saturation * (1.0f - p("k_fs") * f);
-    const float newValue = value * (1.0f - p("k_fv") * (1.0f - f));
-    // Hue kept: each channel keeps its position between the lowest and the highest.
-    glm::vec3 out(newValue);
-    if (value > lowest) {
-      const glm::vec3 position = (c - lowest) / (value - lowest);  // 0 at the lowest, 1 at V
-      const float newLowest = newValue * (1.0f - newSaturation);
-      out = newLowest + position * (newValue - newLowest);
-    }
-    c = out;
-    o *= 1.0f - p("k_fo") * f;
-  }
-  void sketchLines(glm::vec3& c, float& o, float facing) const {
-    c = sketch;
-    o *= std::min(1.0f, p("k_ls") * std::pow(std::max(1.0f - facing, 0.0f), p("k_le")));
-  }
-  // c_d = (1 − k_ds·d^k_de)·c + k_ds·d^k_de·c_b
-  glm::vec3 distance(glm::vec3 c, float d) const {
-    const float w = p("k_ds") * std::pow(d, p("k_de"));
-    return c * (1.0f - w) + background * w;
-  }
-  // I = k_ta·I_G + Σ (t·(k_ty, k_ty, 0) + (1 − t)·(0, 0, k_tb) + k_td·c_o·max(n·L, 0)),
-  // t = (1 + n·L)/2.
-  glm::vec3 tone(glm::vec3 litColor, glm::vec3 object, glm::vec3 n) const {
-    glm::vec3 sum(0.0f);
-    for (const glm::vec3& l : lights) {
-      const float nl = glm::dot(n, l);
-      const float t = (1.0f + nl) * 0.5f;
-      sum += glm::vec3(p("k_ty"), p("k_ty"), 0) * t + glm::vec3(0, 0, p("k_tb")) * (1 - t) +
-             object * (p("k_td") * std::max(nl, 0.0f));
-    }
-    return litColor * p("k_ta") + sum;
-  }
-};
-
 }  // namespace
 
 ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& settings, float) {
@@ -99,7 +36,7 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
   const Rgba background = settings.background.value_or(ill.background.value_or(kDefaultBackground));
 
   const glm::mat3 worldFromEye(glm::transpose(glm::dmat3(view.eyeFromWorld)));
-  Formulas formulas{ill, {}, ill.sketchColor.rgb01(), background.rgb01()};
+  IllustrationFormulas formulas{ill, {}, ill.sketchColor.rgb01(), background.rgb01()};
   for (const Light& light : ill.lights) {
     formulas.lights.push_back(worldFromEye * glm::vec3(light.directionEye()));
   }

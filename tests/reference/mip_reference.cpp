@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "slice_sampler.h"
+#include "slicing/techniques/mip/colour_sphere.h"
 #include "slicing/techniques/mip/mip_options.h"
 #include "slicing/transfer_function_texture.h"
 
@@ -93,6 +94,28 @@ class Classification {
   glm::vec2 tableCoord_{0.0f};
 };
 
+// An equirectangular sphere map (--sphere-map FILE.png) toward `d`, given in the sphere's frame
+// (x right, y up, z front): longitude atan2(x, z) across the width from the left edge (−180°),
+// latitude atan2(y, |(x, z)|) down from the top row (+90°), read as GL_LINEAR reads the
+// texture: between texel centres, wrapping around in longitude, clamped in latitude.
+glm::vec3 equirectangularColour(const SphereMapImage& map, glm::vec3 d) {
+  constexpr float kPi = 3.14159265358979f;
+  float u = 0.5f, v = 0.5f;  // the centre of the volume has no direction: the image's centre
+  if (glm::dot(d, d) > 0) {
+    const float longitude = d.x != 0 || d.z != 0 ? std::atan2(d.x, d.z) : 0.0f;
+    u = 0.5f + longitude / (2 * kPi);
+    v = 0.5f - std::atan2(d.y, std::sqrt(d.x * d.x + d.z * d.z)) / kPi;
+  }
+  const float column = u * float(map.width) - 0.5f;
+  const float left = std::floor(column);
+  const auto wrapped = [&](int i) { return ((i % map.width) + map.width) % map.width; };
+  const int x0 = wrapped(int(left)), x1 = wrapped(int(left) + 1);
+  const LinearTaps rows = linearTaps(v, map.height);  // clamped to the edge rows
+  const float fx = column - left;
+  const auto row = [&](int y) { return map.at(x0, y) * (1 - fx) + map.at(x1, y) * fx; };
+  return row(rows.i0) * (1 - rows.f) + row(rows.i1) * rows.f;
+}
+
 cv::Vec4f premultiplied(glm::vec3 colour, float opacity) {
   return {colour.r * opacity, colour.g * opacity, colour.b * opacity, opacity};
 }
@@ -125,6 +148,12 @@ ReferenceFrame render(const Volume& volume, const RenderSettings& settings, floa
   const View& view = setup.view;
   const glm::mat4 clipFromVoxel(view.clipFromVoxel());
   const glm::vec3 centreEye(view.eyeFromWorld * glm::dvec4(0, 0, 0, 1));
+  // The map's colours or texels as the technique reads them (the file read once, by the
+  // engine's reader); what a direction picks is computed here.
+  const ColourSphere sphereMap =
+      depthEnhanced ? colourSphere(options.text("sphere-map")) : ColourSphere{};
+  const glm::mat3 sphereFromEye =
+      depthEnhanced ? glm::transpose(sphereFrameEye(options, view)) : glm::mat3(1.0f);
   for (int y = 0; y < settings.size.y; ++y) {
     for (int x = 0; x < settings.size.x; ++x) {
       bool onBoxFace = false;
@@ -164,15 +193,19 @@ ReferenceFrame render(const Volume& volume, const RenderSettings& settings, floa
         const glm::vec3 c =
             glm::clamp(colour * (1 - weight) + 2 * weight * (1 - depth), 0.0f, 1.0f);
         // Colour sphere: the direction from the volume's centre to the hit picks the blend
-        // between the map's front and back colours.
-        const SphereMap& map = sphereMap(options.text("sphere-map"));
+        // between the map's front and back colours, or the image's texels.
         const glm::vec3 hitEye = rays.sampler().eyePoint(x, y, float(hit->slice->eyeDistance));
         const glm::vec3 fromCentre = hitEye - centreEye;
-        const float facing =
-            glm::dot(fromCentre, fromCentre) > 0
-                ? glm::dot(glm::normalize(fromCentre), sphereFrontEye(options, view))
-                : 0.0f;
-        const glm::vec3 sphere = glm::mix(map.back, map.front, 0.5f + 0.5f * facing);
+        glm::vec3 sphere;
+        if (sphereMap.image) {
+          sphere = equirectangularColour(*sphereMap.image, sphereFromEye * fromCentre);
+        } else {
+          const float facing =
+              glm::dot(fromCentre, fromCentre) > 0
+                  ? glm::dot(glm::normalize(fromCentre), sphereFrontEye(options, view))
+                  : 0.0f;
+          sphere = glm::mix(sphereMap.back, sphereMap.front, 0.5f + 0.5f * facing);
+        }
         const float sphereWeight = float(options.number("sphere-weight"));
         colour = c * (1 - sphereWeight) + sphere * sphereWeight;
       }

@@ -11,10 +11,21 @@
 
 namespace vsil::reference {
 
+namespace {
+
+OptionValues toneFillCaseOptions() {
+  return {{"param", std::vector<std::string>{"k_ty=0.45,k_tb=0.2,k_td=0.5", "k_ds=0.6,k_de=0.8"}},
+          {"light", std::vector<std::string>{"30,40", "-60,10"}}};
+}
+
+}  // namespace
+
 const std::vector<ReferenceTechnique>& referenceTable() {
   static const std::vector<ReferenceTechnique> table{
-      {"silhouette", renderSilhouette, 0.0f, {}},
-      {"rightangle", renderRightAngle, 0.0f, {}},
+      // The state techniques' cases tone-fill (gl_vs_reference_test.cpp), with parameters
+      // and two lights other than the defaults, so that they reach the fill too.
+      {"silhouette", renderSilhouette, 0.0f, toneFillCaseOptions()},
+      {"rightangle", renderRightAngle, 0.0f, toneFillCaseOptions()},
       {"firsthit", renderFirstHit, 0.0f, {}},
       // Greys are quotients of floats (the window), depths of the box entry come from float
       // ray-box slabs: rounding only, far below one 8-bit step (0.004).

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "slice_sampler.h"
+#include "tone_fill_reference.h"
 
 namespace vsil::reference {
 
@@ -14,7 +15,9 @@ ReferenceFrame renderRightAngle(const Volume& volume, const RenderSettings& sett
   const float threshold = float(setup.options.number("ra-threshold"));
   const SliceSampler sampler(volume, setup.view);
   const FirstHitFinder firstHits(volume, setup);
+  const ToneFillReference toneFill(settings, setup);
   ReferenceFrame result = emptyReferenceFrame(setup, settings.size);
+  result.frame.tone = toneFill.emptyImage(settings.size);
   for (int y = 0; y < settings.size.y; ++y) {
     for (int x = 0; x < settings.size.x; ++x) {
       const FirstHit hit = firstHits.at(sampler, x, y, iso, isoEpsilon);
@@ -31,6 +34,11 @@ ReferenceFrame renderRightAngle(const Volume& volume, const RenderSettings& sett
       result.frame.state(y, x) = std::uint8_t(line ? PixelState::Silhouette : PixelState::Filled);
       result.frame.depth(y, x) = float(hit.slice->depth);
       if (!line) result.frame.shade(y, x) = facing;
+      if (!line && toneFill.active()) {
+        const glm::vec3 c =
+            toneFill.at(sampler, x, y, float(hit.slice->eyeDistance), float(hit.slice->depth));
+        result.frame.tone(y, x) = cv::Vec3f(c.r, c.g, c.b);
+      }
     }
   }
   return result;

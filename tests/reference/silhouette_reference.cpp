@@ -5,6 +5,7 @@
 
 #include "slice_sampler.h"
 #include "slicing/slicer.h"
+#include "tone_fill_reference.h"
 
 namespace vsil::reference {
 
@@ -30,9 +31,12 @@ ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& sett
   const float iso = float(setup.options.number("iso"));
   const SliceSampler sampler(volume, setup.view);
   const int w = settings.size.x, h = settings.size.y;
+  const ToneFillReference toneFill(settings, setup);
   ReferenceFrame result = emptyReferenceFrame(setup, settings.size);
+  result.frame.tone = toneFill.emptyImage(settings.size);
   cv::Mat1b state(h, w, std::uint8_t(PixelState::Empty));
   cv::Mat1f depth(h, w, 0.0f), shade(h, w, 0.0f);
+  cv::Mat3f tone = result.frame.tone.clone();
   cv::Mat1b footprint(h, w), nearIso(h, w);
 
   auto step = [&](const Slice* slice, float previousDepth) {
@@ -75,6 +79,11 @@ ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& sett
           const glm::vec3 eye = sampler.eyePoint(x, y, float(slice->eyeDistance));
           depth(y, x) = float(slice->depth);
           shade(y, x) = sampler.facingRatio(quantizedVoxel(sampler.voxelFromEyePoint(eye)), eye);
+          if (toneFill.active()) {
+            const glm::vec3 c =
+                toneFill.at(sampler, x, y, float(slice->eyeDistance), float(slice->depth));
+            tone(y, x) = cv::Vec3f(c.r, c.g, c.b);
+          }
         } else if (t == PixelState::Contour && next == PixelState::Silhouette) {
           depth(y, x) = 0.5f * (depth(y, x) + previousDepth);
         }
@@ -96,6 +105,7 @@ ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& sett
       const auto s = PixelState(state(y, x));
       if (s != PixelState::Empty) result.frame.depth(y, x) = depth(y, x);
       if (s == PixelState::Filled) result.frame.shade(y, x) = shade(y, x);
+      if (s == PixelState::Filled && toneFill.active()) result.frame.tone(y, x) = tone(y, x);
     }
   }
   return result;

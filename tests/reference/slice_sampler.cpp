@@ -109,12 +109,17 @@ glm::vec3 SliceSampler::gradientVoxel(glm::vec3 voxel) const {
          0.5f;
 }
 
+glm::vec3 SliceSampler::outwardNormalEye(glm::vec3 voxel) const {
+  const glm::vec3 gradientEye = eyeFromVoxelGradient_ * gradientVoxel(voxel);
+  const float length2 = glm::dot(gradientEye, gradientEye);
+  return length2 > 0.0f ? -gradientEye / std::sqrt(length2) : glm::vec3(0.0f);
+}
+
 float SliceSampler::facingRatio(glm::vec3 voxel, glm::vec3 eye) const {
-  const glm::vec3 normalEye = eyeFromVoxelGradient_ * gradientVoxel(voxel);
-  const float length2 = glm::dot(normalEye, normalEye);
-  if (length2 <= 0.0f) return 1.0f;
+  const glm::vec3 n = outwardNormalEye(voxel);
+  if (n == glm::vec3(0.0f)) return 1.0f;
   const glm::vec3 toEye = view_.orthographic ? glm::vec3(0, 0, 1) : -glm::normalize(eye);
-  return std::abs(glm::dot(normalEye / std::sqrt(length2), toEye));
+  return std::abs(glm::dot(n, toEye));
 }
 
 }  // namespace vsil::reference

@@ -52,6 +52,8 @@ class SliceSampler {
   glm::vec3 sliceVoxel(int x, int y, const SliceVoxelCoords& slice) const;
   bool insideVolume(glm::vec3 voxel) const;
   glm::vec3 gradientVoxel(glm::vec3 voxel) const;
+  // −∇f/|∇f| in eye space, 0 where the gradient vanishes (common.glsl outwardNormalEye).
+  glm::vec3 outwardNormalEye(glm::vec3 voxel) const;
   float facingRatio(glm::vec3 voxel, glm::vec3 eye) const;  // |n·v| as in common.glsl
 
  private:

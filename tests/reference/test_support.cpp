@@ -1,17 +1,21 @@
 #include "test_support.h"
 
-#include <cstdlib>
-
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
-
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include <gtest/gtest.h>
+
+extern char** environ;
 
 namespace vsil::test {
 
@@ -72,6 +76,32 @@ CommandResult runVsil(const std::string& arguments) {
   result.out = readFileBytes(outPath);
   result.err = readFileBytes(errPath);
   return result;
+}
+
+InterruptedRun runVsilInterrupted(const std::vector<std::string>& arguments, double delay,
+                                  int signal) {
+  const std::string binary = vsilBinary().string();
+  std::vector<std::string> args = {binary};
+  args.insert(args.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  if (delay >= 0) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(delay));
+    ::kill(pid, signal);
+  }
+  InterruptedRun run;
+  EXPECT_EQ(::waitpid(pid, &run.status, 0), pid);
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
 }
 
 }  // namespace vsil::test

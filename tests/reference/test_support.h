@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace vsil::test {
 
@@ -39,5 +40,14 @@ struct CommandResult {
 };
 // Runs `vsil <arguments>` (arguments passed to /bin/sh, quote as needed).
 CommandResult runVsil(const std::string& arguments);
+
+struct InterruptedRun {
+  int status = 0;  // as waitpid gives it
+  double seconds = 0;
+};
+// Starts `vsil <arguments>` (stdout and stderr to /dev/null), sends it `signal` after `delay`
+// seconds (never, if negative) and waits for it: for the tests of interrupted runs.
+InterruptedRun runVsilInterrupted(const std::vector<std::string>& arguments, double delay,
+                                  int signal);
 
 }  // namespace vsil::test

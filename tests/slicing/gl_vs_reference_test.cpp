@@ -127,6 +127,9 @@ TEST_P(GlMatchesReference, PixelByPixel) {
   settings.camera.elevationDeg = c.scene.elevation;
   settings.camera.orthographic = c.scene.orthographic;
   settings.camera.zoom = 1.5;
+  // The state techniques tone-fill their first hits (--fill tone), in a colour that leaves room
+  // for the warm and cool tones below white.
+  if (technique.outputs.state) settings.toneFill = Rgba{110, 120, 100, 255};
   const ValueRange range = valueRange(volume);
   const float epsilon = kIsoEpsilonRelative * std::max(1.0f, range.max - range.min);
   const reference::ReferenceFrame cpu = reference.render(volume, settings, epsilon);
@@ -134,10 +137,14 @@ TEST_P(GlMatchesReference, PixelByPixel) {
   renderer.setVolume(volume);
   const RenderResult gl = renderer.render(settings);
   ASSERT_EQ(gl.sliceCount, cpu.sliceCount);
+  if (technique.outputs.state) {
+    ASSERT_FALSE(gl.frame.tone.empty()) << "the tone fill was asked for";
+    ASSERT_FALSE(cpu.frame.tone.empty());
+  }
 
   int unexplained = 0, ambiguous = 0, shown = test::shownPixels(cpu.frame), lines = 0;
   std::ostringstream firstMismatches;
-  double maxDepthError = 0, maxShadeError = 0, maxColorError = 0;
+  double maxDepthError = 0, maxShadeError = 0, maxToneError = 0, maxColorError = 0;
   for (int y = 0; y < settings.size.y; ++y) {
     for (int x = 0; x < settings.size.x; ++x) {
       bool same = true;
@@ -152,6 +159,10 @@ TEST_P(GlMatchesReference, PixelByPixel) {
           if (glState == PixelState::Filled) {
             maxShadeError = std::max(
                 maxShadeError, double(std::abs(gl.frame.shade(y, x) - cpu.frame.shade(y, x))));
+            for (int k = 0; k < 3; ++k) {
+              maxToneError = std::max(
+                  maxToneError, double(std::abs(gl.frame.tone(y, x)[k] - cpu.frame.tone(y, x)[k])));
+            }
           }
         }
       }
@@ -189,8 +200,8 @@ TEST_P(GlMatchesReference, PixelByPixel) {
   RecordProperty("near_iso_mismatches", ambiguous);
   std::cout << "[ info ] " << c.name << ": " << shown << " pixels shown, " << lines
             << " line pixels; " << ambiguous << " near-threshold mismatches; max depth error "
-            << maxDepthError << ", max shade error " << maxShadeError << ", max colour error "
-            << maxColorError << "\n";
+            << maxDepthError << ", max shade error " << maxShadeError << ", max tone error "
+            << maxToneError << ", max colour error " << maxColorError << "\n";
   EXPECT_GT(shown, 10) << "the scene should show something";
   if (technique.outputs.state) {
     EXPECT_GT(lines, 10) << "the scene should show lines";
@@ -198,12 +209,14 @@ TEST_P(GlMatchesReference, PixelByPixel) {
   EXPECT_EQ(unexplained, 0) << "mismatches away from decision thresholds:" << firstMismatches.str();
   // Near-threshold disagreements are rare: at most 1 % of the pixels shown (the line pixels
   // where a technique draws lines) unless the technique's reference says why more.
-  EXPECT_LE(ambiguous,
-            std::max(2, int((lines > 0 ? lines : shown) * reference.ambiguousShare)));
+  EXPECT_LE(ambiguous, std::max(2, int((lines > 0 ? lines : shown) * reference.ambiguousShare)));
   // Depths are slice depths (or the mean of two), computed identically: float rounding only.
   EXPECT_LT(maxDepthError, 1e-5);
   // Shades come from 6 trilinear samples each, differences of nearly equal floats.
   EXPECT_LT(maxShadeError, 2e-3);
+  // Tone colours come from the same normal (the shade's error times k_d, k_td and the lights)
+  // and pow(d, k_de) of equal depths: as small, and far below one 8-bit step (0.004).
+  EXPECT_LT(maxToneError, 1e-3);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, GlMatchesReference, ::testing::ValuesIn(cases()),

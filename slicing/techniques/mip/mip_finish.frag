@@ -35,9 +35,16 @@ float shownValue(ivec2 pixel) { return texelFetch(valueTexture, pixel, 0).r; }
 layout(binding = UNIT_RECORD) uniform sampler2D recordTexture;
 uniform float depthWeight;
 uniform float sphereWeight;
-uniform vec3 sphereFrontEye;  // where the map's front colour points (mip_options.h)
+#ifdef SPHERE_MAP_IMAGE
+// An equirectangular map (colour_sphere.h: u = 0.5 + λ/2π, v = 0.5 − φ/π, v = 0 the top row),
+// GL_LINEAR, repeating in u, clamped in v.
+layout(binding = UNIT_AUXILIARY1) uniform sampler2D sphereMap;
+uniform mat3 sphereFromEye;  // eye-space directions into the sphere's frame (right, up, front)
+#else
+uniform vec3 sphereFrontEye;  // where the map's front colour points (colour_sphere.h)
 uniform vec3 sphereFrontColour;
 uniform vec3 sphereBackColour;
+#endif
 uniform vec3 volumeCentreEye;
 uniform vec2 depthRangeEye;  // eye distances of normalized depth 0 and 1
 
@@ -75,12 +82,28 @@ float weightingDepth(float hitDepth) {
 #endif
 }
 
+// The colour sphere toward the hit from the volume's centre (colour_sphere.h).
 vec3 sphereColour(float hitEyeDistance) {
   vec3 fromCentre = eyePointAt(hitEyeDistance) - volumeCentreEye;
   float length2 = dot(fromCentre, fromCentre);
+#ifdef SPHERE_MAP_IMAGE
+  // The centre itself has no direction: it takes the image's centre.
+  vec2 uv = vec2(0.5);
+  if (length2 > 0.0) {
+    const float kPi = 3.14159265358979;
+    vec3 d = sphereFromEye * fromCentre;
+    // Straight up or down the longitude is arbitrary: GLSL leaves atan(0, 0) undefined,
+    // std::atan2 gives 0, and both take 0.
+    float longitude = d.x != 0.0 || d.z != 0.0 ? atan(d.x, d.z) : 0.0;
+    float latitude = atan(d.y, length(d.xz));
+    uv = vec2(0.5 + longitude / (2.0 * kPi), 0.5 - latitude / kPi);
+  }
+  return texture(sphereMap, uv).rgb;
+#else
   // The centre itself has no direction: it takes the sphere's middle.
   float facing = length2 > 0.0 ? dot(fromCentre * inversesqrt(length2), sphereFrontEye) : 0.0;
   return mix(sphereBackColour, sphereFrontColour, 0.5 + 0.5 * facing);
+#endif
 }
 #endif
 

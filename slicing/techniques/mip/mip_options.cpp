@@ -1,13 +1,11 @@
 #include "slicing/techniques/mip/mip_options.h"
 
-#include <cmath>
 #include <variant>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
 #include "core/number_pair.h"
 #include "slicing/illustration_options.h"
+#include "slicing/techniques/mip/colour_sphere.h"
 
 namespace vsil {
 
@@ -17,12 +15,6 @@ namespace {
 const std::string* givenText(const OptionValues& given, const std::string& name) {
   const auto it = given.find(name);
   return it == given.end() ? nullptr : std::get_if<std::string>(&it->second);
-}
-
-// Turns +z by AZ about +y, then by EL towards +y (as --view orbits the camera).
-glm::dvec3 turnedFront(glm::dvec2 azimuthElevationDeg) {
-  const double az = glm::radians(azimuthElevationDeg.x), el = glm::radians(azimuthElevationDeg.y);
-  return {std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)};
 }
 
 }  // namespace
@@ -83,7 +75,9 @@ std::vector<OptionSpec> demipOptions() {
   eps.rangeFraction = 0.05;
   eps.defaultNote = "5 % of the value range";
   OptionSpec map =
-      OptionSpec::text("sphere-map", "colour sphere: red-blue, green-red or green-blue");
+      OptionSpec::text("sphere-map",
+                       "colour sphere: red-blue, green-red, green-blue, or an equirectangular "
+                       "FILE.png (its centre toward the viewer)");
   map.defaultValue = std::string("red-blue");
   OptionSpec rotate =
       OptionSpec::text("sphere-rotate", "AZ,EL degrees: turns the colour sphere (180,0 swaps)");
@@ -112,36 +106,10 @@ std::vector<OptionSpec> demipOptions() {
 
 void checkDemipValues(const OptionValues& given) {
   checkWindowOrTf(given);
-  if (const std::string* name = givenText(given, "sphere-map")) sphereMap(*name);
+  if (const std::string* name = givenText(given, "sphere-map")) checkSphereMap(*name);
   if (const std::string* text = givenText(given, "sphere-rotate")) {
     parseNumberPair("--sphere-rotate", *text);
   }
-}
-
-const std::vector<SphereMap>& sphereMaps() {
-  static const std::vector<SphereMap> maps{
-      {"red-blue", {1, 0, 0}, {0, 0, 1}},
-      {"green-red", {0, 1, 0}, {1, 0, 0}},
-      {"green-blue", {0, 1, 0}, {0, 0, 1}},
-  };
-  return maps;
-}
-
-const SphereMap& sphereMap(const std::string& name) {
-  std::string known;
-  for (const auto& map : sphereMaps()) {
-    if (map.name == name) return map;
-    known += (known.empty() ? "" : ", ") + map.name;
-  }
-  throwInputError("--sphere-map", "unknown map '" + name + "' (known: " + known + ")");
-}
-
-glm::vec3 sphereFrontEye(const OptionReader& options, const View& view) {
-  const glm::dvec3 front =
-      turnedFront(parseNumberPair("--sphere-rotate", options.text("sphere-rotate")));
-  if (options.text("sphere-frame") == "view") return glm::vec3(front);
-  // The volume's frame is world space (camera.h: worldFromVoxel scales by the spacing only).
-  return glm::vec3(glm::normalize(glm::dmat3(view.eyeFromWorld) * front));
 }
 
 DepthMode depthMode(const OptionReader& options) {

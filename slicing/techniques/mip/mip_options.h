@@ -34,24 +34,10 @@ void checkWindowOrTf(const OptionValues& given);
 
 OptionSpec lmipThresholdOption();
 
-// demip's own options: material tolerance, depth weighting, colour sphere, legend.
+// demip's own options: material tolerance, depth weighting, colour sphere (colour_sphere.h),
+// legend.
 std::vector<OptionSpec> demipOptions();
 void checkDemipValues(const OptionValues& given);
-
-// The sphere maps of the paper's Figure 7: `front` toward the viewer, `back` away from it.
-struct SphereMap {
-  std::string name;
-  glm::vec3 front;
-  glm::vec3 back;
-};
-const std::vector<SphereMap>& sphereMaps();
-const SphereMap& sphereMap(const std::string& name);  // InputError naming --sphere-map
-
-// The direction, in eye space, that the sphere map's front colour marks: toward the viewer
-// (+z eye) turned by --sphere-rotate AZ,EL, in the view's frame (`view`) or the volume's
-// (`volume`: the volume's +z, turned, then seen through the camera, so colours stay on the
-// structures while the view orbits).
-glm::vec3 sphereFrontEye(const OptionReader& options, const View& view);
 
 // Depth estimates of the paper's Figure 3 (--depth-mode).
 enum class DepthMode { Exact, Steps, EntryPlusSteps };

@@ -4,6 +4,7 @@
 
 #include "slicing/gl_state.h"
 #include "slicing/illustration_options.h"
+#include "slicing/techniques/mip/colour_sphere.h"
 #include "slicing/techniques/mip/mip_options.h"
 #include "slicing/techniques/mip/sphere_legend.h"
 #include "slicing/texture_units.h"
@@ -31,6 +32,17 @@ TechniqueInfo demipTechniqueInfo() {
           /*usesGradients=*/false,
           /*checkValues=*/checkDemipValues,
           /*needsOneTexture=*/{}};
+}
+
+ResolvedOptions MipTechnique::resolve(const FrameContext& frame) {
+  ResolvedOptions resolved;
+  if (!depthEnhanced_) return resolved;
+  colourSphere_ = colourSphere(frame.options->text("sphere-map"));
+  if (const auto& image = colourSphere_.image) {
+    resolved.details["sphere_map_file"] = {{"path", colourSphere_.name},
+                                           {"size", {image->width, image->height}}};
+  }
+  return resolved;
 }
 
 BrickOccupancy MipTechnique::occupancy(const FrameContext& frame) const {
@@ -135,23 +147,46 @@ void MipTechnique::endFrame(const FrameContext& frame) {
     const DepthMode mode = depthMode(options);
     if (mode == DepthMode::Steps) defines.push_back("DEPTH_STEPS");
     if (mode == DepthMode::EntryPlusSteps) defines.push_back("DEPTH_ENTRY_PLUS_STEPS");
+    if (colourSphere_.image) {
+      defines.push_back("SPHERE_MAP_IMAGE");
+      uploadSphereMap();
+    }
   }
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   gl::Program& finish =
       useMipFinish(frame, defines, targets_->maximum.texture(), targets_->colour, transferTable_);
   if (depthEnhanced_) {
     const View& view = *frame.view;
-    const SphereMap& map = sphereMap(options.text("sphere-map"));
     finish.set("depthWeight", float(options.number("depth-weight")));
     finish.set("sphereWeight", float(options.number("sphere-weight")));
-    finish.set("sphereFrontEye", sphereFrontEye(options, view));
-    finish.set("sphereFrontColour", map.front);
-    finish.set("sphereBackColour", map.back);
+    if (colourSphere_.image) {
+      finish.set("sphereFromEye", glm::transpose(sphereFrameEye(options, view)));
+      gl::bindTexture(gl::TextureUnit::Auxiliary1, GL_TEXTURE_2D, sphereMapTexture_.id());
+    } else {
+      finish.set("sphereFrontEye", sphereFrontEye(options, view));
+      finish.set("sphereFrontColour", colourSphere_.front);
+      finish.set("sphereBackColour", colourSphere_.back);
+    }
     finish.set("volumeCentreEye", glm::vec3(view.eyeFromWorld * glm::dvec4(0, 0, 0, 1)));
     finish.set("depthRangeEye", glm::vec2(float(view.nearEye), float(view.farEye)));
     gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, hits_.record().texture());
   }
   drawScreen(frame);
+}
+
+void MipTechnique::uploadSphereMap() {
+  const SphereMapImage& image = *colourSphere_.image;
+  if (!sphereMapTexture_) sphereMapTexture_ = gl::createTexture();
+  VSIL_GL(glBindTexture(GL_TEXTURE_2D, sphereMapTexture_.id()));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);         // longitude goes round
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);  // latitude ends
+  VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 4));
+  // Rows top-down as the image stores them: texture coordinate v = 0 is the top row.
+  VSIL_GL(glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, image.width, image.height, 0, GL_RGB, GL_FLOAT,
+                       image.texels.data()));
+  VSIL_GL(glBindTexture(GL_TEXTURE_2D, 0));
 }
 
 FrameBuffers MipTechnique::readBack(const FrameContext& frame) {
@@ -165,8 +200,7 @@ FrameBuffers MipTechnique::readBack(const FrameContext& frame) {
       colourWithDepth(targets_->colour, hits_.record(), 1, [](const cv::Vec4f&) { return true; });
   const OptionReader& options = *frame.options;
   if (options.enabled("legend")) {
-    drawSphereLegend(result.color, sphereMap(options.text("sphere-map")),
-                     sphereFrontEye(options, *frame.view));
+    drawSphereLegend(result.color, colourSphere_, sphereFrameEye(options, *frame.view));
   }
   return result;
 }

@@ -5,7 +5,7 @@
 // that records, per pixel, the first sample within --material-eps of that maximum (the engine's
 // first-hit pass with a per-pixel threshold, hit_records.h, so its dead-pixel marking stops each
 // ray at its hit), and the finishing pass weights the grey by that sample's depth and tints it
-// from the colour sphere. With both weights 0, demip draws mip's bytes.
+// from the colour sphere (colour_sphere.h). With both weights 0, demip draws mip's bytes.
 #include <functional>
 #include <optional>
 #include <string>
@@ -13,6 +13,7 @@
 
 #include "slicing/hit_records.h"
 #include "slicing/technique_table.h"
+#include "slicing/techniques/mip/colour_sphere.h"
 #include "slicing/transfer_function_texture.h"
 
 namespace vsil {
@@ -23,6 +24,8 @@ TechniqueInfo demipTechniqueInfo();
 class MipTechnique : public Technique {
  public:
   explicit MipTechnique(bool depthEnhanced) : depthEnhanced_(depthEnhanced) {}
+  // demip: reads --sphere-map (a PNG's texels).
+  ResolvedOptions resolve(const FrameContext& frame) override;
   int sweepCount(const FrameContext&) const override { return depthEnhanced_ ? 2 : 1; }
   BrickOccupancy occupancy(const FrameContext& frame) const override;
   void beginFrame(const FrameContext& frame) override;
@@ -32,6 +35,8 @@ class MipTechnique : public Technique {
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:
+  void uploadSphereMap();  // colourSphere_'s image into sphereMapTexture_
+
   struct Targets {
     gl::RenderTarget maximum;  // R32F with the entry depth of empty-space skipping
     gl::RenderTarget colour;   // RGBA32F, premultiplied
@@ -41,6 +46,8 @@ class MipTechnique : public Technique {
   FirstHitRecorder hits_;  // demip's second sweep
   gl::Program* maximumPass_ = nullptr;
   std::optional<TransferFunctionTexture> transferTable_;  // --tf
+  ColourSphere colourSphere_;                             // demip's --sphere-map
+  gl::TextureName sphereMapTexture_;                      // its image, when it has one
 };
 
 // What a pixel's maximum holds where no slice sampled it (mip_finish.frag shows nothing there).

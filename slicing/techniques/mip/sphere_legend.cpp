@@ -5,7 +5,9 @@
 
 namespace vsil {
 
-void drawSphereLegend(cv::Mat4f& colour, const SphereMap& map, glm::vec3 sphereFrontEye) {
+void drawSphereLegend(cv::Mat4f& colour, const ColourSphere& sphere,
+                      const glm::mat3& sphereFrameEye) {
+  const glm::mat3 sphereFromEye = glm::transpose(sphereFrameEye);
   const int side = std::min(colour.cols, colour.rows);
   const int radius = std::max(6, side / 10);
   const int margin = std::max(2, radius / 4);
@@ -19,8 +21,7 @@ void drawSphereLegend(cv::Mat4f& colour, const SphereMap& map, glm::vec3 sphereF
       const float r2 = u * u + v * v;
       if (r2 > 1.0f) continue;
       const glm::vec3 normal(u, v, std::sqrt(1.0f - r2));  // the near half, facing +z eye
-      const float facing = glm::dot(normal, sphereFrontEye);
-      glm::vec3 c = glm::mix(map.back, map.front, 0.5f + 0.5f * facing);
+      glm::vec3 c = sphere.colourAt(sphereFromEye * normal);
       const bool onCross = (dx == 0 || dy == 0) && std::abs(dx + dy) <= crossArm;
       if (onCross) c = glm::vec3(1.0f);
       colour(y, x) = cv::Vec4f(c.r, c.g, c.b, 1.0f);

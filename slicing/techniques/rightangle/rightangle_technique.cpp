@@ -5,17 +5,25 @@ namespace vsil {
 TechniqueInfo rightAngleTechniqueInfo() {
   return {"rightangle",
           "the right-angle line test on the first iso-surface hit (RA, the Nagy–Klein baseline)",
-          {isoOption(),
-           OptionSpec::number("ra-exponent", 8.0,
-                              "exponent k of the line test (1 - |n.v|)^k > threshold")
-               .above(0),
-           OptionSpec::number("ra-threshold", 0.3,
-                              "a first hit is a line pixel where (1 - |n.v|)^k exceeds this"),
-           pipelineOption()},
+          withToneFillOptions(
+              {isoOption(),
+               OptionSpec::number("ra-exponent", 8.0,
+                                  "exponent k of the line test (1 - |n.v|)^k > threshold")
+                   .above(0),
+               OptionSpec::number("ra-threshold", 0.3,
+                                  "a first hit is a line pixel where (1 - |n.v|)^k exceeds this"),
+               pipelineOption()}),
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<RightAngleTechnique>(); },
-          /*usesGradients=*/false, /*checkValues=*/{},
+          /*usesGradients=*/false,
+          /*checkValues=*/checkToneFillValues,
           /*needsOneTexture=*/tilesNeedOneTexture};
+}
+
+ResolvedOptions RightAngleTechnique::resolve(const FrameContext& frame) {
+  ResolvedOptions resolved;
+  resolved.details = toneFill_.resolve(frame);
+  return resolved;
 }
 
 BrickOccupancy RightAngleTechnique::occupancy(const FrameContext& frame) const {
@@ -41,10 +49,13 @@ void RightAngleTechnique::drawSlice(const FrameContext& frame, const SliceContex
 void RightAngleTechnique::endFrame(const FrameContext& frame) {
   hits_.endSlices(frame);
   finishRecords(frame, *finish_, hits_.record(), *finished_);
+  toneFill_.draw(frame, hits_.record());
 }
 
 FrameBuffers RightAngleTechnique::readBack(const FrameContext&) {
-  return frameFromStateImage(readTargetFlipped(*finished_, 4));
+  FrameBuffers frame = frameFromStateImage(readTargetFlipped(*finished_, 4));
+  toneFill_.readBack(frame);
+  return frame;
 }
 
 }  // namespace vsil

@@ -2,11 +2,13 @@
 // The right-angle baseline (RA): front-to-back iso-surface slicing; the first hit along each
 // ray is a line pixel where (1 - |∇f_n·V|)^k > ε (gradients by central differences). Slices
 // record the first hit (hit_records.h FirstHitRecorder); the line test and shade run once per
-// pixel at the end (rightangle.glsl in shaders/finish_hits.frag).
+// pixel at the end (rightangle.glsl in shaders/finish_hits.frag); with --fill tone, so does the
+// tone shading of the hits (tone_fill.h).
 #include <optional>
 
 #include "slicing/hit_records.h"
 #include "slicing/technique_table.h"
+#include "slicing/tone_fill.h"
 
 namespace vsil {
 
@@ -14,6 +16,7 @@ TechniqueInfo rightAngleTechniqueInfo();
 
 class RightAngleTechnique : public Technique {
  public:
+  ResolvedOptions resolve(const FrameContext& frame) override;
   BrickOccupancy occupancy(const FrameContext& frame) const override;
   void beginFrame(const FrameContext& frame) override;
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
@@ -24,6 +27,7 @@ class RightAngleTechnique : public Technique {
   FirstHitRecorder hits_;
   std::optional<gl::RenderTarget> finished_;  // RGBA32F (state, depth, shade, 0)
   gl::Program* finish_ = nullptr;
+  ToneFill toneFill_;  // --fill tone
 };
 
 }  // namespace vsil

@@ -4,6 +4,7 @@
 #include "slicing/hit_records.h"
 #include "slicing/texture_units.h"
 #include "slicing/tile_march.h"
+#include "slicing/tone_fill.h"
 
 namespace vsil {
 namespace {
@@ -36,12 +37,18 @@ constexpr MarchShape kMarchShape{{32, 1}, {30, 30}};
 TechniqueInfo silhouetteTechniqueInfo() {
   return {"silhouette",
           "Nagy–Klein one-pixel iso-surface silhouettes (OPS), broadened to --width",
-          {isoOption(), pipelineOption()},
+          withToneFillOptions({isoOption(), pipelineOption()}),
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<SilhouetteTechnique>(); },
           /*usesGradients=*/false,
-          /*checkValues=*/{},
+          /*checkValues=*/checkToneFillValues,
           /*needsOneTexture=*/tilesNeedOneTexture};
+}
+
+ResolvedOptions SilhouetteTechnique::resolve(const FrameContext& frame) {
+  ResolvedOptions resolved;
+  resolved.details = toneFill_.resolve(frame);
+  return resolved;
 }
 
 BrickOccupancy SilhouetteTechnique::occupancy(const FrameContext& frame) const {
@@ -188,6 +195,7 @@ void SilhouetteTechnique::endFrame(const FrameContext& frame) {
   if (pipeline_ == SlicingPipeline::Tiles) {
     runMarch(frame, *programs_.march, kMarchShape, targets_->records[0]);
     finishRecords(frame, *programs_.finish, targets_->records[0], targets_->records[1]);
+    toneFill_.draw(frame, targets_->records[0]);
     current_ = 1;
     return;
   }
@@ -200,11 +208,15 @@ void SilhouetteTechnique::endFrame(const FrameContext& frame) {
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   finishRecords(frame, *programs_.finish, targets_->records[std::size_t(current_)],
                 targets_->records[std::size_t(1 - current_)]);
+  toneFill_.draw(frame, targets_->records[std::size_t(current_)]);
   current_ = 1 - current_;
 }
 
 FrameBuffers SilhouetteTechnique::readBack(const FrameContext&) {
-  return frameFromStateImage(readTargetFlipped(targets_->records[std::size_t(current_)], 4));
+  FrameBuffers frame =
+      frameFromStateImage(readTargetFlipped(targets_->records[std::size_t(current_)], 4));
+  toneFill_.readBack(frame);
+  return frame;
 }
 
 }  // namespace vsil

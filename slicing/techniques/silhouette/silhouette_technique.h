@@ -15,11 +15,13 @@
 //         tile with a one-pixel apron, footprint and contour in shared memory, the record in
 //         registers (tile_march.h, march.comp); the finishing pass as in the fast pipeline.
 //  The paper pipeline samples every pixel of every slice polygon (no empty-space skipping).
+//  With --fill tone, the first hits are tone-shaded after the last slice (tone_fill.h).
 #include <array>
 #include <optional>
 
 #include "slicing/technique.h"
 #include "slicing/technique_table.h"
+#include "slicing/tone_fill.h"
 
 namespace vsil {
 
@@ -27,6 +29,7 @@ TechniqueInfo silhouetteTechniqueInfo();
 
 class SilhouetteTechnique : public Technique {
  public:
+  ResolvedOptions resolve(const FrameContext& frame) override;
   BrickOccupancy occupancy(const FrameContext& frame) const override;
   void beginFrame(const FrameContext& frame) override;
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
@@ -59,7 +62,8 @@ class SilhouetteTechnique : public Technique {
   std::optional<Targets> targets_;
   Programs programs_{};
   SlicingPipeline pipeline_ = SlicingPipeline::Fast;
-  int current_ = 0;  // the record target holding the latest record
+  int current_ = 0;    // the record target holding the latest record
+  ToneFill toneFill_;  // --fill tone
 };
 
 }  // namespace vsil
