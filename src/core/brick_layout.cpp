@@ -153,7 +153,7 @@ BrickLayout BrickLayout::choose(glm::ivec3 dims, std::size_t texelBytes,
   const double wholeStored = storedSide(dims.x, 1) * storedSide(dims.y, 1) * storedSide(dims.z, 1);
   if (wholeFits &&
       (bricking == Bricking::OneIfItFits || double(wholeTexels) <= kMaxWaste * wholeStored ||
-       (wholeTexels - voxels) * texelBytes <= kSmallWasteBytes)) {
+       double((wholeTexels - voxels) * texelBytes) <= kPaddingShareOfLimit * double(maxTextureBytes))) {
     return withStorage(dims, whole);
   }
   std::array<std::vector<AxisBricks>, 3> options;

@@ -43,13 +43,15 @@ class BrickLayout {
   // Axes shorter than this count as this long in that bound: the smallest brick (8 texels,
   // 4 voxels of its own) cannot hold them in fewer texels than the next power of two.
   static constexpr int kSmallestCutSide = 32;
-  // Padding of one texture small enough to keep (bytes beyond the voxels'): below it, one
-  // brick draws fewer pieces than a tighter cut.
-  static constexpr std::uint64_t kSmallWasteBytes = std::uint64_t(64) << 20;
+  // The padding one texture may carry (bytes beyond the voxels'), as a share of the texture
+  // limit (904 MiB of the default 1808): several bricks cost up to twice the frame time on
+  // llvmpipe (silhouette at 512² of a 300³ volume: 349 ms in one texture padded to 512³, 711 ms
+  // in 8 bricks of 256 + 64 texels per axis), padding only memory, which --max-memory counts.
+  static constexpr double kPaddingShareOfLimit = 0.5;
 
   // One brick (each axis padded to a power of two) when that texture fits in
   // `maxTextureBytes` and `maxTextureSide` and its padding is within kMaxWaste of the voxels or
-  // below kSmallWasteBytes (or, with Bricking::OneIfItFits, whenever it fits: for what cannot
+  // at most kPaddingShareOfLimit of `maxTextureBytes` (or, with Bricking::OneIfItFits, whenever it fits: for what cannot
   // follow bricks, the tiles march); else, among the layouts whose bricks each fit, the fewest
   // bricks whose texels are within kMaxWaste of the voxels and overlap they store (storedTexels; each brick
   // costs a draw per slice piece), then the fewest texels. Along an axis the bricks are one

@@ -20,7 +20,10 @@ namespace {
 constexpr std::size_t kR16F = 2;  // texel bytes of 8-bit data
 constexpr std::size_t kR32F = 4;
 constexpr std::uint64_t kLimit = limits::kMaxTextureBytes;
-constexpr int kSide = 2048;  // llvmpipe's GL_MAX_3D_TEXTURE_SIZE
+constexpr int kSide = 2048;
+// A limit that 512³ R16F texels (256 MiB) fit but whose half a 512³ texture for 257³-300³
+// voxels exceeds in padding.
+constexpr std::uint64_t kTight = std::uint64_t(300) << 20;  // llvmpipe's GL_MAX_3D_TEXTURE_SIZE
 
 std::string dimsText(glm::ivec3 d) {
   return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
@@ -95,40 +98,49 @@ bool expectValid(const BrickLayout& layout, std::uint64_t maxTexels, int maxSide
   return true;
 }
 
-// Within kMaxWaste of the voxels and overlap stored, or one texture whose padding is small.
-bool withinWaste(const BrickLayout& layout, std::size_t texelBytes) {
+// Within kMaxWaste of the voxels and overlap stored, or one texture whose padding is within
+// kPaddingShareOfLimit of `limit`.
+bool withinWaste(const BrickLayout& layout, std::size_t texelBytes, std::uint64_t limit) {
   const glm::ivec3 d = layout.dims();
   const std::uint64_t voxels = std::uint64_t(d.x) * d.y * d.z;
   const double ratio = double(layout.texels()) / layout.storedTexels();
   if (ratio <= BrickLayout::kMaxWaste) return true;
   return layout.size() == 1 &&
-         (layout.texels() - voxels) * texelBytes <= BrickLayout::kSmallWasteBytes;
+         double((layout.texels() - voxels) * texelBytes) <=
+             BrickLayout::kPaddingShareOfLimit * double(limit);
 }
 
-TEST(BrickLayout, ThreeHundredCubedTakes256And64TexelsPerAxis) {
-  // One texture would be 512³ (4.97 times the voxels); 320³ is 1.21 times.
-  const BrickLayout layout = BrickLayout::choose(glm::ivec3(300), kR16F, kLimit, kSide);
+TEST(BrickLayout, ThreeHundredCubedIsOneTextureUnlessItsPaddingIsTooLarge) {
+  // Under the default limit one texture of 512³ (4.97 times the voxels, 202 MiB of padding
+  // in R16F): a frame in one brick is faster than in several.
+  const BrickLayout whole = BrickLayout::choose(glm::ivec3(300), kR16F, kLimit, kSide);
+  EXPECT_EQ(whole.size(), 1u);
+  EXPECT_EQ(whole.texels(), 512ull * 512 * 512);
+  // Under a 300 MiB limit that padding is too large (more than half of it): 256 + 64 texels per
+  // axis, 320³ (1.21 times the voxels).
+  const BrickLayout layout = BrickLayout::choose(glm::ivec3(300), kR16F, kTight, kSide);
   EXPECT_EQ(layout.counts(), glm::ivec3(2));
   for (int a = 0; a < 3; ++a) EXPECT_EQ(sizesAlong(layout, a), (std::vector<int>{256, 64}));
   EXPECT_EQ(layout.texels(), 320ull * 320 * 320);
-  EXPECT_TRUE(expectValid(layout, kLimit / kR16F, kSide));
+  EXPECT_TRUE(expectValid(layout, kTight / kR16F, kSide));
   // What cannot follow bricks asks for one texture when it fits.
-  const BrickLayout one = BrickLayout::choose(glm::ivec3(300), kR16F, kLimit, kSide,
+  const BrickLayout one = BrickLayout::choose(glm::ivec3(300), kR16F, kTight, kSide,
                                               BrickLayout::Bricking::OneIfItFits);
   EXPECT_EQ(one.size(), 1u);
   EXPECT_EQ(one.texels(), 512ull * 512 * 512);
 }
 
 TEST(BrickLayout, JustOverAPowerOfTwoAddsASmallBrick) {
-  const BrickLayout layout = BrickLayout::choose(glm::ivec3(257), kR16F, kLimit, kSide);
+  const BrickLayout layout = BrickLayout::choose(glm::ivec3(257), kR16F, kTight, kSide);
   EXPECT_EQ(layout.counts(), glm::ivec3(2));
   for (int a = 0; a < 3; ++a) EXPECT_EQ(sizesAlong(layout, a), (std::vector<int>{256, 8}));
-  EXPECT_TRUE(expectValid(layout, kLimit / kR16F, kSide));
+  EXPECT_TRUE(expectValid(layout, kTight / kR16F, kSide));
   // The brick after 256 may be smaller than the rest takes in one: 400 = 256 + 128 + 32, not
-  // 256 + 256.
-  const BrickLayout four = BrickLayout::choose(glm::ivec3(400), kR16F, kLimit, kSide);
+  // 256 + 256 (under a limit that 512³ R16F texels exceed).
+  const std::uint64_t below512 = std::uint64_t(200) << 20;
+  const BrickLayout four = BrickLayout::choose(glm::ivec3(400), kR16F, below512, kSide);
   EXPECT_EQ(sizesAlong(four, 0), (std::vector<int>{256, 128, 32}));
-  EXPECT_TRUE(expectValid(four, kLimit / kR16F, kSide));
+  EXPECT_TRUE(expectValid(four, below512 / kR16F, kSide));
 }
 
 TEST(BrickLayout, PowersOfTwoAndSmallPaddingStayOneBrick) {
@@ -136,7 +148,7 @@ TEST(BrickLayout, PowersOfTwoAndSmallPaddingStayOneBrick) {
                           glm::ivec3(128, 128, 62), glm::ivec3(256, 256, 130)}) {
     const BrickLayout layout = BrickLayout::choose(dims, kR32F, kLimit, kSide);
     EXPECT_EQ(layout.size(), 1u) << dimsText(dims);
-    EXPECT_TRUE(withinWaste(layout, kR32F)) << dimsText(dims);
+    EXPECT_TRUE(withinWaste(layout, kR32F, kLimit)) << dimsText(dims);
   }
 }
 
@@ -164,12 +176,12 @@ TEST(BrickLayout, SmallTextureLimitsGiveManySmallBricks) {
   const BrickLayout layout = BrickLayout::choose(glm::ivec3(300, 200, 77), kR32F, 1 << 20, kSide);
   EXPECT_GT(layout.size(), 27u);
   EXPECT_TRUE(expectValid(layout, (1 << 20) / kR32F, kSide));
-  EXPECT_TRUE(withinWaste(layout, kR32F));
+  EXPECT_TRUE(withinWaste(layout, kR32F, 1 << 20));
   EXPECT_THROW(BrickLayout::choose(glm::ivec3(64), kR32F, 1000, kSide), std::invalid_argument);
 }
 
 // Every size from 8 to 2100 along one axis, the others a few sizes: valid, and the texels
-// within kMaxWaste of the voxels and overlap stored (or one texture padded by little).
+// within kMaxWaste of the voxels and overlap stored (or one texture within its padding share).
 TEST(BrickLayout, WasteIsBoundedOverASweepOfSizes) {
   double worst = 0;
   glm::ivec3 worstDims(0);
@@ -177,7 +189,7 @@ TEST(BrickLayout, WasteIsBoundedOverASweepOfSizes) {
     for (glm::ivec3 dims : {glm::ivec3(n), glm::ivec3(n, 300, 19), glm::ivec3(1000, 777, n)}) {
       const BrickLayout layout = BrickLayout::choose(dims, kR16F, kLimit, kSide);
       ASSERT_TRUE(expectValid(layout, kLimit / kR16F, kSide));
-      ASSERT_TRUE(withinWaste(layout, kR16F))
+      ASSERT_TRUE(withinWaste(layout, kR16F, kLimit))
           << dimsText(dims) << ": " << layout.texels() << " texels for "
           << layout.storedTexels() << " stored, " << layout.size() << " bricks";
       if (layout.size() > 1) {

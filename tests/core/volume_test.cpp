@@ -309,17 +309,20 @@ TEST(Limits, RenderVolumeBytesCountSamplesTextureRangesAndSlabs) {
   EXPECT_EQ(limits::renderVolumeBytes(dims, 1, /*gradients=*/true),
             voxels * (3 + limits::kGradientBytesPerTexel + limits::kGradientCpuBytesPerVoxel) +
                 ranges + slabs);
-  // A texture is a power of two along each axis (core/brick_layout.h): 300³ in bricks of
-  // 256 + 64 texels along each axis (320³), not one of 512³ (4.97 times the voxels) — unless
-  // the render needs one texture (the tiles march, illustrate's halos).
+  // A texture is a power of two along each axis (core/brick_layout.h): 300³ in one texture of
+  // 512³ (4.97 times the voxels) under the default limit; under a 300 MiB limit, whose half
+  // that padding exceeds, in bricks of 256 + 64 texels along each axis (320³) — unless the
+  // render needs one texture (the tiles march, illustrate's halos).
   const glm::ivec3 odd(300);
   const std::uint64_t oddVoxels = 300ull * 300 * 300;
   const std::uint64_t oddRanges =
       8 * (38ull * 38 * 38 + limits::kMaxWorkerThreads * (38ull * 300 + 38ull * 38));
+  const std::uint64_t tight = std::uint64_t(300) << 20;
   EXPECT_EQ(limits::renderVolumeBytes(odd, 1),
+            oddVoxels + 512ull * 512 * 512 * 2 + oddRanges + 2 * limits::kUploadSlabBytes);
+  EXPECT_EQ(limits::renderVolumeBytes(odd, 1, false, tight),
             oddVoxels + 320ull * 320 * 320 * 2 + oddRanges + 2 * limits::kUploadSlabBytes);
-  EXPECT_EQ(limits::renderVolumeBytes(odd, 1, false, limits::kMaxTextureBytes,
-                                      /*oneTexture=*/true),
+  EXPECT_EQ(limits::renderVolumeBytes(odd, 1, false, tight, /*oneTexture=*/true),
             oddVoxels + 512ull * 512 * 512 * 2 + oddRanges + 2 * limits::kUploadSlabBytes);
   // 1024³ of 8-bit data takes bricks (one texture would be 2 GiB): a few percent of overlap.
   const std::uint64_t big = 1024ull * 1024 * 1024;

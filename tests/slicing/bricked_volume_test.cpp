@@ -146,9 +146,10 @@ TEST_F(BrickedVolume, WhatCannotFollowTheBricksRefuses) {
   EXPECT_NO_THROW(whole.render(halo));
 }
 
-// A volume that fits one texture but would waste most of it to padding (260³ 8-bit: 512³
-// texels) is cut into bricks of 256 + 8 texels per axis; the tiles march, which cannot follow
-// bricks, gets it in one texture and draws the pixels the fast pipeline draws on the bricks.
+// A volume that fits one texture but would waste more than half the texture limit to padding
+// (260³ 8-bit: 512³ R16F texels, 256 MiB, under a 300 MiB limit) is cut into bricks of 256 + 8
+// texels per axis; the tiles march, which cannot follow bricks, gets it in one texture and
+// draws the pixels the fast pipeline draws on the bricks.
 TEST(BrickedVolumeLayout, PaddedVolumeIsBrickedAndTilesGetItInOneTexture) {
   Volume volume;
   volume.source = "ball:260";
@@ -165,7 +166,7 @@ TEST(BrickedVolumeLayout, PaddedVolumeIsBrickedAndTilesGetItInOneTexture) {
     }
   }
   Renderer renderer(test::sharedGlContext());
-  renderer.setVolume(volume);
+  renderer.setVolume(volume, std::uint64_t(300) << 20);
   ASSERT_EQ(renderer.brickCount(), 8u);
   RenderSettings settings;
   settings.technique = "silhouette";
