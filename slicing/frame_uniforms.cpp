@@ -7,10 +7,13 @@
 namespace vsil {
 
 FrameUniforms::FrameUniforms()
-    : frameBuffer_(gl::createBuffer()), sliceBuffer_(gl::createBuffer()) {
+    : frameBuffer_(gl::createBuffer()),
+      sliceBuffer_(gl::createBuffer()),
+      brickBuffer_(gl::createBuffer()) {
   GLint alignment = 256;
   glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
   alignment = std::max(alignment, GLint(16));  // a power of two: also whole vec4s
+  brickStride_ = (GLsizeiptr(sizeof(BrickBlock)) + alignment - 1) / alignment * alignment;
   const GLsizeiptr size = sizeof(SliceBlock);
   sliceStride_ = (size + alignment - 1) / alignment * alignment;
   GLint maxBlockSize = 16384;  // the least GL 4.5 allows
@@ -40,11 +43,11 @@ void FrameUniforms::upload(const View& view, glm::ivec3 dims, const SlicePlan& p
                                 std::size_t(std::max(slices_, 1) + slicesPerRange_));
   for (int k = 0; k < slices_; ++k) {
     const Slice& slice = plan.slices[std::size_t(k)];
-    const SliceTexCoords tex = sliceTexCoords(view, dims, slice.eyeDistance);
+    const SliceVoxelCoords tex = sliceVoxelCoords(view, slice.eyeDistance);
     SliceBlock block{};
-    block.texPerNdcX = tex.perNdcX;
-    block.texPerNdcY = tex.perNdcY;
-    block.texAtNdcOrigin = tex.atNdcOrigin;
+    block.voxelPerNdcX = tex.perNdcX;
+    block.voxelPerNdcY = tex.perNdcY;
+    block.voxelAtNdcOrigin = tex.atNdcOrigin;
     block.eyeDistance = float(slice.eyeDistance);
     block.depth = float(slice.depth);
     const glm::dvec4 clip = view.clipFromEye * glm::dvec4(0.0, 0.0, -slice.eyeDistance, 1.0);
@@ -68,6 +71,31 @@ void FrameUniforms::bindSlice(int k) const {
 void FrameUniforms::bindSliceRange(int first) const {
   VSIL_GL(glBindBufferRange(GL_UNIFORM_BUFFER, kSliceRangeBinding, sliceBuffer_.id(),
                             GLintptr(first) * sliceStride_, slicesPerRange_ * sliceStride_));
+}
+
+void FrameUniforms::uploadBricks(const BrickLayout& layout) {
+  std::vector<std::byte> blocks(std::size_t(brickStride_) *
+                                std::max<std::size_t>(layout.size(), 1));
+  for (std::size_t b = 0; b < layout.size(); ++b) {
+    const Brick& brick = layout.bricks()[b];
+    BrickBlock block{};
+    block.origin = glm::vec3(brick.origin);
+    block.texPerVoxel = 1.0f / glm::vec3(brick.size);  // exact: powers of two
+    block.low = glm::vec3(brick.low);
+    block.high = glm::vec3(brick.high);
+    block.isFirst = b == 0 ? 1.0f : 0.0f;
+    std::memcpy(blocks.data() + b * std::size_t(brickStride_), &block, sizeof(block));
+  }
+  VSIL_GL(glBindBuffer(GL_UNIFORM_BUFFER, brickBuffer_.id()));
+  VSIL_GL(
+      glBufferData(GL_UNIFORM_BUFFER, GLsizeiptr(blocks.size()), blocks.data(), GL_STATIC_DRAW));
+  glBindBuffer(GL_UNIFORM_BUFFER, 0);
+  bindBrick(0);
+}
+
+void FrameUniforms::bindBrick(std::size_t brick) const {
+  glBindBufferRange(GL_UNIFORM_BUFFER, kBrickBlockBinding, brickBuffer_.id(),
+                    GLintptr(brick) * brickStride_, sizeof(BrickBlock));
 }
 
 void FrameUniforms::bindFrame() const {

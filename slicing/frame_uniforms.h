@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/brick_layout.h"
 #include "core/camera.h"
 #include "slicing/gl_objects.h"
 #include "slicing/slicer.h"
@@ -34,28 +35,45 @@ static_assert(offsetof(FrameBlock, halfExtent) == 200);
 
 // Mirrors `uniform SliceBlock` in shaders/common.glsl.
 struct SliceBlock {
-  glm::vec3 texPerNdcX;  // slicer.h SliceTexCoords
-  float eyeDistance;     // -z_eye of the plane
-  glm::vec3 texPerNdcY;
+  glm::vec3 voxelPerNdcX;  // slicer.h SliceVoxelCoords
+  float eyeDistance;       // -z_eye of the plane
+  glm::vec3 voxelPerNdcY;
   float depth;  // normalized depth d of the plane
-  glm::vec3 texAtNdcOrigin;
+  glm::vec3 voxelAtNdcOrigin;
   float windowDepth;    // what the depth test compares
   float previousDepth;  // the previous slice's d (0 before the first)
   std::uint32_t index;  // the slice's index in the plan
 };
-// The vec4 words tile_march.glsl's sliceAt() reads: (texPerNdcX, eyeDistance), (texPerNdcY,
-// depth), (texAtNdcOrigin, windowDepth), (previousDepth, index, -, -).
+// The vec4 words tile_march.glsl's sliceAt() reads: (voxelPerNdcX, eyeDistance), (voxelPerNdcY,
+// depth), (voxelAtNdcOrigin, windowDepth), (previousDepth, index, -, -).
 static_assert(offsetof(SliceBlock, eyeDistance) == 12);
-static_assert(offsetof(SliceBlock, texPerNdcY) == 16);
+static_assert(offsetof(SliceBlock, voxelPerNdcY) == 16);
 static_assert(offsetof(SliceBlock, depth) == 28);
-static_assert(offsetof(SliceBlock, texAtNdcOrigin) == 32);
+static_assert(offsetof(SliceBlock, voxelAtNdcOrigin) == 32);
 static_assert(offsetof(SliceBlock, windowDepth) == 44);
 static_assert(offsetof(SliceBlock, previousDepth) == 48);
 static_assert(offsetof(SliceBlock, index) == 52);
 
+// Mirrors `uniform BrickBlock` in shaders/common.glsl: the brick a slice piece samples.
+struct BrickBlock {
+  glm::vec3 origin;  // the voxel in texel 0
+  float pad0;
+  glm::vec3 texPerVoxel;  // 1 / the brick textures' size
+  float pad1;
+  glm::vec3 low;  // the sample positions it owns, [low, high)
+  float isFirst;
+  glm::vec3 high;
+  float pad2;
+};
+static_assert(offsetof(BrickBlock, texPerVoxel) == 16);
+static_assert(offsetof(BrickBlock, low) == 32);
+static_assert(offsetof(BrickBlock, isFirst) == 44);
+static_assert(offsetof(BrickBlock, high) == 48);
+
 inline constexpr GLuint kFrameBlockBinding = 0;
 inline constexpr GLuint kSliceBlockBinding = 1;
 inline constexpr GLuint kSliceRangeBinding = 2;  // tile_march.glsl `uniform SliceRange`
+inline constexpr GLuint kBrickBlockBinding = 3;
 
 class FrameUniforms {
  public:
@@ -66,6 +84,9 @@ class FrameUniforms {
   void bindSlice(int k) const;
   // For passes that read no slice (screen passes): slice 0's block, or nothing to read.
   void bindFrame() const;
+  // One block per brick of the volume's layout (once per volume), and binding brick b's.
+  void uploadBricks(const BrickLayout& layout);
+  void bindBrick(std::size_t brick) const;
 
   // The tile march's view: slices [first, first + slicesPerRange()) as one uniform block at
   // kSliceRangeBinding, slice first + i from vec4 i * sliceStrideVec4() on. As many as fit in a
@@ -78,6 +99,8 @@ class FrameUniforms {
  private:
   gl::BufferName frameBuffer_;
   gl::BufferName sliceBuffer_;
+  gl::BufferName brickBuffer_;
+  GLsizeiptr brickStride_ = 0;
   // sizeof(SliceBlock) rounded up to the offset alignment, and to whole vec4s (the range view)
   GLsizeiptr sliceStride_ = 0;
   int slicesPerRange_ = 0;

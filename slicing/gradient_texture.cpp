@@ -8,6 +8,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "core/clock.h"
+#include "slicing/volume_texture.h"
 
 namespace vsil {
 
@@ -110,49 +111,28 @@ GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm:
                                0, dims.z);
 }
 
-GradientTexture::GradientTexture(GLuint volumeTexture, glm::ivec3 dims, glm::dvec3 spacing) {
+GradientTexture::GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing) {
   const auto start = std::chrono::steady_clock::now();
-  // The volume stays bound to its unit for the frame: put back what unit 0 holds.
-  GLint bound = 0;
-  glGetIntegerv(GL_TEXTURE_BINDING_3D, &bound);
-  std::vector<float> samples(std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z));
-  VSIL_GL(glBindTexture(GL_TEXTURE_3D, volumeTexture));
-  VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
-  VSIL_GL(glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, samples.data()));
-  const float maxMagnitude = maxGradientMagnitude(samples.data(), dims, spacing);
-  texture_ = gl::createTexture();
-  VSIL_GL(glBindTexture(GL_TEXTURE_3D, texture_.id()));
-  VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
-  VSIL_GL(glTexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, dims.x, dims.y, dims.z, 0, GL_RGBA,
-                       GL_HALF_FLOAT, nullptr));
-  // In slabs, so that the texels never exist twice at once (memory bound: limits.h).
-  constexpr int kSlab = 16;
-  for (int z0 = 0; z0 < dims.z; z0 += kSlab) {
-    const int z1 = std::min(dims.z, z0 + kSlab);
-    const GradientTexels slab =
-        computeGradientTexels(samples.data(), dims, spacing, maxMagnitude, z0, z1);
-    VSIL_GL(glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z0, dims.x, dims.y, z1 - z0, GL_RGBA,
-                            GL_HALF_FLOAT, slab.halves.data()));
+  const glm::ivec3 dims = volume.dims();
+  GradientTexels texels;
+  {
+    const std::vector<float> samples = volume.readVoxels();
+    texels = computeGradientTexels(samples.data(), dims, spacing);
   }
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
-    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
-  }
-  VSIL_GL(glBindTexture(GL_TEXTURE_3D, GLuint(bound)));
+  textures_ = uploadBricked(volume.layout(), dims, GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT,
+                            4 * sizeof(std::uint16_t), texels.halves.data());
   buildMs_ = millisecondsSince(start);
 }
 
-void GradientTextureCache::reset(GLuint volumeTexture, glm::ivec3 dims, glm::dvec3 spacing) {
+void GradientTextureCache::reset(const VolumeTexture* volume, glm::dvec3 spacing) {
   texture_.reset();
-  volumeTexture_ = volumeTexture;
-  dims_ = dims;
+  volume_ = volume;
   spacing_ = spacing;
 }
 
-GLuint GradientTextureCache::texture() {
-  if (!texture_) texture_.emplace(volumeTexture_, dims_, spacing_);
-  return texture_->id();
+const GradientTexture& GradientTextureCache::texture() {
+  if (!texture_) texture_.emplace(*volume_, spacing_);
+  return *texture_;
 }
 
 }  // namespace vsil

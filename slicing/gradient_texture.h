@@ -12,8 +12,10 @@
 // R16F, so the CPU reference (tests/reference) reads the very texels the GL path samples.
 //
 // Built on the CPU from the volume texture's own samples (read back once), on every hardware
-// thread: the earlier developer measured it faster than a GL pass on llvmpipe (not re-measured
-// since), and the reference calls the same function.
+// thread, and uploaded brick by brick in the volume texture's layout (the same overlap and
+// padding, so a piece of a slice reads its brick's gradients as it reads its samples): the earlier
+// developer measured it faster than a GL pass on llvmpipe (not re-measured since), and the
+// reference calls the same function.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -41,15 +43,18 @@ GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm:
 // Every slice.
 GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm::dvec3 spacing);
 
+class VolumeTexture;
+
+// One RGBA16F texture per brick of the volume texture, with its layout (core/brick_layout.h).
 class GradientTexture {
  public:
   // Reads the volume texture back and uploads the gradients of its samples.
-  GradientTexture(GLuint volumeTexture, glm::ivec3 dims, glm::dvec3 spacing);
-  GLuint id() const { return texture_.id(); }
+  GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing);
+  GLuint brickTexture(std::size_t brick) const { return textures_[brick].id(); }
   double buildMs() const { return buildMs_; }
 
  private:
-  gl::TextureName texture_;
+  std::vector<gl::TextureName> textures_;
   double buildMs_ = 0;
 };
 
@@ -57,14 +62,13 @@ class GradientTexture {
 // changes (reset).
 class GradientTextureCache {
  public:
-  void reset(GLuint volumeTexture, glm::ivec3 dims, glm::dvec3 spacing);
+  void reset(const VolumeTexture* volume, glm::dvec3 spacing);
   // The texture (building it now if no frame asked before).
-  GLuint texture();
+  const GradientTexture& texture();
   bool built() const { return texture_.has_value(); }
 
  private:
-  GLuint volumeTexture_ = 0;
-  glm::ivec3 dims_{0};
+  const VolumeTexture* volume_ = nullptr;
   glm::dvec3 spacing_{1.0};
   std::optional<GradientTexture> texture_;
 };

@@ -46,6 +46,7 @@ void FirstHitRecorder::beginFrame(const FrameContext& frame, SlicingPipeline pip
   }
   pipeline_ = pipeline;
   if (pipeline_ == SlicingPipeline::Tiles) {
+    requireOneBrick(frame, "--pipeline tiles", "use --pipeline fast or paper (the same pixels)");
     if (material) {
       throw std::logic_error("FirstHitRecorder: the tiles march has no material threshold");
     }
@@ -115,7 +116,14 @@ void finishRecords(const FrameContext& frame, gl::Program& finish, const gl::Ren
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   finish.use();
   gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, record.texture());
-  drawScreen(frame);
+  // Once per brick: each pass shades the hits its brick owns (finish_hits.frag).
+  for (std::size_t brick = 0; brick < frame.volume->brickCount(); ++brick) {
+    gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, frame.volume->brickTexture(brick));
+    frame.uniforms->bindBrick(brick);
+    drawScreen(frame);
+  }
+  gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, frame.volume->brickTexture(0));
+  frame.uniforms->bindBrick(0);
 }
 
 FrameBuffers frameFromStateImage(const cv::Mat& stateDepthShade) {

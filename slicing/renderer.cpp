@@ -54,6 +54,9 @@ void Renderer::validateSettings(const RenderSettings& settings) {
 
 struct Renderer::Impl {
   gl::GlContext* context = nullptr;
+  const Volume* volume = nullptr;  // what volumeTexture holds (setVolume)
+  std::uint64_t maxTextureBytes = 0;
+  BrickLayout::Bricking bricking = BrickLayout::Bricking::Compact;
   std::optional<VolumeTexture> volumeTexture;
   std::optional<BrickRanges> brickRanges;
   std::optional<EmptySpaceSkipping> emptySpace;
@@ -69,6 +72,19 @@ struct Renderer::Impl {
   gl::VertexArrayName sliceVertexArray;
   gl::VertexArrayName screenVertexArray;
   std::map<std::string, std::unique_ptr<Technique>> techniques;
+
+  // Uploads `volume` in the layout `bricking` asks for; gradients and halo masks follow
+  // (volumeGeneration).
+  void uploadVolume(BrickLayout::Bricking how) {
+    gradients.reset(nullptr, volume->spacing);
+    volumeTexture.reset();
+    volumeTexture.emplace(*volume, maxTextureBytes, limits::kUploadSlabBytes, how);
+    bricking = how;
+    gradients.reset(&*volumeTexture, volume->spacing);
+    if (!uniforms) uniforms.emplace();
+    uniforms->uploadBricks(volumeTexture->layout());
+    ++volumeGeneration;
+  }
 
   Technique& technique(const TechniqueInfo& info) {
     auto it = techniques.find(info.name);
@@ -92,15 +108,18 @@ Renderer::Renderer(gl::GlContext& context) : impl_(std::make_unique<Impl>()) {
 
 Renderer::~Renderer() = default;
 
+std::size_t Renderer::brickCount() const {
+  return impl_->volumeTexture ? impl_->volumeTexture->brickCount() : 0;
+}
+
 const gl::ProgramCache& Renderer::programs() const {
   return impl_->programs;
 }
 
-void Renderer::setVolume(const Volume& volume) {
-  impl_->volumeTexture.reset();
-  impl_->volumeTexture.emplace(volume);
-  impl_->gradients.reset(impl_->volumeTexture->id(), volume.dims, volume.spacing);
-  ++impl_->volumeGeneration;
+void Renderer::setVolume(const Volume& volume, std::uint64_t maxTextureBytes) {
+  impl_->volume = &volume;
+  impl_->maxTextureBytes = maxTextureBytes;
+  impl_->uploadVolume(BrickLayout::Bricking::Compact);
   impl_->brickRanges.emplace(volume);
   impl_->dims = volume.dims;
   impl_->spacing = volume.spacing;
@@ -114,6 +133,17 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   const TechniqueInfo& info = findTechnique(settings.technique);
   Technique& technique = impl_->technique(info);
   const OptionReader options(info.options, settings.options, impl_->derivedDefaults);
+  // Bricks the frame cannot follow: the volume in one texture when it fits (else the
+  // technique refuses). It stays so for later frames (the same bytes either way).
+  if (impl_->volumeTexture->brickCount() > 1 &&
+      impl_->bricking == BrickLayout::Bricking::Compact && info.needsOneTexture &&
+      info.needsOneTexture(options)) {
+    impl_->bricking = BrickLayout::Bricking::OneIfItFits;  // asked once per volume
+    if (fitsOneTexture(impl_->dims, impl_->volumeTexture->internalFormat(),
+                       impl_->maxTextureBytes)) {
+      impl_->uploadVolume(BrickLayout::Bricking::OneIfItFits);
+    }
+  }
 
   RenderResult result;
   result.view = makeView(settings.camera, impl_->dims, impl_->spacing, settings.size);
@@ -123,7 +153,9 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   result.sliceCount = int(plan.slices.size());
   result.sliceStepEye = plan.stepEye;
 
-  // All slice polygons as triangle fans in one buffer, uploaded once per frame.
+  // All slice pieces (slicer.h slicePieces) as triangle fans in one buffer, uploaded once per
+  // frame.
+  const BrickLayout& layout = impl_->volumeTexture->layout();
   std::vector<glm::vec3> vertices;
   std::vector<SliceContext> slices(plan.slices.size());
   for (std::size_t k = 0; k < plan.slices.size(); ++k) {
@@ -131,9 +163,16 @@ RenderResult Renderer::render(const RenderSettings& settings) {
     slice.index = int(k);
     slice.slice = &plan.slices[k];
     slice.firstVertex = GLint(vertices.size());
-    slice.vertexCount = GLsizei(plan.slices[k].polygonVoxel.size());
-    for (const auto& p : plan.slices[k].polygonVoxel) vertices.emplace_back(p);
-    slice.recentBounds[0] = polygonPixelBounds(result.view, plan.slices[k].polygonVoxel);
+    if (!plan.slices[k].polygonVoxel.empty()) {
+      for (const SlicePiece& piece : slicePieces(result.view, layout, plan.slices[k].eyeDistance)) {
+        slice.pieces.push_back(
+            {GLint(vertices.size()), GLsizei(piece.polygonVoxel.size()), piece.brick});
+        for (const auto& p : piece.polygonVoxel) vertices.emplace_back(p);
+        slice.recentBounds[0] =
+            slice.recentBounds[0].united(polygonPixelBounds(result.view, piece.polygonVoxel));
+      }
+    }
+    slice.vertexCount = GLsizei(vertices.size()) - slice.firstVertex;
     for (std::size_t back = 1; back <= 2 && back <= k; ++back) {
       slice.recentBounds[back] = slices[k - back].recentBounds[0];
     }
@@ -150,7 +189,9 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, impl_->volumeTexture->id());
+  // One brick: bound for the whole frame (drawSlicePolygon binds each piece's brick otherwise).
+  gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, impl_->volumeTexture->brickTexture(0));
+  impl_->uniforms->bindBrick(0);
 
   FrameContext frame;
   frame.settings = &settings;
@@ -160,7 +201,7 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   frame.dims = impl_->dims;
   frame.spacing = impl_->spacing;
   frame.valueRange = impl_->valueRange;
-  frame.volumeTexture = impl_->volumeTexture->id();
+  frame.volume = &*impl_->volumeTexture;
   frame.sliceVertexArray = impl_->sliceVertexArray.id();
   frame.screenVertexArray = impl_->screenVertexArray.id();
   frame.programs = &impl_->programs;

@@ -15,6 +15,7 @@
 #include "core/camera.h"
 #include "core/color.h"
 #include "core/frame.h"
+#include "core/limits.h"
 #include "core/options.h"
 #include "core/volume.h"
 
@@ -78,8 +79,15 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Uploads the volume as a 3D texture (replacing any previous one).
-  void setVolume(const Volume& volume);
+  // Uploads the volume as 3D textures (replacing any previous ones): one brick when it fits
+  // one texture of at most `maxTextureBytes` (--max-texture-mib) with little padding, else the
+  // bricks of BrickLayout::choose (core/brick_layout.h). Frames are the same bytes either way.
+  // The volume must stay alive and unchanged until the next setVolume: a frame that needs one
+  // texture (TechniqueInfo::needsOneTexture: the tiles march, illustrate's halos) uploads it
+  // again in one texture when it fits.
+  void setVolume(const Volume& volume, std::uint64_t maxTextureBytes = limits::kMaxTextureBytes);
+  // Bricks of the current volume's texture (0 before setVolume).
+  std::size_t brickCount() const;
   RenderResult render(const RenderSettings& settings);
 
   // The programs built so far (tests count recompiles).

@@ -19,21 +19,24 @@ PixelRect PixelRect::grown(int pixels, glm::ivec2 viewport) const {
           std::min(viewport.y, y1 + pixels)};
 }
 
-SliceTexCoords sliceTexCoords(const View& view, glm::ivec3 dims, double eyeDistance) {
+SliceVoxelCoords sliceVoxelCoords(const View& view, double eyeDistance) {
   // eye = (ndc.x * h.x * s, ndc.y * h.y * s, -d) with s = d (perspective) or 1; voxel = M eye.
   const glm::dmat4 voxelFromEye = glm::inverse(view.eyeFromVoxel);
   const double scale = view.orthographic ? 1.0 : eyeDistance;
-  const glm::dvec3 perDim = 1.0 / glm::dvec3(dims);
-  SliceTexCoords coords;
-  coords.perNdcX = glm::vec3(glm::dvec3(voxelFromEye[0]) * (view.halfExtent.x * scale) * perDim);
-  coords.perNdcY = glm::vec3(glm::dvec3(voxelFromEye[1]) * (view.halfExtent.y * scale) * perDim);
-  coords.atNdcOrigin = glm::vec3(
-      (glm::dvec3(voxelFromEye[3]) - glm::dvec3(voxelFromEye[2]) * eyeDistance + 0.5) * perDim);
+  SliceVoxelCoords coords;
+  coords.perNdcX = glm::vec3(glm::dvec3(voxelFromEye[0]) * (view.halfExtent.x * scale));
+  coords.perNdcY = glm::vec3(glm::dvec3(voxelFromEye[1]) * (view.halfExtent.y * scale));
+  coords.atNdcOrigin =
+      glm::vec3(glm::dvec3(voxelFromEye[3]) - glm::dvec3(voxelFromEye[2]) * eyeDistance);
   return coords;
 }
 
 std::vector<glm::dvec3> slicePolygon(const View& view, glm::ivec3 dims, double eyeDistance) {
-  const glm::dvec3 lo(-0.5), hi = glm::dvec3(dims) - 0.5;
+  return boxSlicePolygon(view, glm::dvec3(-0.5), glm::dvec3(dims) - 0.5, eyeDistance);
+}
+
+std::vector<glm::dvec3> boxSlicePolygon(const View& view, glm::dvec3 lo, glm::dvec3 hi,
+                                        double eyeDistance) {
   auto corner = [&](int i) {
     return glm::dvec3((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z);
   };
@@ -72,6 +75,77 @@ std::vector<glm::dvec3> slicePolygon(const View& view, glm::ivec3 dims, double e
   std::vector<glm::dvec3> polygon;
   for (std::size_t i : order) polygon.push_back(points[i]);
   return polygon;
+}
+
+namespace {
+
+// The part of a convex polygon on one side of the plane p[axis] = c (side < 0: p[axis] <= c;
+// side > 0: p[axis] >= c). A vertex on the plane belongs to both sides; a cut vertex is
+// computed from its edge's end points in lexicographic order, so both sides get the same one.
+std::vector<glm::dvec3> clipPolygon(const std::vector<glm::dvec3>& polygon, int axis, double c,
+                                    int side) {
+  std::vector<glm::dvec3> out;
+  const std::size_t n = polygon.size();
+  auto inside = [&](const glm::dvec3& p) { return side < 0 ? p[axis] <= c : p[axis] >= c; };
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec3& a = polygon[i];
+    const glm::dvec3& b = polygon[(i + 1) % n];
+    if (inside(a)) out.push_back(a);
+    // The edge crosses the plane strictly (neither end on it).
+    const bool crosses = (a[axis] < c && b[axis] > c) || (a[axis] > c && b[axis] < c);
+    if (crosses) {
+      const bool ordered = std::lexicographical_compare(&a[0], &a[0] + 3, &b[0], &b[0] + 3);
+      const glm::dvec3& p = ordered ? a : b;
+      const glm::dvec3& q = ordered ? b : a;
+      const double t = (c - p[axis]) / (q[axis] - p[axis]);
+      glm::dvec3 cut = p + t * (q - p);
+      cut[axis] = c;
+      out.push_back(cut);
+    }
+  }
+  if (out.size() < 3) out.clear();
+  return out;
+}
+
+}  // namespace
+
+std::vector<SlicePiece> slicePieces(const View& view, const BrickLayout& layout,
+                                    double eyeDistance) {
+  const glm::dvec3 lo(-0.5 - kPieceMargin);
+  const glm::dvec3 hi = glm::dvec3(layout.dims()) - 0.5 + kPieceMargin;
+  const std::vector<glm::dvec3> polygon = boxSlicePolygon(view, lo, hi, eyeDistance);
+  std::vector<SlicePiece> pieces;
+  if (polygon.empty()) return pieces;
+  const glm::ivec3 counts = layout.counts();
+  const auto& bricks = layout.bricks();
+  auto brickAt = [&](int i, int j, int k) -> const Brick& {
+    return bricks[(std::size_t(k) * counts.y + std::size_t(j)) * counts.x + std::size_t(i)];
+  };
+  // x, then y, then z: every piece is cut by the same planes in the same order.
+  for (int i = 0; i < counts.x; ++i) {
+    std::vector<glm::dvec3> strip = polygon;
+    const Brick& bx = brickAt(i, 0, 0);
+    if (i > 0) strip = clipPolygon(strip, 0, bx.low.x, +1);
+    if (i + 1 < counts.x) strip = clipPolygon(strip, 0, bx.high.x, -1);
+    if (strip.empty()) continue;
+    for (int j = 0; j < counts.y; ++j) {
+      std::vector<glm::dvec3> bar = strip;
+      const Brick& by = brickAt(0, j, 0);
+      if (j > 0) bar = clipPolygon(bar, 1, by.low.y, +1);
+      if (j + 1 < counts.y) bar = clipPolygon(bar, 1, by.high.y, -1);
+      if (bar.empty()) continue;
+      for (int k = 0; k < counts.z; ++k) {
+        std::vector<glm::dvec3> piece = bar;
+        const Brick& bz = brickAt(0, 0, k);
+        if (k > 0) piece = clipPolygon(piece, 2, bz.low.z, +1);
+        if (k + 1 < counts.z) piece = clipPolygon(piece, 2, bz.high.z, -1);
+        if (piece.empty()) continue;
+        pieces.push_back({(std::size_t(k) * counts.y + std::size_t(j)) * counts.x + std::size_t(i),
+                          std::move(piece)});
+      }
+    }
+  }
+  return pieces;
 }
 
 SlicePlan planSlices(const View& view, glm::ivec3 dims, glm::dvec3 spacing,

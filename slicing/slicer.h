@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/brick_layout.h"
 #include "core/camera.h"
 
 namespace vsil {
@@ -17,15 +18,29 @@ struct Slice {
 };
 
 // Where pixel centres sample the volume on the plane at eye distance d, as the slice shaders
-// compute it (common.glsl sliceTexCoord): texture coordinates (voxel + 0.5) / dims, affine in
-// the pixel's NDC: tex = ndc.x * perNdcX + ndc.y * perNdcY + atNdcOrigin, in float. Computed
-// in double and rounded once, so the CPU references can repeat the shader's arithmetic.
-struct SliceTexCoords {
+// compute it (common.glsl sliceVoxel): voxel coordinates affine in the pixel's NDC,
+// voxel = ndc.x * perNdcX + ndc.y * perNdcY + atNdcOrigin, in float (then rounded to
+// BrickLayout::kSampleQuantum). Computed in double and rounded once, so the CPU references can
+// repeat the shader's arithmetic.
+struct SliceVoxelCoords {
   glm::vec3 perNdcX{0.0f};
   glm::vec3 perNdcY{0.0f};
   glm::vec3 atNdcOrigin{0.0f};
 };
-SliceTexCoords sliceTexCoords(const View& view, glm::ivec3 dims, double eyeDistance);
+SliceVoxelCoords sliceVoxelCoords(const View& view, double eyeDistance);
+
+// The pieces of a slice polygon, one per brick it crosses (core/brick_layout.h): the plane cut
+// with the volume's box grown by kPieceMargin voxels (pixels there fail the shaders' inside
+// test, so where the outer edges fall never matters), then with each brick's owned region.
+// Neighbouring pieces share their cut vertices bit for bit (each computed once per edge, from
+// its end points in a fixed order), so every pixel of the polygon is drawn by exactly one piece.
+struct SlicePiece {
+  std::size_t brick = 0;  // index in BrickLayout::bricks()
+  std::vector<glm::dvec3> polygonVoxel;
+};
+inline constexpr double kPieceMargin = 1.0;
+std::vector<SlicePiece> slicePieces(const View& view, const BrickLayout& layout,
+                                    double eyeDistance);
 
 // Pixel rectangle [x0, x1) x [y0, y1) in image pixels (origin top-left); empty when x0 >= x1.
 struct PixelRect {
@@ -50,6 +65,9 @@ SlicePlan planSlices(const View& view, glm::ivec3 dims, glm::dvec3 spacing, doub
 
 // Box ∩ plane at eye distance `eyeDistance`, in voxel coordinates; empty if they miss.
 std::vector<glm::dvec3> slicePolygon(const View& view, glm::ivec3 dims, double eyeDistance);
+// The same for the box [lo, hi].
+std::vector<glm::dvec3> boxSlicePolygon(const View& view, glm::dvec3 lo, glm::dvec3 hi,
+                                        double eyeDistance);
 
 // The pixels whose centres may fall inside the polygon (its projected bounding box, rounded
 // outwards), clamped to the viewport.

@@ -4,6 +4,10 @@
 
 #include <opencv2/core.hpp>
 
+#include "core/error.h"
+#include "slicing/texture_units.h"
+#include "slicing/volume_texture.h"
+
 namespace vsil {
 
 PixelRect SliceContext::recentUnion(int count, int margin, glm::ivec2 viewport) const {
@@ -20,7 +24,28 @@ BrickOccupancy reachesIso(float iso) {
 
 void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice) {
   glBindVertexArray(frame.sliceVertexArray);
-  VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, slice.firstVertex, slice.vertexCount));
+  const bool bricked = frame.volume->brickCount() > 1;
+  for (const PieceDraw& piece : slice.pieces) {
+    if (bricked) {
+      gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D,
+                      frame.volume->brickTexture(piece.brick));
+      if (frame.gradients->built()) {
+        gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D,
+                        frame.gradients->texture().brickTexture(piece.brick));
+      }
+      frame.uniforms->bindBrick(piece.brick);
+    }
+    VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, piece.firstVertex, piece.vertexCount));
+  }
+}
+
+void requireOneBrick(const FrameContext& frame, const std::string& what, const std::string& hint) {
+  if (frame.volume->brickCount() <= 1) return;
+  const glm::ivec3 counts = frame.volume->layout().counts();
+  throw InputError(what + " needs the volume in one texture, and this volume takes " +
+                   std::to_string(frame.volume->brickCount()) + " bricks (" +
+                   std::to_string(counts.x) + "x" + std::to_string(counts.y) + "x" +
+                   std::to_string(counts.z) + "); " + hint);
 }
 
 void drawScreen(const FrameContext& frame) {

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -22,6 +23,7 @@
 #include "slicing/renderer.h"
 #include "slicing/shader_program.h"
 #include "slicing/slicer.h"
+#include "slicing/volume_texture.h"
 
 namespace vsil {
 
@@ -34,8 +36,10 @@ struct FrameContext {
   glm::ivec3 dims{0};
   glm::dvec3 spacing{1.0};
   ValueRange valueRange;
-  GLuint volumeTexture = 0;      // bound to TextureUnit::Volume for the whole frame
-  GLuint sliceVertexArray = 0;   // all slice polygons, slice k at [firstVertex, +vertexCount)
+  // The volume's bricked textures; with one brick, bound to TextureUnit::Volume (and its
+  // BrickBlock) for the whole frame, else drawSlicePolygon binds each piece's brick.
+  const VolumeTexture* volume = nullptr;
+  GLuint sliceVertexArray = 0;   // all slice pieces, slice k's at [firstVertex, +vertexCount)
   GLuint screenVertexArray = 0;  // empty VAO for the full-screen triangle (gl_VertexID)
   // Writes the depth where rays first enter occupied bricks into the bound depth buffer
   // (empty_space.h); slice passes testing GREATER against it skip empty space.
@@ -54,11 +58,20 @@ struct FrameContext {
   int sweep = 0;  // which sweep over the slices is being drawn (0 .. sweepCount - 1)
 };
 
+// A piece of a slice polygon (slicer.h slicePieces): its vertices in the slice vertex array
+// and the brick it samples.
+struct PieceDraw {
+  GLint firstVertex = 0;
+  GLsizei vertexCount = 0;
+  std::size_t brick = 0;
+};
+
 struct SliceContext {
   int index = 0;
   const Slice* slice = nullptr;
   GLint firstVertex = 0;
-  GLsizei vertexCount = 0;  // 0 when the plane misses the box
+  GLsizei vertexCount = 0;  // of all its pieces; 0 when the plane misses the box
+  std::vector<PieceDraw> pieces;
   // Pixels the polygons of this slice ([0]), the previous ([1]) and the one before ([2]) may
   // cover; empty where there is no such slice.
   std::array<PixelRect, 3> recentBounds;
@@ -102,9 +115,16 @@ class Technique {
 // filter's weights (R32F volumes).
 BrickOccupancy reachesIso(float iso);
 
-// Draws the slice's polygon (it rasterizes the pixels whose centres lie in the box on this
-// plane); the Renderer has bound the slice's uniform block before drawSlice.
+// Draws the slice's polygon as its pieces, one per brick (it rasterizes every pixel whose
+// centre lies in the box on this plane, and some around it, exactly once); the Renderer has
+// bound the slice's uniform block before drawSlice. With more than one brick, binds each
+// piece's volume texture, gradient texture (once built) and BrickBlock.
 void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice);
+// Throws InputError "<what> needs the volume in one texture ... (<hint>)" when the volume
+// takes more than one brick: for the passes that cannot follow the bricks (compute marches,
+// illustrate's halos).
+void requireOneBrick(const FrameContext& frame, const std::string& what, const std::string& hint);
+
 // One triangle over the viewport (screen passes; limit them with a scissor).
 void drawScreen(const FrameContext& frame);
 

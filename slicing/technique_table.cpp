@@ -66,6 +66,15 @@ OptionSpec pipelineOption() {
       "marching screen tiles through the slices); the same pixels");
 }
 
+bool tilesNeedOneTexture(const OptionReader& options) {
+  return pipelineOf(options) == SlicingPipeline::Tiles;
+}
+
+bool needsOneTexture(const std::string& technique, const OptionValues& given) {
+  const TechniqueInfo& info = findTechnique(technique);
+  return info.needsOneTexture && info.needsOneTexture(OptionReader(info.options, given, {}));
+}
+
 SlicingPipeline pipelineOf(const OptionReader& options) {
   const std::string& name = options.text("pipeline");
   if (name == "paper") return SlicingPipeline::Paper;

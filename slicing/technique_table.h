@@ -34,6 +34,11 @@ struct TechniqueInfo {
   // Checks what the option declarations cannot: text values the technique parses itself and
   // rules between options. Throws InputError naming the flag; runs before any GL work.
   std::function<void(const OptionValues& given)> checkValues;
+  // Whether a frame with these options needs the volume in one texture (what cannot follow
+  // bricks: the tiles march, illustrate's halo taps): the renderer then uploads it in one
+  // texture when it fits (BrickLayout::Bricking::OneIfItFits), else the frame refuses. Unset:
+  // never.
+  std::function<bool(const OptionReader& options)> needsOneTexture;
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }
@@ -55,5 +60,10 @@ OptionSpec isoOption();
 enum class SlicingPipeline { Fast, Paper, Tiles };
 OptionSpec pipelineOption();
 SlicingPipeline pipelineOf(const OptionReader& options);
+// needsOneTexture of the techniques with a pipeline: the tiles march.
+bool tilesNeedOneTexture(const OptionReader& options);
+// Whether a render of `technique` with `given` options needs one texture (derived defaults
+// do not matter to it).
+bool needsOneTexture(const std::string& technique, const OptionValues& given);
 
 }  // namespace vsil

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <exception>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -75,83 +76,112 @@ void convertTexels(const Volume& volume, glm::ivec3 origin, glm::ivec3 size, GLe
       rowTexels * std::size_t(size.y) * std::size_t(size.z) * texelSize(internalFormat)) {
     throw std::logic_error("convertTexels: output size does not match the box");
   }
+  // Texels past the volume's far sides repeat its last voxel along that axis.
+  const std::size_t inside = std::size_t(std::clamp(volume.dims.x - origin.x, 1, size.x));
   volume.visit([&](auto samples) {
     using C = typename decltype(samples)::value_type;
     std::size_t at = 0;  // texels written
     for (int z = origin.z; z < origin.z + size.z; ++z) {
       for (int y = origin.y; y < origin.y + size.y; ++y, at += rowTexels) {
-        const C* row = samples.data() + volume.index(origin.x, y, z);
+        const C* row = samples.data() + volume.index(origin.x, std::min(y, volume.dims.y - 1),
+                                                     std::min(z, volume.dims.z - 1));
         if (internalFormat == GL_R32F) {
           float* texels = reinterpret_cast<float*>(out.data()) + at;
-          for (std::size_t x = 0; x < rowTexels; ++x) texels[x] = float(row[x]);
+          for (std::size_t x = 0; x < inside; ++x) texels[x] = float(row[x]);
+          std::fill(texels + inside, texels + rowTexels, texels[inside - 1]);
           continue;
         }
         std::uint16_t* texels = reinterpret_cast<std::uint16_t*>(out.data()) + at;
         const std::uint16_t* half = halfOfInteger().data() + kMaxExactHalfInteger;
         if constexpr (std::is_integral_v<C> && sizeof(C) == 1) {
-          for (std::size_t x = 0; x < rowTexels; ++x) texels[x] = half[row[x]];
+          for (std::size_t x = 0; x < inside; ++x) texels[x] = half[row[x]];
         } else if constexpr (std::is_integral_v<C>) {
           // Clamped only so that a misuse cannot read outside the table.
-          for (std::size_t x = 0; x < rowTexels; ++x) {
+          for (std::size_t x = 0; x < inside; ++x) {
             texels[x] = half[std::clamp(int(row[x]), -kMaxExactHalfInteger, kMaxExactHalfInteger)];
           }
         } else {
-          for (std::size_t x = 0; x < rowTexels; ++x) texels[x] = glm::packHalf1x16(row[x]);
+          for (std::size_t x = 0; x < inside; ++x) texels[x] = glm::packHalf1x16(row[x]);
         }
+        std::fill(texels + inside, texels + rowTexels, texels[inside - 1]);
       }
     }
   });
 }
 
-VolumeTexture::VolumeTexture(const Volume& volume, std::size_t slabBytes)
+namespace {
+
+void setSampling(GLenum filter) {
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GLint(filter));
+  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GLint(filter));
+  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
+    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+  }
+}
+
+std::string dimsText(glm::ivec3 d) {
+  return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+}
+
+}  // namespace
+
+bool fitsOneTexture(glm::ivec3 dims, GLenum internalFormat, std::uint64_t maxTextureBytes) {
+  GLint maxSize = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
+  const BrickLayout layout = BrickLayout::choose(dims, texelSize(internalFormat), maxTextureBytes,
+                                                 maxSize, BrickLayout::Bricking::OneIfItFits);
+  return layout.size() == 1 && textureFits(layout.bricks()[0].size, internalFormat);
+}
+
+VolumeTexture::VolumeTexture(const Volume& volume, std::uint64_t maxTextureBytes,
+                             std::size_t slabBytes, BrickLayout::Bricking bricking)
     : dims_(volume.dims), internalFormat_(textureFormatFor(volume)) {
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
-  for (int axis = 0; axis < 3; ++axis) {
-    if (dims_[axis] > maxSize) {
-      throwInputError(volume.source, "dimension " + std::to_string(dims_[axis]) +
-                                         " exceeds the OpenGL 3D texture limit of " +
-                                         std::to_string(maxSize));
-    }
-  }
   if (volume.sampleCount() != volume.voxelCount()) {
     throw std::logic_error("VolumeTexture: sample count does not match the dimensions");
   }
-  if (!textureFits(dims_, internalFormat_)) {
-    const double mib =
-        double(dims_.x) * dims_.y * dims_.z * double(texelSize(internalFormat_)) / double(1 << 20);
-    throwInputError(volume.source,
-                    "its " + std::to_string(dims_.x) + "x" + std::to_string(dims_.y) + "x" +
-                        std::to_string(dims_.z) + " texture (" +
-                        (internalFormat_ == GL_R16F ? "R16F, " : "R32F, ") +
-                        std::to_string(std::llround(mib)) +
-                        " MiB) is more than one 3D texture can hold here; read less with --crop "
-                        "X0:X1,Y0:Y1,Z0:Z1 or --stride N");
+  const std::size_t texel = texelSize(internalFormat_);
+  try {
+    layout_ = BrickLayout::choose(dims_, texel, maxTextureBytes, maxSize, bricking);
+  } catch (const std::invalid_argument&) {
+    throwInputError(volume.source, "no 8x8x8 brick fits the texture limit of " +
+                                       std::to_string(maxTextureBytes >> 20) + " MiB");
   }
   const GLenum type = internalFormat_ == GL_R16F ? GL_HALF_FLOAT : GL_FLOAT;
-  texture_ = gl::createTexture();
-  VSIL_GL(glBindTexture(GL_TEXTURE_3D, texture_.id()));
+  for (const Brick& brick : layout_.bricks()) {
+    if (!textureFits(brick.size, internalFormat_)) {
+      const double mib =
+          double(brick.size.x) * brick.size.y * brick.size.z * double(texel) / double(1 << 20);
+      throwInputError(volume.source,
+                      "its " + dimsText(brick.size) + " brick texture (" +
+                          (internalFormat_ == GL_R16F ? "R16F, " : "R32F, ") +
+                          std::to_string(std::llround(mib)) +
+                          " MiB) is more than one 3D texture can hold here; give a smaller "
+                          "--max-texture-mib, or read less with --crop X0:X1,Y0:Y1,Z0:Z1 or "
+                          "--stride N");
+    }
+  }
   VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
-  VSIL_GL(glTexImage3D(GL_TEXTURE_3D, 0, GLint(internalFormat_), dims_.x, dims_.y, dims_.z, 0,
-                       GL_RED, type, nullptr));
-  if (volume.type() == SampleType::Float32 && internalFormat_ == GL_R32F) {
-    // The samples are the texels already.
-    VSIL_GL(glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, dims_.x, dims_.y, dims_.z, GL_RED, type,
-                            volume.samples<float>().data()));
-  } else {
+  for (const Brick& brick : layout_.bricks()) {
+    const glm::ivec3 size = brick.size;
+    gl::TextureName texture = gl::createTexture();
+    VSIL_GL(glBindTexture(GL_TEXTURE_3D, texture.id()));
+    VSIL_GL(glTexImage3D(GL_TEXTURE_3D, 0, GLint(internalFormat_), size.x, size.y, size.z, 0,
+                         GL_RED, type, nullptr));
     // Slabs of z of about slabBytes: the next slab is converted on a second thread while this
     // one is uploaded (GL calls stay on this thread).
-    const std::size_t sliceBytes =
-        std::size_t(dims_.x) * std::size_t(dims_.y) * texelSize(internalFormat_);
-    const int depth = int(std::clamp<std::size_t>(slabBytes / sliceBytes, 1, std::size_t(dims_.z)));
+    const std::size_t sliceBytes = std::size_t(size.x) * std::size_t(size.y) * texel;
+    const int depth = int(std::clamp<std::size_t>(slabBytes / sliceBytes, 1, std::size_t(size.z)));
     std::vector<std::byte> slabs[2];
     auto convert = [&](int slab) {
-      const int z = slab * depth, slabDepth = std::min(depth, dims_.z - z);
+      const int z = slab * depth, slabDepth = std::min(depth, size.z - z);
       std::vector<std::byte>& texels = slabs[slab % 2];
       texels.resize(sliceBytes * std::size_t(slabDepth));
-      convertTexels(volume, {0, 0, z}, {dims_.x, dims_.y, slabDepth}, internalFormat_, texels);
+      convertTexels(volume, brick.origin + glm::ivec3(0, 0, z), {size.x, size.y, slabDepth},
+                    internalFormat_, texels);
     };
-    const int slabCount = (dims_.z + depth - 1) / depth;
+    const int slabCount = (size.z + depth - 1) / depth;
     convert(0);
     for (int slab = 0; slab < slabCount; ++slab) {
       std::exception_ptr failed;  // from the worker (out of memory), rethrown here
@@ -167,19 +197,88 @@ VolumeTexture::VolumeTexture(const Volume& volume, std::size_t slabBytes)
           });
         }
         const int z = slab * depth;
-        VSIL_GL(glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, dims_.x, dims_.y,
-                                std::min(depth, dims_.z - z), GL_RED, type,
-                                slabs[slab % 2].data()));
+        VSIL_GL(glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, size.x, size.y,
+                                std::min(depth, size.z - z), GL_RED, type, slabs[slab % 2].data()));
       }
       if (failed) std::rethrow_exception(failed);
     }
-  }
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
-    glTexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+    setSampling(GL_LINEAR);
+    textures_.push_back(std::move(texture));
   }
   VSIL_GL(glBindTexture(GL_TEXTURE_3D, 0));
+}
+
+std::vector<float> VolumeTexture::readVoxels() const {
+  const glm::ivec3 d = dims_;
+  std::vector<float> voxels(std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z));
+  GLint bound = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_3D, &bound);
+  VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
+  std::vector<float> texels;
+  for (std::size_t b = 0; b < textures_.size(); ++b) {
+    const Brick& brick = layout_.bricks()[b];
+    texels.resize(std::size_t(brick.size.x) * brick.size.y * brick.size.z);
+    VSIL_GL(glBindTexture(GL_TEXTURE_3D, textures_[b].id()));
+    VSIL_GL(glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, texels.data()));
+    // The voxels this brick owns (its overlap belongs to its neighbours).
+    glm::ivec3 lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = int(std::ceil(std::clamp(brick.low[a], 0.0, double(d[a]))));
+      hi[a] = int(std::ceil(std::clamp(brick.high[a], 0.0, double(d[a]))));
+    }
+    for (int z = lo.z; z < hi.z; ++z) {
+      for (int y = lo.y; y < hi.y; ++y) {
+        const float* from =
+            texels.data() +
+            ((std::size_t(z - brick.origin.z) * brick.size.y + std::size_t(y - brick.origin.y)) *
+                 brick.size.x +
+             std::size_t(lo.x - brick.origin.x));
+        std::copy(from, from + (hi.x - lo.x),
+                  voxels.data() + (std::size_t(z) * d.y + std::size_t(y)) * d.x + lo.x);
+      }
+    }
+  }
+  VSIL_GL(glBindTexture(GL_TEXTURE_3D, GLuint(bound)));
+  return voxels;
+}
+
+std::vector<gl::TextureName> uploadBricked(const BrickLayout& layout, glm::ivec3 dims,
+                                           GLenum internalFormat, GLenum format, GLenum type,
+                                           std::size_t bytesPerVoxel, const void* texels) {
+  GLint bound = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_3D, &bound);
+  VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
+  const auto* voxels = static_cast<const std::byte*>(texels);
+  std::vector<gl::TextureName> textures;
+  std::vector<std::byte> slice;
+  for (const Brick& brick : layout.bricks()) {
+    const glm::ivec3 size = brick.size;
+    gl::TextureName texture = gl::createTexture();
+    VSIL_GL(glBindTexture(GL_TEXTURE_3D, texture.id()));
+    VSIL_GL(glTexImage3D(GL_TEXTURE_3D, 0, GLint(internalFormat), size.x, size.y, size.z, 0, format,
+                         type, nullptr));
+    // One z slice at a time, past the volume's far sides repeating its last voxel.
+    slice.resize(std::size_t(size.x) * std::size_t(size.y) * bytesPerVoxel);
+    for (int z = 0; z < size.z; ++z) {
+      const int vz = std::min(brick.origin.z + z, dims.z - 1);
+      for (int y = 0; y < size.y; ++y) {
+        const int vy = std::min(brick.origin.y + y, dims.y - 1);
+        std::byte* row = slice.data() + std::size_t(y) * size.x * bytesPerVoxel;
+        for (int x = 0; x < size.x; ++x) {
+          const int vx = std::min(brick.origin.x + x, dims.x - 1);
+          std::memcpy(row + std::size_t(x) * bytesPerVoxel,
+                      voxels + ((std::size_t(vz) * dims.y + vy) * dims.x + vx) * bytesPerVoxel,
+                      bytesPerVoxel);
+        }
+      }
+      VSIL_GL(glTexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, z, size.x, size.y, 1, format, type,
+                              slice.data()));
+    }
+    setSampling(internalFormat == GL_R8 ? GL_NEAREST : GL_LINEAR);
+    textures.push_back(std::move(texture));
+  }
+  VSIL_GL(glBindTexture(GL_TEXTURE_3D, GLuint(bound)));
+  return textures;
 }
 
 }  // namespace vsil

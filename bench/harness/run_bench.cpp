@@ -51,7 +51,7 @@ std::string markdownReport(const MachineInfo& machine, const std::vector<TableRe
 BenchOptions validateOptions(BenchOptions options) {
   if (options.tables.empty()) {
     for (const auto& table : tableRegistry()) {
-      if (table.run) options.tables.push_back(table.name);
+      if (table.run && !table.onlyWhenNamed) options.tables.push_back(table.name);
     }
   }
   std::vector<std::string> unique;

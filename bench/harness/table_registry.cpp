@@ -5,6 +5,7 @@
 #include "tables/dv1_table.h"
 #include "tables/fft_table.h"
 #include "tables/illustrate_table.h"
+#include "tables/large_table.h"
 #include "tables/nk3_table.h"
 #include "tables/semantic_table.h"
 
@@ -27,6 +28,10 @@ std::vector<TableDefinition> makeRegistry() {
        "Rautek et al. semantic rendering: rule bases of 1 to 32 rules against the plain "
        "composite, a membership change against a rule change",
        semanticDatasetNames(), runSemanticTable, ""},
+      {"large",
+       "volumes beyond one 3D texture (512³, 1024³, 2048²·1024 uint8): load + upload, "
+       "silhouette frame, peak memory",
+       largeDatasetNames(), runLargeTable, "", /*onlyWhenNamed=*/true},
   };
 }
 

@@ -16,6 +16,8 @@ struct TableDefinition {
   TableRun run;                       // empty: not implemented yet
   std::string
       missingTechnique;  // when run is empty: why, e.g. "the x technique does not exist yet"
+  // Runs only when --table names it (minutes and gigabytes of disk: the large table).
+  bool onlyWhenNamed = false;
 };
 
 const std::vector<TableDefinition>& tableRegistry();

@@ -1,7 +1,7 @@
 // common.glsl: first in every vsil program (shader_program.h). What every technique shares: the
-// frame's and the slice's uniform blocks (slicing/frame_uniforms.h mirrors them), which volume
-// sample a pixel sees on this slice, and gradients by central differences. The CPU references
-// in tests/reference repeat these formulas operation for operation.
+// frame's, the slice's and the brick's uniform blocks (slicing/frame_uniforms.h mirrors them),
+// which volume sample a pixel sees on this slice, and gradients by central differences. The CPU
+// references in tests/reference repeat these formulas operation for operation.
 
 layout(std140, binding = 0) uniform FrameBlock {
   mat4 voxelFromEye;
@@ -16,21 +16,43 @@ layout(std140, binding = 0) uniform FrameBlock {
 #ifndef VSIL_COMPUTE_SHADER
 // The slice a pass draws (compute shaders read slices by index: tile_march.glsl sliceAt).
 layout(std140, binding = 1) uniform SliceBlock {
-  // Where pixel centres sample the volume on this slice (slicer.h SliceTexCoords): texture
-  // coordinates affine in NDC, tex = ndc.x * sliceTexPerNdcX + ndc.y * sliceTexPerNdcY +
-  // sliceTexAtNdcOrigin. Cheaper per fragment than the eye point and the matrix.
-  vec3 sliceTexPerNdcX;
+  // Where pixel centres sample the volume on this slice (slicer.h SliceVoxelCoords): voxel
+  // coordinates affine in NDC, voxel = ndc.x * sliceVoxelPerNdcX + ndc.y * sliceVoxelPerNdcY +
+  // sliceVoxelAtNdcOrigin. Cheaper per fragment than the eye point and the matrix.
+  vec3 sliceVoxelPerNdcX;
   float sliceEyeDistance;  // -z_eye of this slice's plane
-  vec3 sliceTexPerNdcY;
+  vec3 sliceVoxelPerNdcY;
   float sliceDepth;  // its normalized depth d
-  vec3 sliceTexAtNdcOrigin;
+  vec3 sliceVoxelAtNdcOrigin;
   float sliceWindowDepth;    // its window depth (what the depth test compares)
   float previousSliceDepth;  // the previous slice's d (0 before the first)
   uint sliceIndex;
 };
 #endif
 
+// The brick this piece of a slice samples (core/brick_layout.h, slicing/volume_texture.h): its
+// textures (the volume's, and the gradients' where a technique reads them) hold the voxels
+// from brickOrigin on, and are powers of two in size.
+layout(std140, binding = 3) uniform BrickBlock {
+  vec3 brickOrigin;       // the voxel in texel 0 (integers)
+  vec3 brickTexPerVoxel;  // 1 / the textures' size (powers of two)
+  vec3 brickLow;          // the sample positions it owns: brickLow <= p < brickHigh
+  float brickIsFirst;     // 1 for the first brick (screen passes per brick: who writes misses)
+  vec3 brickHigh;
+};
+
 layout(binding = UNIT_VOLUME) uniform sampler3D volumeTexture;  // data units, linear, clamped
+
+// Sample positions are rounded to 1/1024 voxel (BrickLayout::kSampleQuantum): then every step of
+// brickTexCoord and of the sampler's texel-space u·size − 0.5 is exact in float, so a sample
+// filters the same voxels with the same weights in whichever brick it lies (one brick or many
+// give the same bytes).
+vec3 quantizedVoxel(vec3 voxel) { return floor(voxel * 1024.0 + 0.5) * (1.0 / 1024.0); }
+
+// Whether this piece's brick owns a (quantized) voxel position: every position has one owner.
+bool ownedByBrick(vec3 voxel) {
+  return all(greaterThanEqual(voxel, brickLow)) && all(lessThan(voxel, brickHigh));
+}
 
 #ifdef VSIL_FRAGMENT_SHADER
 // This pixel's centre in normalized device coordinates.
@@ -43,10 +65,11 @@ vec3 eyePointAt(float eyeDistance) {
   return vec3(ndc * halfExtent * scale, -eyeDistance);
 }
 
-// The texture coordinate this pixel's centre samples on this slice.
-vec3 sliceTexCoord() {
+// The voxel position this pixel's centre samples on this slice (quantized).
+vec3 sliceVoxel() {
   vec2 ndc = fragmentNdc();
-  return ndc.x * sliceTexPerNdcX + ndc.y * sliceTexPerNdcY + sliceTexAtNdcOrigin;
+  return quantizedVoxel(ndc.x * sliceVoxelPerNdcX + ndc.y * sliceVoxelPerNdcY +
+                        sliceVoxelAtNdcOrigin);
 }
 
 #endif
@@ -56,23 +79,24 @@ vec3 sliceTexCoord() {
 // pixel + 0.5), so that a compute shader samples exactly where a slice pass does.
 vec2 pixelNdc(ivec2 pixel) { return (vec2(pixel) + 0.5) / viewportSize * 2.0 - 1.0; }
 
-// The texture coordinate a pixel centre at `ndc` samples on a slice whose SliceBlock holds
-// these coefficients (sliceTexCoord()'s operations).
-vec3 sliceTexCoordAt(vec3 texPerNdcX, vec3 texPerNdcY, vec3 texAtNdcOrigin, vec2 ndc) {
-  return ndc.x * texPerNdcX + ndc.y * texPerNdcY + texAtNdcOrigin;
+// The voxel position a pixel centre at `ndc` samples on a slice whose SliceBlock holds these
+// coefficients (sliceVoxel()'s operations).
+vec3 sliceVoxelAt(vec3 voxelPerNdcX, vec3 voxelPerNdcY, vec3 voxelAtNdcOrigin, vec2 ndc) {
+  return quantizedVoxel(ndc.x * voxelPerNdcX + ndc.y * voxelPerNdcY + voxelAtNdcOrigin);
 }
 #endif
 
 vec3 voxelFromEyePoint(vec3 eye) { return (voxelFromEye * vec4(eye, 1.0)).xyz; }
 
-// Inside the 3D texture's extent, texture coordinates 0 .. 1.
-bool insideTexture(vec3 tex) {
-  return all(greaterThanEqual(tex, vec3(0.0))) && all(lessThanEqual(tex, vec3(1.0)));
+// Inside the volume's box, voxel coordinates -0.5 .. dims - 0.5.
+bool insideVolume(vec3 voxel) {
+  return all(greaterThanEqual(voxel, vec3(-0.5))) && all(lessThanEqual(voxel, volumeDims - 0.5));
 }
 
-float sampleTexture(vec3 tex) { return texture(volumeTexture, tex).r; }
+// The texture coordinate of a (quantized) voxel position in this piece's brick textures.
+vec3 brickTexCoord(vec3 voxel) { return (voxel - brickOrigin + 0.5) * brickTexPerVoxel; }
 
-float sampleVolume(vec3 voxel) { return sampleTexture((voxel + 0.5) / volumeDims); }
+float sampleVolume(vec3 voxel) { return texture(volumeTexture, brickTexCoord(voxel)).r; }
 
 // Central differences one voxel apart, in voxel-index units.
 vec3 gradientVoxel(vec3 voxel) {

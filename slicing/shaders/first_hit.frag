@@ -20,7 +20,7 @@ float hitThreshold() { return isoValue; }
 #endif
 
 void main() {
-  vec3 tex = sliceTexCoord();
-  if (!insideTexture(tex) || sampleTexture(tex) < hitThreshold()) discard;
+  vec3 voxel = sliceVoxel();
+  if (!insideVolume(voxel) || sampleVolume(voxel) < hitThreshold()) discard;
   result = vec4(float(STATE_FILLED), sliceDepth, sliceEyeDistance, 1.0);
 }

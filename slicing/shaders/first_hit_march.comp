@@ -21,8 +21,8 @@ void main() {
   for (int k = first; k < rangeEndSlice; ++k) {
     SliceParams slice = sliceAt(k);
     if (slice.windowDepth >= exitDepth) break;
-    vec3 tex = sliceTexCoordOf(slice, ndc);
-    if (insideTexture(tex) && sampleTexture(tex) >= isoValue) {
+    vec3 voxel = sliceVoxelOf(slice, ndc);
+    if (insideVolume(voxel) && sampleVolume(voxel) >= isoValue) {
       record = vec4(float(STATE_FILLED), slice.depth, slice.eyeDistance, 1.0);
       break;
     }

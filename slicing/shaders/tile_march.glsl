@@ -3,7 +3,7 @@
 // one for the whole frame), one workgroup per screen tile of MARCH_TILE_X x MARCH_TILE_Y pixels;
 // each shader lays its invocations over its tile (and an apron, where it needs neighbours) its
 // own way, samples its pixels on slice after slice, front to back, exactly where a slice pass
-// samples them (pixelNdc, sliceTexCoordAt, sampleTexture), and keeps their records in registers.
+// samples them (pixelNdc, sliceVoxelAt, sampleVolume), and keeps their records in registers.
 // In: this dispatch's slices (SliceRange), where rays enter occupied bricks (entry depth image)
 // and leave them for good (exit depth image; slicing/empty_space.h).
 // In/out: the records, through recordImage: read at the start of a dispatch that continues
@@ -24,11 +24,11 @@ uniform int rangeEndSlice;  // this dispatch marches slices [rangeFirstSlice, ra
 uniform int sliceCount;     // the frame's: the dispatch ending there finishes the records
 
 struct SliceParams {
-  vec3 texPerNdcX;
+  vec3 voxelPerNdcX;
   float eyeDistance;
-  vec3 texPerNdcY;
+  vec3 voxelPerNdcY;
   float depth;
-  vec3 texAtNdcOrigin;
+  vec3 voxelAtNdcOrigin;
   float windowDepth;
 };
 
@@ -45,8 +45,8 @@ float sliceDepthAt(int k) { return sliceWords[sliceWord(k) + 1].w; }
 float sliceWindowDepthAt(int k) { return sliceWords[sliceWord(k) + 2].w; }
 float previousSliceDepthAt(int k) { return sliceWords[sliceWord(k) + 3].x; }
 
-vec3 sliceTexCoordOf(SliceParams s, vec2 ndc) {
-  return sliceTexCoordAt(s.texPerNdcX, s.texPerNdcY, s.texAtNdcOrigin, ndc);
+vec3 sliceVoxelOf(SliceParams s, vec2 ndc) {
+  return sliceVoxelAt(s.voxelPerNdcX, s.voxelPerNdcY, s.voxelAtNdcOrigin, ndc);
 }
 
 layout(binding = UNIT_ENTRY_DEPTH) uniform sampler2D entryDepthTexture;

@@ -96,6 +96,10 @@ void addVolumeOptions(CLI::App& command, VolumeOptions& options) {
   command.add_option("--stride", options.stride,
                      "read only every Nth sample along each axis (from the crop's start); the "
                      "spacing grows N times");
+  command.add_option("--max-texture-mib", options.maxTextureMiB,
+                     "cut the volume into 3D textures (bricks) of at most this many MiB (default " +
+                         std::to_string(limits::kMaxTextureBytes >> 20) +
+                         ", the most one texture holds here); the images are the same");
   command.add_option("--series", options.series,
                      "DICOM: the Series Instance UID to read from a folder holding several (by "
                      "default the series with the most slices; `vsil info` lists the others)");
@@ -115,6 +119,15 @@ LoadOptions toLoadOptions(const VolumeOptions& options) {
           "must be between 1 and " + std::to_string(limits::kMaxMemoryMiBFlag) + " MiB");
     }
     load.limits.maxBytes = std::size_t(mib) << 20;
+  }
+  if (options.maxTextureMiB) {
+    const long long mib = *options.maxTextureMiB;
+    const long long most = (long long)(limits::kMaxTextureBytes >> 20);
+    if (mib < 1 || mib > most) {
+      throwInputError("--max-texture-mib " + std::to_string(mib),
+                      "must be between 1 and " + std::to_string(most) + " MiB");
+    }
+    load.limits.maxTextureBytes = std::uint64_t(mib) << 20;
   }
   if (!options.crop.empty()) load.region = parseCrop(options.crop);
   load.series = options.series;

@@ -16,18 +16,19 @@
 namespace vsil::cli {
 
 struct VolumeOptions {
-  std::string dims;                       // --dims XxYxZ (raw files)
-  std::string type;                       // --type uint8|uint16|int16|float32 (raw files)
-  std::string spacing;                    // --spacing a,b,c (raw files; default 1,1,1)
-  std::string endian;                     // --endian little|big (raw files; default little)
-  std::optional<long long> maxMemoryMiB;  // --max-memory MiB; unset keeps VolumeLimits' default
-  std::string crop;                       // --crop X0:X1,Y0:Y1,Z0:Z1 (half-open voxel ranges)
-  std::optional<long long> stride;        // --stride N (every Nth sample per axis)
-  std::string series;                     // --series UID (DICOM folders with several series)
+  std::string dims;                        // --dims XxYxZ (raw files)
+  std::string type;                        // --type uint8|uint16|int16|float32 (raw files)
+  std::string spacing;                     // --spacing a,b,c (raw files; default 1,1,1)
+  std::string endian;                      // --endian little|big (raw files; default little)
+  std::optional<long long> maxMemoryMiB;   // --max-memory MiB; unset keeps VolumeLimits' default
+  std::string crop;                        // --crop X0:X1,Y0:Y1,Z0:Z1 (half-open voxel ranges)
+  std::optional<long long> stride;         // --stride N (every Nth sample per axis)
+  std::optional<long long> maxTextureMiB;  // --max-texture-mib N (the largest brick texture)
+  std::string series;                      // --series UID (DICOM folders with several series)
 };
 
 // Adds --dims, --type, --spacing, --endian (group "Raw volume layout"), --crop, --stride,
-// --series and --max-memory.
+// --max-texture-mib, --series and --max-memory.
 void addVolumeOptions(CLI::App& command, VolumeOptions& options);
 
 // Checks the flags together and turns them into LoadOptions. Throws InputError naming the flag

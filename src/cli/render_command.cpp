@@ -52,7 +52,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   Volume loaded = loadVolume(flags.input, load);
   printVolumeWarnings(loaded);
   progress.step("uploading the volume");
-  const Volume& volume = job.setVolume(std::move(loaded), flags.input);
+  const Volume& volume = job.setVolume(std::move(loaded), flags.input, load.limits.maxTextureBytes);
   progress.finish();
   RenderOutput output = job.render(request, loadOptions.limits);
   for (const auto& warning : output.warnings) std::cerr << "vsil: warning: " << warning << "\n";

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <thread>
 
+#include "core/brick_layout.h"
 #include "core/error.h"
 
 namespace vsil::limits {
@@ -35,17 +37,30 @@ std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth) {
   return bytes >= 1.8e19 ? std::uint64_t(1.8e19) : std::uint64_t(bytes);
 }
 
-std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample, bool gradients) {
+std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample, bool gradients,
+                                std::uint64_t maxTextureBytes, bool oneTexture) {
   const glm::u64vec3 d(glm::max(dims, glm::ivec3(0)));
   const std::uint64_t voxels = d.x * d.y * d.z;
   const std::uint64_t textureBytes = bytesPerSample == 1 ? 2 : 4;
+  std::uint64_t texels = voxels;
+  if (voxels > 0) {
+    try {
+      texels = BrickLayout::choose(dims, textureBytes, maxTextureBytes, kMaxVolumeSide,
+                                   oneTexture ? BrickLayout::Bricking::OneIfItFits
+                                              : BrickLayout::Bricking::Compact)
+                   .texels();
+    } catch (const std::invalid_argument&) {
+      // No layout: the upload refuses it with its own error; count the voxels.
+    }
+  }
   const glm::u64vec3 b = (d + std::uint64_t(7)) / std::uint64_t(8);  // 8³ bricks
   const std::uint64_t rangeBytes = 8;                                // ValueRange
   const std::uint64_t rangesBytes =
       rangeBytes * (b.x * b.y * b.z + kMaxWorkerThreads * (b.x * d.y + b.x * b.y));
   const std::uint64_t slabBytes = std::max<std::uint64_t>(kUploadSlabBytes, d.x * d.y * 4);
-  return voxels * (bytesPerSample + textureBytes + (gradients ? kGradientBytesPerVoxel : 0)) +
-         rangesBytes + 2 * slabBytes;
+  return voxels * (bytesPerSample + (gradients ? kGradientCpuBytesPerVoxel : 0)) +
+         texels * (textureBytes + (gradients ? kGradientBytesPerTexel : 0)) + rangesBytes +
+         2 * slabBytes;
 }
 
 std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel) {

@@ -14,9 +14,9 @@ namespace vsil::limits {
 inline constexpr int kMaxVolumeSide = 2048;
 // Bytes of one 3D texture beyond which llvmpipe creates none (measured with
 // GL_PROXY_TEXTURE_3D, Mesa 22.3: 2048²·112 R32F = 1.75 GiB is created, 2048²·113 is not; with
-// its row padding 720³ R32F fits, 800³ does not). A render refuses, before reading, a volume
-// whose texture exceeds this even as R16F (2 bytes per voxel, the smallest it uses); the exact
-// test is the proxy texture at upload (slicing/volume_texture.h, textureFits).
+// its row padding 720³ R32F fits, 800³ does not). The default largest brick of a bricked volume
+// texture (core/brick_layout.h; --max-texture-mib); the exact test is the proxy texture at
+// upload (slicing/volume_texture.h, textureFits).
 inline constexpr std::uint64_t kMaxTextureBytes =
     (std::uint64_t(7) << 28) + (std::uint64_t(16) << 20);
 // Pixels per image side (--size), and slices per voxel along the view (--sampling).
@@ -60,14 +60,21 @@ std::size_t defaultMemoryBytes();
 //   image:  render targets (ping-pong RGBA32F + two R8UI), readback copies, frame buffers,
 //           the FFT broadening's padded float/complex buffers and the composed image,
 //           bounded by kRenderBytesPerPixel per pixel of the padded image.
-//   gradients (techniques that shade by them): the RGBA16F gradient texture and, while it is
-//   built, the volume's samples read back, 12 bytes per voxel more.
-inline constexpr std::size_t kGradientBytesPerVoxel = 12;
+//   gradients (techniques that shade by them): the RGBA16F gradient texture (8 bytes per texel
+//   of the bricks) and, while it is built, the gradients of every voxel on the CPU (8 bytes
+//   per voxel; the samples read back, 4 per voxel, are freed before the upload).
+inline constexpr std::size_t kGradientBytesPerTexel = 8;
+inline constexpr std::size_t kGradientCpuBytesPerVoxel = 8;
 inline constexpr std::size_t kRenderBytesPerPixel = 128;
 inline constexpr std::size_t kUploadSlabBytes = std::size_t(8) << 20;
 std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth);
-std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample,
-                                bool gradients = false);
+// The texture counts the texels of the bricks it is cut into (core/brick_layout.h
+// BrickLayout::choose; each a power of two along every axis), `maxTextureBytes` being the
+// largest brick (--max-texture-mib); with `oneTexture` (a render that cannot follow bricks,
+// TechniqueInfo::needsOneTexture) one texture padded to powers of two when it fits.
+std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample, bool gradients = false,
+                                std::uint64_t maxTextureBytes = kMaxTextureBytes,
+                                bool oneTexture = false);
 // An upper bound of the slices a frame draws: ceil(|dims| * samplesPerVoxel) + 1.
 std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel);
 

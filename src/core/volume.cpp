@@ -111,7 +111,7 @@ void checkDims(const std::string& where, glm::ivec3 dims, int maxDimension) {
 }  // namespace
 
 VolumeSubset planVolume(const std::string& where, glm::ivec3 fileDims, SampleType type,
-                        const VolumeLimits& limits, const ReadRegion& region, int minTexelBytes) {
+                        const VolumeLimits& limits, const ReadRegion& region) {
   // Without a region the file's dims are the volume's and must be within the limits; with one,
   // only what is kept must be, and the file may be larger (up to 2^40 samples per axis product
   // of bytes, so that every size computed from them fits 64 bits).
@@ -148,14 +148,6 @@ VolumeSubset planVolume(const std::string& where, glm::ivec3 fileDims, SampleTyp
   const std::string what = limits.task + " " + dimsText(dims) + " " + sampleTypeName(type) +
                            " samples" + limits.taskDetail;
   const std::string options = "; read less with --crop X0:X1,Y0:Y1,Z0:Z1 or --stride N";
-  const long double textureBytes = (long double)dims.x * dims.y * dims.z * minTexelBytes;
-  if (limits.maxTextureBytes && textureBytes > (long double)limits.maxTextureBytes) {
-    throwInputError(where, what + " needs a 3D texture of at least " +
-                               std::to_string((unsigned long long)(textureBytes / (1 << 20))) +
-                               " MiB, more than the " +
-                               std::to_string(limits.maxTextureBytes >> 20) +
-                               " MiB one texture can hold" + options);
-  }
   if (bytes > limits.maxBytes) {
     const auto mib = [](std::uint64_t b) {
       return b == std::numeric_limits<std::uint64_t>::max()

@@ -227,22 +227,19 @@ struct VolumeLimits {
   std::function<std::uint64_t(glm::ivec3 dims, SampleType type)> taskBytes;
   std::string task = "reading";
   std::string taskDetail;  // e.g. " at --size 512x512"
-  // Set for a render: the volume must fit one 3D texture of this many bytes at the smallest
-  // texel it may get (planVolume's minTexelBytes; limits::kMaxTextureBytes); 0: not checked.
-  std::uint64_t maxTextureBytes = 0;
+  // For a render: the largest brick texture in bytes (--max-texture-mib; core/brick_layout.h).
+  // A volume beyond it is cut into more bricks, which taskBytes counts; nothing is refused here.
+  std::uint64_t maxTextureBytes = limits::kMaxTextureBytes;
 };
 
 // Resolves what a reader keeps of a file of `fileDims` and checks it against the limits:
 // throws InputError naming `where` when fileDims are not positive, the region (--crop) lies
 // outside them, an axis of the kept volume exceeds maxDimension, or the samples in `type`
-// (or taskBytes) exceed maxBytes, or its texture would exceed maxTextureBytes at
-// `minTexelBytes` per voxel (2: R16F, which any type may get; 4 for values known not to be
-// small integers):
+// (or taskBytes) exceed maxBytes:
 // "<where>: reading 512x512x512 uint8 samples needs 128 MiB,
 // over the --max-memory limit of 100 MiB; read less with --crop ... or --stride N, or raise
 // --max-memory". Nothing is allocated.
 VolumeSubset planVolume(const std::string& where, glm::ivec3 fileDims, SampleType type,
-                        const VolumeLimits& limits, const ReadRegion& region = {},
-                        int minTexelBytes = 2);
+                        const VolumeLimits& limits, const ReadRegion& region = {});
 
 }  // namespace vsil

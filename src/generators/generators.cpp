@@ -196,8 +196,7 @@ Volume generateVolume(const std::string& spec, const VolumeLimits& limits,
   volume.name = name;
   volume.source = "gen:" + name + ":" + std::to_string(n);
   const VolumeSubset subset =
-      planVolume(volume.source, glm::ivec3(n), SampleType::Float32, limits, region,
-                 /*minTexelBytes=*/4);  // values in [0, 1], not whole numbers: R32F
+      planVolume(volume.source, glm::ivec3(n), SampleType::Float32, limits, region);
   volume.dims = subset.dims();
   volume.spacing = glm::dvec3(subset.stride);
   if (!subset.whole()) volume.subset = subset;

@@ -117,9 +117,11 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
                      " slices per frame, over the limit of " + std::to_string(limits::kMaxSlices));
   }
   const bool gradients = findTechnique(settings.technique).usesGradients;
-  const std::uint64_t bytes =
-      limits::renderVolumeBytes(volume.dims, sampleTypeSize(volume.type()), gradients) +
-      limits::renderImageBytes(settings.size, maxLineWidth(request.postfx));
+  const bool oneTexture = needsOneTexture(settings.technique, settings.options);
+  const std::uint64_t bytes = limits::renderVolumeBytes(volume.dims, sampleTypeSize(volume.type()),
+                                                        gradients, limits.maxTextureBytes,
+                                                        oneTexture) +
+                              limits::renderImageBytes(settings.size, maxLineWidth(request.postfx));
   limits::checkMemory("rendering " + volume.source + " at --size " +
                           std::to_string(settings.size.x) + "x" + std::to_string(settings.size.y),
                       bytes, limits.maxBytes);
@@ -161,15 +163,16 @@ RenderJob::RenderJob(const gl::ContextOptions& gl) : impl_(std::make_unique<Impl
 RenderJob::~RenderJob() = default;
 
 const Volume& RenderJob::load(const std::string& spec, const LoadOptions& options) {
-  return setVolume(loadVolume(spec, options), spec);
+  return setVolume(loadVolume(spec, options), spec, options.limits.maxTextureBytes);
 }
 
-const Volume& RenderJob::setVolume(Volume volume, const std::string& input) {
+const Volume& RenderJob::setVolume(Volume volume, const std::string& input,
+                                   std::uint64_t maxTextureBytes) {
   impl_->context.makeCurrent();
   impl_->volume.reset();
   impl_->volume.emplace(std::move(volume));
   impl_->input = input.empty() ? impl_->volume->source : input;
-  impl_->renderer->setVolume(*impl_->volume);
+  impl_->renderer->setVolume(*impl_->volume, maxTextureBytes);
   return *impl_->volume;
 }
 
@@ -233,10 +236,15 @@ LoadOptions RenderJob::loadOptionsFor(const RenderRequest& request, LoadOptions 
   const glm::ivec2 size = request.settings.size;
   const std::uint64_t imageBytes = limits::renderImageBytes(size, maxLineWidth(request.postfx));
   const bool gradients = findTechnique(request.settings.technique).usesGradients;
-  load.limits.taskBytes = [imageBytes, gradients](glm::ivec3 dims, SampleType type) {
-    return limits::renderVolumeBytes(dims, sampleTypeSize(type), gradients) + imageBytes;
+  const bool oneTexture =
+      needsOneTexture(request.settings.technique, request.settings.options);
+  const std::uint64_t maxTextureBytes = load.limits.maxTextureBytes;
+  load.limits.taskBytes = [imageBytes, gradients, maxTextureBytes, oneTexture](glm::ivec3 dims,
+                                                                               SampleType type) {
+    return limits::renderVolumeBytes(dims, sampleTypeSize(type), gradients, maxTextureBytes,
+                                     oneTexture) +
+           imageBytes;
   };
-  load.limits.maxTextureBytes = limits::kMaxTextureBytes;
   load.limits.task = "rendering";
   load.limits.taskDetail = " at --size " + std::to_string(size.x) + "x" + std::to_string(size.y);
   return load;

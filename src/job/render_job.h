@@ -55,7 +55,9 @@ class RenderJob {
   const Volume& load(const std::string& spec, const LoadOptions& options);
   // Uploads a volume made elsewhere; `input` is the spec it was loaded from, for the metadata
   // (default: the volume's source).
-  const Volume& setVolume(Volume volume, const std::string& input = "");
+  // `maxTextureBytes`: the largest brick texture (--max-texture-mib; VolumeLimits).
+  const Volume& setVolume(Volume volume, const std::string& input = "",
+                          std::uint64_t maxTextureBytes = limits::kMaxTextureBytes);
   const Volume& volume() const;
 
   // Renders, broadens and composes one frame. Checks the request first (checkRequest) and the

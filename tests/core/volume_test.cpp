@@ -304,9 +304,29 @@ TEST(Limits, RenderVolumeBytesCountSamplesTextureRangesAndSlabs) {
   EXPECT_EQ(limits::renderVolumeBytes(dims, 1), voxels * 3 + ranges + slabs);
   EXPECT_EQ(limits::renderVolumeBytes(dims, 2), voxels * 6 + ranges + slabs);
   EXPECT_EQ(limits::renderVolumeBytes(dims, 4), voxels * 8 + ranges + slabs);
-  // Gradient shading: the RGBA16F gradient texture and the float readback it is built from.
+  // Gradient shading: the RGBA16F gradient texture and the gradients on the CPU it is built
+  // from.
   EXPECT_EQ(limits::renderVolumeBytes(dims, 1, /*gradients=*/true),
-            voxels * (3 + limits::kGradientBytesPerVoxel) + ranges + slabs);
+            voxels * (3 + limits::kGradientBytesPerTexel + limits::kGradientCpuBytesPerVoxel) +
+                ranges + slabs);
+  // A texture is a power of two along each axis (core/brick_layout.h): 300³ in one texture of
+  // 512³ (4.97 times the voxels) under the default limit; under a 300 MiB limit, whose half
+  // that padding exceeds, in bricks of 256 + 64 texels along each axis (320³) — unless the
+  // render needs one texture (the tiles march, illustrate's halos).
+  const glm::ivec3 odd(300);
+  const std::uint64_t oddVoxels = 300ull * 300 * 300;
+  const std::uint64_t oddRanges =
+      8 * (38ull * 38 * 38 + limits::kMaxWorkerThreads * (38ull * 300 + 38ull * 38));
+  const std::uint64_t tight = std::uint64_t(300) << 20;
+  EXPECT_EQ(limits::renderVolumeBytes(odd, 1),
+            oddVoxels + 512ull * 512 * 512 * 2 + oddRanges + 2 * limits::kUploadSlabBytes);
+  EXPECT_EQ(limits::renderVolumeBytes(odd, 1, false, tight),
+            oddVoxels + 320ull * 320 * 320 * 2 + oddRanges + 2 * limits::kUploadSlabBytes);
+  EXPECT_EQ(limits::renderVolumeBytes(odd, 1, false, tight, /*oneTexture=*/true),
+            oddVoxels + 512ull * 512 * 512 * 2 + oddRanges + 2 * limits::kUploadSlabBytes);
+  // 1024³ of 8-bit data takes bricks (one texture would be 2 GiB): a few percent of overlap.
+  const std::uint64_t big = 1024ull * 1024 * 1024;
+  EXPECT_LT(double(limits::renderVolumeBytes(glm::ivec3(1024), 1)) / double(big), 3.25);
   // About 3.2 bytes per voxel for 8-bit data (3.6 with ranges built for the whole volume at
   // once), against 8 when every volume was floats.
   EXPECT_LT(double(limits::renderVolumeBytes(dims, 1)) / double(voxels), 3.2);

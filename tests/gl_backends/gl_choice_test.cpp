@@ -190,7 +190,8 @@ TEST_F(GlChoice, BadChoicesAreBadInput) {
 cv::Mat1b sphereState(gl::GlContext& context) {
   context.makeCurrent();
   Renderer renderer(context);
-  renderer.setVolume(generateVolume("sphere:24"));
+  const Volume volume = generateVolume("sphere:24");  // alive while rendered (setVolume)
+  renderer.setVolume(volume);
   RenderSettings settings;
   settings.size = {40, 40};
   return renderer.render(settings).frame.state.clone();

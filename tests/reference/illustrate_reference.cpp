@@ -16,9 +16,9 @@
 namespace vsil::reference {
 namespace {
 
-// The texel GL_NEAREST picks for `tex`, clamped to the volume.
-glm::ivec3 nearestTexel(glm::vec3 tex, glm::ivec3 dims) {
-  return glm::clamp(glm::ivec3(glm::floor(tex * glm::vec3(dims))), glm::ivec3(0), dims - 1);
+// The voxel nearest to a voxel position (composite.frag nearestTexel), clamped to the volume.
+glm::ivec3 nearestTexel(glm::vec3 voxel, glm::ivec3 dims) {
+  return glm::clamp(glm::ivec3(glm::floor(voxel + 0.5f)), glm::ivec3(0), dims - 1);
 }
 
 }  // namespace
@@ -70,8 +70,7 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
     for (const HaloTap& tap : haloTaps(ill["k_hr"])) {
       const glm::dvec3 eye(tap.offsetEye, 0.0);
       const glm::dvec3 voxel = glm::normalize(voxelFromEye * eye) * tap.distanceVoxels;
-      taps.push_back({glm::vec3(voxel / glm::dvec3(volume.dims)), worldFromEye * glm::vec3(-eye),
-                      float(tap.weight)});
+      taps.push_back({glm::vec3(voxel), worldFromEye * glm::vec3(-eye), float(tap.weight)});
     }
     mask = haloMaskVoxels(texels.data(), volume.dims, visibleValues(ill, table, range),
                           haloMaskReach(ill["k_hr"]));
@@ -83,9 +82,9 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
   };
 
   const float exponent = float(setup.plan.stepVoxels);
-  std::vector<SliceTexCoords> coords;
+  std::vector<SliceVoxelCoords> coords;
   for (const Slice& slice : setup.plan.slices) {
-    coords.push_back(sliceTexCoords(view, volume.dims, slice.eyeDistance));
+    coords.push_back(sliceVoxelCoords(view, slice.eyeDistance));
   }
   ReferenceFrame result = emptyReferenceFrame(setup, settings.size, /*color=*/true);
   for (int y = 0; y < settings.size.y; ++y) {
@@ -94,13 +93,13 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
       for (std::size_t k = 0; k < setup.plan.slices.size(); ++k) {
         const Slice& slice = setup.plan.slices[k];
         if (slice.polygonVoxel.empty()) continue;
-        const glm::vec3 tex = sampler.sliceTexCoord(x, y, coords[k]);
-        if (!sampler.insideTexture(tex)) continue;
-        const glm::vec4 material = classify(sampler.sampleTexture(tex));
-        const float nearFeature = has(Effect::Halo) ? maskAt(nearestTexel(tex, volume.dims)) : 0;
+        const glm::vec3 voxel = sampler.sliceVoxel(x, y, coords[k]);
+        if (!sampler.insideVolume(voxel)) continue;
+        const glm::vec4 material = classify(sampler.sample(voxel));
+        const float nearFeature = has(Effect::Halo) ? maskAt(nearestTexel(voxel, volume.dims)) : 0;
         if (material.a <= 0 && nearFeature <= 0) continue;  // adds nothing
 
-        const glm::vec4 g = sampleGradientTexels(gradients, tex);
+        const glm::vec4 g = sampleGradientTexels(gradients, voxel);
         const glm::vec3 direction(g);
         const float length2 = glm::dot(direction, direction);
         const glm::vec3 n = length2 > 0 ? -direction / std::sqrt(length2) : glm::vec3(0.0f);
@@ -124,7 +123,7 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
           // h = Σ w_n·|∇f_n|·(n_n·d)^k_hpe·(1 − |n_n·V|)^k_hse, times (1 − |∇f|) here.
           float h = 0;
           for (const Tap& tap : taps) {
-            const glm::ivec3 t = nearestTexel(tex + tap.offset, volume.dims);
+            const glm::ivec3 t = nearestTexel(voxel + tap.offset, volume.dims);
             const glm::vec4 gn = gradients.at(t.x, t.y, t.z);
             const glm::vec3 nn = -glm::vec3(gn);
             const float towards = std::max(glm::dot(nn, tap.direction), 0.0f);

@@ -23,9 +23,9 @@ struct RaySample {
 class RaySampler {
  public:
   RaySampler(const Volume& volume, const ReferenceSetup& setup)
-      : setup_(setup), sampler_(volume, setup.view) {
+      : setup_(setup), sampler_(volume, setup.view), dims_(volume.dims) {
     for (const Slice& slice : setup.plan.slices) {
-      coords_.push_back(sliceTexCoords(setup.view, volume.dims, slice.eyeDistance));
+      coords_.push_back(sliceVoxelCoords(setup.view, slice.eyeDistance));
     }
   }
   // `onBoxFace` turns true when a sample position lies within kFaceEpsilon of the box's faces:
@@ -33,17 +33,20 @@ class RaySampler {
   // and every sample counts for a maximum (for the iso-surface techniques it would not, as the
   // values there lie far below the iso value).
   std::vector<RaySample> along(int x, int y, bool& onBoxFace) const {
-    constexpr float kFaceEpsilon = 1e-5f;  // texture units; float rounding is about 1e-7
+    // Voxels: two steps of the sample positions' rounding (BrickLayout::kSampleQuantum), which
+    // the shader's float rounding before it may tip either way.
+    constexpr float kFaceEpsilon = 2.0f / 1024.0f;
     std::vector<RaySample> samples;
     for (std::size_t k = 0; k < setup_.plan.slices.size(); ++k) {
       const Slice& slice = setup_.plan.slices[k];
       if (slice.polygonVoxel.empty()) continue;
-      const glm::vec3 tex = sampler_.sliceTexCoord(x, y, coords_[k]);
-      const glm::vec3 inner = glm::min(tex, 1.0f - tex);  // distance to the nearer face per axis
+      const glm::vec3 voxel = sampler_.sliceVoxel(x, y, coords_[k]);
+      // Distance to the nearer face per axis.
+      const glm::vec3 inner = glm::min(voxel + 0.5f, dims_ - 0.5f - voxel);
       const float nearest = std::min({inner.x, inner.y, inner.z});
       if (std::abs(nearest) < kFaceEpsilon) onBoxFace = true;
-      if (!sampler_.insideTexture(tex)) continue;
-      samples.push_back({&slice, sampler_.sampleTexture(tex)});
+      if (!sampler_.insideVolume(voxel)) continue;
+      samples.push_back({&slice, sampler_.sample(voxel)});
     }
     return samples;
   }
@@ -52,7 +55,8 @@ class RaySampler {
  private:
   const ReferenceSetup& setup_;
   SliceSampler sampler_;
-  std::vector<SliceTexCoords> coords_;
+  std::vector<SliceVoxelCoords> coords_;
+  glm::vec3 dims_;
 };
 
 float maximumOf(const std::vector<RaySample>& samples) {

@@ -36,7 +36,7 @@ ReferenceFrame emptyReferenceFrame(const ReferenceSetup& setup, glm::ivec2 size,
 
 FirstHitFinder::FirstHitFinder(const Volume& volume, const ReferenceSetup& setup) : setup_(setup) {
   for (const Slice& slice : setup.plan.slices) {
-    coords_.push_back(sliceTexCoords(setup.view, volume.dims, slice.eyeDistance));
+    coords_.push_back(sliceVoxelCoords(setup.view, slice.eyeDistance));
   }
 }
 
@@ -46,9 +46,9 @@ FirstHit FirstHitFinder::at(const SliceSampler& sampler, int x, int y, float iso
   for (std::size_t k = 0; k < setup_.plan.slices.size(); ++k) {
     const Slice& slice = setup_.plan.slices[k];
     if (slice.polygonVoxel.empty()) continue;
-    const glm::vec3 tex = sampler.sliceTexCoord(x, y, coords_[k]);
-    if (!sampler.insideTexture(tex)) continue;
-    const float value = sampler.sampleTexture(tex);
+    const glm::vec3 voxel = sampler.sliceVoxel(x, y, coords_[k]);
+    if (!sampler.insideVolume(voxel)) continue;
+    const float value = sampler.sample(voxel);
     if (std::abs(value - iso) <= isoEpsilon) hit.ambiguous = true;
     if (value < iso) continue;
     hit.slice = &slice;

@@ -52,7 +52,7 @@ class FirstHitFinder {
 
  private:
   const ReferenceSetup& setup_;
-  std::vector<SliceTexCoords> coords_;  // per slice
+  std::vector<SliceVoxelCoords> coords_;  // per slice
 };
 
 }  // namespace vsil::reference

@@ -25,7 +25,7 @@ ReferenceFrame renderRightAngle(const Volume& volume, const RenderSettings& sett
       if (!hit.slice) continue;
       // The first hit is shaded where finish_hits.frag shades it: at the eye point.
       const glm::vec3 eye = sampler.eyePoint(x, y, float(hit.slice->eyeDistance));
-      const glm::vec3 voxel = sampler.voxelFromEyePoint(eye);
+      const glm::vec3 voxel = quantizedVoxel(sampler.voxelFromEyePoint(eye));
       const float facing = sampler.facingRatio(voxel, eye);
       const float lineness = std::pow(1.0f - facing, exponent);
       const bool line = lineness > threshold;

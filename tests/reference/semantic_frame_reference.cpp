@@ -96,7 +96,7 @@ ReferenceFrame renderSemantic(const Volume& volume, const RenderSettings& settin
       computeGradientTexels(texels.data(), volume.dims, volume.spacing);
   const glm::mat3 worldFromEye(glm::transpose(glm::dmat3(view.eyeFromWorld)));
   const glm::mat3 eyeFromWorld = glm::transpose(worldFromEye);
-  const glm::vec3 dims(volume.dims), spacing(volume.spacing);
+  const glm::vec3 spacing(volume.spacing);
   const float inverseDiagonal = float(1.0 / glm::length(glm::dvec3(volume.dims) * volume.spacing));
   const glm::vec3 cursorPhysical(interaction.cursorVoxel * volume.spacing);
   const glm::vec3 planePoint(interaction.planePointVoxel * volume.spacing);
@@ -109,9 +109,9 @@ ReferenceFrame renderSemantic(const Volume& volume, const RenderSettings& settin
   const float inverseImageDiagonal = float(1.0 / glm::length(size));
   const float exponent = float(setup.plan.stepVoxels);
 
-  std::vector<SliceTexCoords> coords;
+  std::vector<SliceVoxelCoords> coords;
   for (const Slice& slice : setup.plan.slices) {
-    coords.push_back(sliceTexCoords(view, volume.dims, slice.eyeDistance));
+    coords.push_back(sliceVoxelCoords(view, slice.eyeDistance));
   }
   ReferenceFrame result = emptyReferenceFrame(setup, settings.size, /*color=*/true);
   const int styleCount = int(rules.styles.size());
@@ -126,11 +126,11 @@ ReferenceFrame renderSemantic(const Volume& volume, const RenderSettings& settin
       for (std::size_t k = 0; k < setup.plan.slices.size(); ++k) {
         const Slice& slice = setup.plan.slices[k];
         if (slice.polygonVoxel.empty()) continue;
-        const glm::vec3 tex = sampler.sliceTexCoord(x, y, coords[k]);
-        if (!sampler.insideTexture(tex)) continue;
-        const float value = sampler.sampleTexture(tex);
+        const glm::vec3 voxel = sampler.sliceVoxel(x, y, coords[k]);
+        if (!sampler.insideVolume(voxel)) continue;
+        const float value = sampler.sample(voxel);
         const float data = std::clamp((value - range.min) * valueScale, 0.0f, 1.0f);
-        const glm::vec3 physical = (tex * dims - 0.5f) * spacing;
+        const glm::vec3 physical = voxel * spacing;
         const bool onPlane =
             interaction.planeShow &&
             std::abs(glm::dot(physical - planePoint, planeNormal)) <= planeHalfThickness;
@@ -138,7 +138,7 @@ ReferenceFrame renderSemantic(const Volume& volume, const RenderSettings& settin
         const int interval = std::min(int(data * float(intervals)), intervals - 1);
         if (!onPlane && !visible[std::size_t(interval)]) continue;
 
-        const glm::vec4 g = sampleGradientTexels(gradients, tex);
+        const glm::vec4 g = sampleGradientTexels(gradients, voxel);
         const glm::vec3 gradient(g);
         const float length2 = glm::dot(gradient, gradient);
         const glm::vec3 direction = length2 > 0 ? gradient / std::sqrt(length2) : glm::vec3(0.0f);

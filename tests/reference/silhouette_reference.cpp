@@ -43,12 +43,12 @@ ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& sett
     footprint = 0;
     nearIso = 0;
     if (slice) {
-      const SliceTexCoords coords = sliceTexCoords(setup.view, volume.dims, slice->eyeDistance);
+      const SliceVoxelCoords coords = sliceVoxelCoords(setup.view, slice->eyeDistance);
       for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
-          const glm::vec3 tex = sampler.sliceTexCoord(x, y, coords);
-          if (!sampler.insideTexture(tex)) continue;
-          const float value = sampler.sampleTexture(tex);
+          const glm::vec3 voxel = sampler.sliceVoxel(x, y, coords);
+          if (!sampler.insideVolume(voxel)) continue;
+          const float value = sampler.sample(voxel);
           footprint(y, x) = value >= iso;
           nearIso(y, x) = std::abs(value - iso) <= isoEpsilon;
         }
@@ -78,7 +78,7 @@ ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& sett
         if (t == PixelState::Empty && next != PixelState::Empty) {
           const glm::vec3 eye = sampler.eyePoint(x, y, float(slice->eyeDistance));
           depth(y, x) = float(slice->depth);
-          shade(y, x) = sampler.facingRatio(sampler.voxelFromEyePoint(eye), eye);
+          shade(y, x) = sampler.facingRatio(quantizedVoxel(sampler.voxelFromEyePoint(eye)), eye);
           if (toneFill.active()) {
             const glm::vec3 c =
                 toneFill.at(sampler, x, y, float(slice->eyeDistance), float(slice->depth));

@@ -10,9 +10,23 @@ std::vector<float> textureTexels(const Volume& volume) {
       [](auto samples) { return std::vector<float>(samples.begin(), samples.end()); });
 }
 
-glm::vec4 sampleGradientTexels(const GradientTexels& texels, glm::vec3 tex) {
-  const LinearTaps tx = linearTaps(tex.x, texels.dims.x), ty = linearTaps(tex.y, texels.dims.y),
-                   tz = linearTaps(tex.z, texels.dims.z);
+glm::vec3 quantizedVoxel(glm::vec3 voxel) {
+  return glm::floor(voxel * 1024.0f + 0.5f) * (1.0f / 1024.0f);
+}
+
+namespace {
+// The taps of a quantized voxel position along an axis of n voxels: floor and fraction of the
+// position, clamped to the edge.
+LinearTaps voxelTaps(float voxel, int n) {
+  const float base = std::floor(voxel);
+  const int i = int(base);
+  return {std::clamp(i, 0, n - 1), std::clamp(i + 1, 0, n - 1), voxel - base};
+}
+}  // namespace
+
+glm::vec4 sampleGradientTexels(const GradientTexels& texels, glm::vec3 voxel) {
+  const LinearTaps tx = voxelTaps(voxel.x, texels.dims.x), ty = voxelTaps(voxel.y, texels.dims.y),
+                   tz = voxelTaps(voxel.z, texels.dims.z);
   glm::vec4 result(0.0f);
   for (int dz = 0; dz < 2; ++dz) {
     for (int dy = 0; dy < 2; ++dy) {
@@ -63,39 +77,25 @@ glm::vec3 SliceSampler::voxelFromEyePoint(glm::vec3 eye) const {
   return glm::vec3(voxelFromEye_ * glm::vec4(eye, 1.0f));
 }
 
-glm::vec3 SliceSampler::sliceTexCoord(int x, int y, const SliceTexCoords& slice) const {
+glm::vec3 SliceSampler::sliceVoxel(int x, int y, const SliceVoxelCoords& slice) const {
   const glm::vec2 ndc = fragmentNdc(x, y);
-  return ndc.x * slice.perNdcX + ndc.y * slice.perNdcY + slice.atNdcOrigin;
+  return quantizedVoxel(ndc.x * slice.perNdcX + ndc.y * slice.perNdcY + slice.atNdcOrigin);
 }
 
-bool SliceSampler::insideTexture(glm::vec3 tex) const {
-  return glm::all(glm::greaterThanEqual(tex, glm::vec3(0.0f))) &&
-         glm::all(glm::lessThanEqual(tex, glm::vec3(1.0f)));
+bool SliceSampler::insideVolume(glm::vec3 voxel) const {
+  return glm::all(glm::greaterThanEqual(voxel, glm::vec3(-0.5f))) &&
+         glm::all(glm::lessThanEqual(voxel, dims_ - 0.5f));
 }
 
 float SliceSampler::sample(glm::vec3 voxel) const {
-  // OpenGL: texture coordinate u = (voxel + 0.5) / dims.
-  return sampleTexture((voxel + 0.5f) / dims_);
-}
-
-float SliceSampler::sampleTexture(glm::vec3 u) const {
-  // OpenGL: texel space u * dims - 0.5, clamped to the edge.
-  const glm::vec3 t = u * dims_ - 0.5f;
-  const glm::vec3 base = glm::floor(t);
-  const glm::vec3 f = t - base;
-  auto at = [&](int x, int y, int z) {
-    x = std::clamp(x, 0, volume_.dims.x - 1);
-    y = std::clamp(y, 0, volume_.dims.y - 1);
-    z = std::clamp(z, 0, volume_.dims.z - 1);
-    return volume_.at(x, y, z);
-  };
-  const int x0 = int(base.x), y0 = int(base.y), z0 = int(base.z);
+  const LinearTaps tx = voxelTaps(voxel.x, volume_.dims.x), ty = voxelTaps(voxel.y, volume_.dims.y),
+                   tz = voxelTaps(voxel.z, volume_.dims.z);
   float result = 0.0f;
   for (int dz = 0; dz < 2; ++dz) {
     for (int dy = 0; dy < 2; ++dy) {
       for (int dx = 0; dx < 2; ++dx) {
-        const float w = (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z);
-        result += w * at(x0 + dx, y0 + dy, z0 + dz);
+        const float w = (dx ? tx.f : 1 - tx.f) * (dy ? ty.f : 1 - ty.f) * (dz ? tz.f : 1 - tz.f);
+        result += w * volume_.at(dx ? tx.i1 : tx.i0, dy ? ty.i1 : ty.i0, dz ? tz.i1 : tz.i0);
       }
     }
   }

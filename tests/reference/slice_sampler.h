@@ -28,9 +28,12 @@ glm::vec4 sampleTable(const std::vector<glm::vec4>& table, float u);
 // data's own units, x fastest. What the GL path reads back to build gradients and halo masks.
 std::vector<float> textureTexels(const Volume& volume);
 
-// The gradient texture sampled trilinearly at texture coordinate `tex` (what texture() returns
-// from the RGBA16F texels, clamped at the edges).
-glm::vec4 sampleGradientTexels(const GradientTexels& texels, glm::vec3 tex);
+// The gradient texture sampled trilinearly at the (quantized) voxel position `voxel` (what
+// texture() returns from the RGBA16F texels, clamped at the edges).
+glm::vec4 sampleGradientTexels(const GradientTexels& texels, glm::vec3 voxel);
+
+// A voxel position rounded as the shaders round it (common.glsl quantizedVoxel).
+glm::vec3 quantizedVoxel(glm::vec3 voxel);
 
 class SliceSampler {
  public:
@@ -39,13 +42,15 @@ class SliceSampler {
   // The eye-space point of pixel (x, y) (top-left origin) on the plane at `eyeDistance`.
   glm::vec3 eyePoint(int x, int y, float eyeDistance) const;
   glm::vec3 voxelFromEyePoint(glm::vec3 eye) const;
-  float sample(glm::vec3 voxel) const;  // trilinear, clamp to edge
+  // Trilinear, clamp to edge, at a quantized voxel position: the texel-space coordinate the
+  // sampler computes from a brick's texture coordinate is then the position itself (its
+  // floor and fraction are the taps and weights; common.glsl brickTexCoord).
+  float sample(glm::vec3 voxel) const;
 
-  // What the slice passes sample (common.glsl sliceTexCoord): the texture coordinate of pixel
-  // (x, y) on a slice, whether it lies in the texture, and the trilinear value there.
-  glm::vec3 sliceTexCoord(int x, int y, const SliceTexCoords& slice) const;
-  bool insideTexture(glm::vec3 tex) const;
-  float sampleTexture(glm::vec3 tex) const;
+  // What the slice passes sample (common.glsl sliceVoxel): the voxel position of pixel (x, y)
+  // on a slice, and whether it lies in the volume's box.
+  glm::vec3 sliceVoxel(int x, int y, const SliceVoxelCoords& slice) const;
+  bool insideVolume(glm::vec3 voxel) const;
   glm::vec3 gradientVoxel(glm::vec3 voxel) const;
   // −∇f/|∇f| in eye space, 0 where the gradient vanishes (common.glsl outwardNormalEye).
   glm::vec3 outwardNormalEye(glm::vec3 voxel) const;

@@ -332,7 +332,8 @@ TEST_F(SemanticTest, SphereFilesThatDoNotReadAreNamedInTheError) {
                      "style s { spheres = \"missing-spheres.png\"  v = triangle(0, 1, 1) }\n"
                      "rule if d is v then s is v\n");
   Renderer renderer(test::sharedGlContext());
-  renderer.setVolume(generateVolume("sphere:16"));
+  const Volume volume = generateVolume("sphere:16");  // alive while rendered (setVolume)
+  renderer.setVolume(volume);
   try {
     renderer.render(semanticSettings(path));
     FAIL() << "expected an InputError";

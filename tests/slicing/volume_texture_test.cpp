@@ -94,21 +94,53 @@ TEST_F(VolumeTextureUpload, TextureFitsAsTheProxyTextureSays) {
 
 TEST_F(VolumeTextureUpload, HoldsEverySampleExactlyAcrossSlabBorders) {
   for (auto& [volume, format] : volumes()) {
-    // Slabs of one and of two slices (9 slices: the last slab is partial), and one slab.
+    // Slabs of one and of two slices (9 slices, padded to 16: the last slab is partial), and
+    // one slab.
     for (std::size_t slabBytes :
-         {std::size_t(1), std::size_t(7 * 5 * 2 * 4), std::size_t(1) << 20}) {
+         {std::size_t(1), std::size_t(8 * 8 * 2 * 4), std::size_t(1) << 20}) {
       SCOPED_TRACE(std::string(sampleTypeName(volume.type())) + " slab bytes " +
                    std::to_string(slabBytes));
-      const VolumeTexture texture(volume, slabBytes);
+      const VolumeTexture texture(volume, limits::kMaxTextureBytes, slabBytes);
       EXPECT_EQ(texture.internalFormat(), format);
-      std::vector<float> read(volume.voxelCount(), -99.0f);
-      glBindTexture(GL_TEXTURE_3D, texture.id());
-      glPixelStorei(GL_PACK_ALIGNMENT, 1);
-      glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, read.data());
-      glBindTexture(GL_TEXTURE_3D, 0);
+      ASSERT_EQ(texture.brickCount(), 1u);
+      const std::vector<float> read = texture.readVoxels();
       for (std::size_t i = 0; i < read.size(); ++i) {
         ASSERT_EQ(read[i], volume.value(i)) << "sample " << i;
       }
+    }
+  }
+}
+
+// Bricks of 8³ texels (4 voxels of their own, 2 of overlap on each side): every texel of
+// every brick is the voxel at its origin + its index, clamped to the volume.
+TEST_F(VolumeTextureUpload, EveryBrickHoldsItsVoxelsOverlapAndPadding) {
+  for (auto& [volume, format] : volumes()) {
+    SCOPED_TRACE(sampleTypeName(volume.type()));
+    const VolumeTexture texture(volume, 8 * 8 * 8 * texelSize(format));
+    ASSERT_GT(texture.brickCount(), 1u);
+    std::vector<float> texels;
+    for (std::size_t b = 0; b < texture.brickCount(); ++b) {
+      const Brick& brick = texture.layout().bricks()[b];
+      const glm::ivec3 size = brick.size;
+      texels.assign(std::size_t(size.x * size.y * size.z), -99.0f);
+      glBindTexture(GL_TEXTURE_3D, texture.brickTexture(b));
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, texels.data());
+      std::size_t i = 0;
+      for (int z = 0; z < size.z; ++z) {
+        for (int y = 0; y < size.y; ++y) {
+          for (int x = 0; x < size.x; ++x, ++i) {
+            const glm::ivec3 voxel = glm::min(brick.origin + glm::ivec3(x, y, z), volume.dims - 1);
+            ASSERT_EQ(texels[i], volume.at(voxel.x, voxel.y, voxel.z))
+                << "brick " << b << " texel " << x << "," << y << "," << z;
+          }
+        }
+      }
+    }
+    glBindTexture(GL_TEXTURE_3D, 0);
+    const std::vector<float> read = texture.readVoxels();
+    for (std::size_t i = 0; i < read.size(); ++i) {
+      ASSERT_EQ(read[i], volume.value(i)) << "sample " << i;
     }
   }
 }

@@ -10,7 +10,7 @@ TechniqueInfo firstHitTechniqueInfo() {
           {isoOption()},
           FrameOutputs{.state = false, .color = true, .depth = true},
           [] { return std::make_unique<FirstHitTechnique>(); },
-          /*usesGradients=*/false, /*checkValues=*/{}};
+          /*usesGradients=*/false, /*checkValues=*/{}, /*needsOneTexture=*/{}};
 }
 
 BrickOccupancy FirstHitTechnique::occupancy(const FrameContext& frame) const {

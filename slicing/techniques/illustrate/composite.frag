@@ -47,20 +47,22 @@ vec4 classify(float value) {
 // lets the samples far from every feature leave early and keeps halos inside the occupancy
 // margin of empty-space skipping.
 layout(binding = UNIT_AUXILIARY0) uniform sampler3D haloMask;
-uniform vec3 haloOffsets[HALO_TAPS];     // texture-coordinate offsets, in the slice plane
+uniform vec3 haloOffsets[HALO_TAPS];     // voxel offsets, in the slice plane
 uniform vec3 haloDirections[HALO_TAPS];  // world, unit: from the tap towards the sample
 uniform float haloWeights[HALO_TAPS];
 uniform float k_hpe, k_hse, k_hd, k_ho;
 
-// The texel nearest to a texture coordinate (what GL_NEAREST picks), clamped to the volume.
-ivec3 nearestTexel(vec3 tex) {
-  return clamp(ivec3(floor(tex * volumeDims)), ivec3(0), ivec3(volumeDims) - 1);
+// The voxel nearest to a voxel position (what GL_NEAREST picks), clamped to the volume. Halos
+// need the volume in one brick (origin 0; illustrate_technique.cpp refuses more), so it is
+// also the texel of the gradient texture and the halo mask.
+ivec3 nearestTexel(vec3 voxel) {
+  return clamp(ivec3(floor(voxel + 0.5)), ivec3(0), ivec3(volumeDims) - 1);
 }
 
-float haloSize(vec3 tex, vec3 v, float gradientMagnitude) {
+float haloSize(vec3 voxel, vec3 v, float gradientMagnitude) {
   float h = 0.0;
   for (int k = 0; k < HALO_TAPS; ++k) {
-    vec4 g = texelFetch(gradientTexture, nearestTexel(tex + haloOffsets[k]), 0);
+    vec4 g = texelFetch(gradientTexture, nearestTexel(voxel + haloOffsets[k]), 0);
     vec3 n = -g.xyz;
     float towards = max(dot(n, haloDirections[k]), 0.0);
     float across = max(1.0 - abs(dot(n, v)), 0.0);
@@ -71,11 +73,11 @@ float haloSize(vec3 tex, vec3 v, float gradientMagnitude) {
 #endif
 
 void main() {
-  vec3 tex = sliceTexCoord();
-  if (!insideTexture(tex)) discard;
-  float value = sampleTexture(tex);
+  vec3 voxel = sliceVoxel();
+  if (!insideVolume(voxel)) discard;
+  float value = sampleVolume(voxel);
 #ifdef HALO
-  float nearFeature = texelFetch(haloMask, nearestTexel(tex), 0).r;
+  float nearFeature = texelFetch(haloMask, nearestTexel(voxel), 0).r;
   if (value <= transparentBelow && nearFeature <= 0.0) discard;
   vec4 material = classify(value);
   if (material.a <= 0.0 && nearFeature <= 0.0) discard;
@@ -85,7 +87,7 @@ void main() {
   vec4 material = classify(value);
   if (material.a <= 0.0) discard;
 #endif
-  vec4 g = texture(gradientTexture, tex);
+  vec4 g = texture(gradientTexture, brickTexCoord(voxel));
   float length2 = dot(g.xyz, g.xyz);
   vec3 n = length2 > 0.0 ? g.xyz * -inversesqrt(length2) : vec3(0.0);
   float gradientMagnitude = g.a;
@@ -118,7 +120,7 @@ void main() {
   color = distanceBlend(color, sliceDepth);
 #endif
 #ifdef HALO
-  float h = haloSize(tex, v, gradientMagnitude) * nearFeature;
+  float h = haloSize(voxel, v, gradientMagnitude) * nearFeature;
   color *= max(1.0 - k_hd * h, 0.0);
   opacity += k_ho * h;
 #endif

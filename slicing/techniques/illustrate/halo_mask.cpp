@@ -1,5 +1,7 @@
 #include "slicing/techniques/illustrate/halo_mask.h"
 
+#include "slicing/volume_texture.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -52,15 +54,13 @@ std::vector<std::uint8_t> haloMaskVoxels(const float* samples, glm::ivec3 dims,
   return other;
 }
 
-void HaloMaskTexture::update(const std::vector<double>& key, GLuint volumeTexture, glm::ivec3 dims,
+void HaloMaskTexture::update(const std::vector<double>& key, const VolumeTexture& volume,
                              const std::function<bool(float)>& visible, int reach) {
   if (texture_ && key == key_) return;
-  std::vector<float> samples(std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z));
+  const glm::ivec3 dims = volume.dims();
+  std::vector<float> samples = volume.readVoxels();
   GLint bound = 0;
   glGetIntegerv(GL_TEXTURE_BINDING_3D, &bound);
-  VSIL_GL(glBindTexture(GL_TEXTURE_3D, volumeTexture));
-  VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
-  VSIL_GL(glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, samples.data()));
   std::vector<std::uint8_t> mask = haloMaskVoxels(samples.data(), dims, visible, reach);
   samples = {};
   for (auto& m : mask) m = m ? 255 : 0;

@@ -7,7 +7,9 @@
 // earlier developer measured; 2.9× with it, README). The occupancy margin of empty-space
 // skipping covers the reach, so skipping still changes no pixel.
 //
-// Built on the CPU from the volume's samples (read back from its texture) when the visible
+// Built on the CPU from the volume's samples (read back from its texture), one texture over
+// the volume's voxels: halos read it by voxel index, so illustrate refuses halos on a volume of
+// more than one brick (illustrate_technique.cpp), when the visible
 // values or the reach change, and kept otherwise; the CPU reference calls haloMaskVoxels.
 #include <cstdint>
 #include <functional>
@@ -19,6 +21,8 @@
 #include "slicing/gl_objects.h"
 
 namespace vsil {
+
+class VolumeTexture;
 
 // The voxels `visible` holds for, dilated by `reach` voxels along each axis (a box).
 std::vector<std::uint8_t> haloMaskVoxels(const float* samples, glm::ivec3 dims,
@@ -32,7 +36,7 @@ class HaloMaskTexture {
  public:
   // Rebuilds when `key` differs from the last build's (or the texture is missing): `key`
   // identifies the volume, the visible values and the reach.
-  void update(const std::vector<double>& key, GLuint volumeTexture, glm::ivec3 dims,
+  void update(const std::vector<double>& key, const VolumeTexture& volume,
               const std::function<bool(float)>& visible, int reach);
   GLuint id() const { return texture_.id(); }
 

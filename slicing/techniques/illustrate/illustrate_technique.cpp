@@ -40,7 +40,12 @@ TechniqueInfo illustrateTechniqueInfo() {
           FrameOutputs{.state = false, .color = true, .depth = false},
           [] { return std::make_unique<IllustrateTechnique>(); },
           /*usesGradients=*/true,
-          /*checkValues=*/{}};
+          /*checkValues=*/{},
+          // The halo taps reach farther than a brick's overlap.
+          /*needsOneTexture=*/[](const OptionReader& options) {
+            return illustrationFromOptions(illustrateOptions(), options)
+                .effects.has(Effect::Halo);
+          }};
 }
 
 std::vector<std::string> illustrateDefines(const Illustration& illustration) {
@@ -139,15 +144,18 @@ void IllustrateTechnique::beginFrame(const FrameContext& frame) {
     transferTexture_->upload(*illustration_.transferFunction, frame.valueRange);
     gl::bindTexture(gl::TextureUnit::TransferFunction, GL_TEXTURE_1D, transferTexture_->id());
   }
-  gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D, frame.gradients->texture());
+  gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D,
+                  frame.gradients->texture().brickTexture(0));
   if (illustration_.effects.has(Effect::Halo)) {
+    requireOneBrick(frame, "illustrate's halo effect",
+                    "leave out the halo effect, or give a larger --max-texture-mib");
     const int reach = haloMaskReach(illustration_["k_hr"]);
     std::vector<double> key{double(frame.volumeGeneration), double(reach),
                             illustration_.transferFunction ? 1.0 : 0.0,
                             illustration_["k_os"] > 0 ? 1.0 : 0.0};
     for (const auto& entry : table_) key.push_back(entry.a > 0 ? 1.0 : 0.0);
-    haloMask_.update(key, frame.volumeTexture, frame.dims,
-                     visibleValues(illustration_, table_, frame.valueRange), reach);
+    haloMask_.update(key, *frame.volume, visibleValues(illustration_, table_, frame.valueRange),
+                     reach);
     gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_3D, haloMask_.id());
   }
   setUniforms(frame);
@@ -181,15 +189,14 @@ void IllustrateTechnique::setUniforms(const FrameContext& frame) {
     program.set("sampleColor", illustration_.color.rgb01());
   }
   if (illustration_.effects.has(Effect::Halo)) {
-    // Offsets in texture coordinates: a unit step in voxel index space along the view's x and y.
+    // Offsets in voxels: a unit step in voxel index space along the view's x and y.
     const glm::dmat3 voxelFromEye = glm::inverse(glm::dmat3(frame.view->eyeFromVoxel));
-    const glm::dvec3 dims(frame.dims);
     std::vector<glm::vec3> offsets, directions;
     std::vector<float> weights;
     for (const HaloTap& tap : haloTaps(illustration_["k_hr"])) {
       const glm::dvec3 eye(tap.offsetEye, 0.0);
       const glm::dvec3 voxel = glm::normalize(voxelFromEye * eye) * tap.distanceVoxels;
-      offsets.emplace_back(voxel / dims);
+      offsets.emplace_back(voxel);
       directions.push_back(rotation * glm::vec3(-eye));
       weights.push_back(float(tap.weight));
     }

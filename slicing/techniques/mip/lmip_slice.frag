@@ -12,12 +12,12 @@ layout(binding = IMAGE_RECORD, rgba32f) uniform writeonly restrict image2D recor
 uniform float lmipThreshold;
 
 void main() {
-  vec3 tex = sliceTexCoord();
-  if (!insideTexture(tex)) return;
+  vec3 voxel = sliceVoxel();
+  if (!insideVolume(voxel)) return;
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 t = texelFetch(recordTexture, pixel, 0);
   if (isFinal(uint(t.r))) return;
-  float value = sampleTexture(tex);
+  float value = sampleVolume(voxel);
   t.g = max(t.g, value);
   if (t.b >= lmipThreshold && value < t.b) {
     t.r = float(STATE_FILLED);

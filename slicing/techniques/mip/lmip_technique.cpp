@@ -16,7 +16,8 @@ TechniqueInfo lmipTechniqueInfo() {
           FrameOutputs{.state = false, .color = true, .depth = true},
           [] { return std::make_unique<LmipTechnique>(); },
           /*usesGradients=*/false,
-          /*checkValues=*/checkWindowOrTf};
+          /*checkValues=*/checkWindowOrTf,
+          /*needsOneTexture=*/{}};
 }
 
 BrickOccupancy LmipTechnique::occupancy(const FrameContext&) const {

@@ -6,7 +6,7 @@
 layout(location = 0) out float result;
 
 void main() {
-  vec3 tex = sliceTexCoord();
-  if (!insideTexture(tex)) discard;
-  result = sampleTexture(tex);
+  vec3 voxel = sliceVoxel();
+  if (!insideVolume(voxel)) discard;
+  result = sampleVolume(voxel);
 }

@@ -18,7 +18,8 @@ TechniqueInfo mipTechniqueInfo() {
           FrameOutputs{.state = false, .color = true, .depth = false},
           [] { return std::make_unique<MipTechnique>(false); },
           /*usesGradients=*/false,
-          /*checkValues=*/checkWindowOrTf};
+          /*checkValues=*/checkWindowOrTf,
+          /*needsOneTexture=*/{}};
 }
 
 TechniqueInfo demipTechniqueInfo() {
@@ -29,7 +30,8 @@ TechniqueInfo demipTechniqueInfo() {
           FrameOutputs{.state = false, .color = true, .depth = true},
           [] { return std::make_unique<MipTechnique>(true); },
           /*usesGradients=*/false,
-          /*checkValues=*/checkDemipValues};
+          /*checkValues=*/checkDemipValues,
+          /*needsOneTexture=*/{}};
 }
 
 ResolvedOptions MipTechnique::resolve(const FrameContext& frame) {

@@ -16,7 +16,8 @@ TechniqueInfo rightAngleTechniqueInfo() {
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<RightAngleTechnique>(); },
           /*usesGradients=*/false,
-          /*checkValues=*/checkToneFillValues};
+          /*checkValues=*/checkToneFillValues,
+          /*needsOneTexture=*/tilesNeedOneTexture};
 }
 
 ResolvedOptions RightAngleTechnique::resolve(const FrameContext& frame) {

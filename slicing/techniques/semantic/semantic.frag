@@ -45,8 +45,8 @@ uniform float timeValue;
 uniform float topPriority;
 
 void main() {
-  vec3 tex = sliceTexCoord();
-  if (!insideTexture(tex)) discard;
+  vec3 voxel = sliceVoxel();
+  if (!insideVolume(voxel)) discard;
 #ifdef SEMANTIC_FLAT
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 dst = imageLoad(colorImage, pixel);
@@ -54,9 +54,9 @@ void main() {
   // Nothing behind can show any more: opaque, and no higher priority left to enter.
   if (dst.a >= terminationOpacity && top >= topPriority) discard;
 #endif
-  float value = sampleTexture(tex);
+  float value = sampleVolume(voxel);
   float data = clamp((value - valueMin) * valueScale, 0.0, 1.0);
-  vec3 physical = (tex * volumeDims - 0.5) * voxelSpacing;
+  vec3 physical = voxel * voxelSpacing;
 #ifdef SEMANTIC_PLANE_SHOW
   bool onPlane = abs(dot(physical - planePointPhysical, planeNormal)) <= planeHalfThickness;
 #else
@@ -68,7 +68,7 @@ void main() {
     int k = min(int(data * float(size - 1)), size - 2);
     if (!onPlane && texelFetch(visibleIntervals, ivec2(k, 0), 0).r <= 0.0) discard;
   }
-  vec4 g = texture(gradientTexture, tex);
+  vec4 g = texture(gradientTexture, brickTexCoord(voxel));
   float length2 = dot(g.xyz, g.xyz);
   vec3 direction = length2 > 0.0 ? g.xyz * inversesqrt(length2) : vec3(0.0);
 

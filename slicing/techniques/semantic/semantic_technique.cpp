@@ -68,7 +68,8 @@ TechniqueInfo semanticTechniqueInfo() {
           FrameOutputs{.state = false, .color = true, .depth = false},
           [] { return std::make_unique<SemanticTechnique>(); },
           /*usesGradients=*/true,
-          /*checkValues=*/{}};
+          /*checkValues=*/{},
+          /*needsOneTexture=*/{}};
 }
 
 gl::ProgramSpec semanticProgram(const CompiledRules& compiled, bool flat, bool planeShow) {
@@ -174,8 +175,9 @@ BrickOccupancy SemanticTechnique::occupancy(const FrameContext& frame) const {
 
 void SemanticTechnique::beginFrame(const FrameContext& frame) {
   // resolve() uploaded the atlas through unit 0's 3D binding: the volume's again.
-  gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, frame.volumeTexture);
-  gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D, frame.gradients->texture());
+  gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, frame.volume->brickTexture(0));
+  gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D,
+                  frame.gradients->texture().brickTexture(0));
   gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_2D, membershipTexture_.id());
   gl::bindTexture(gl::TextureUnit::Auxiliary1, GL_TEXTURE_2D, defuzzTexture_.id());
   gl::bindTexture(gl::TextureUnit::Auxiliary2, GL_TEXTURE_3D, atlasTexture_.id());

@@ -4,7 +4,7 @@
 layout(location = 0) out uint footprint;
 
 void main() {
-  vec3 tex = sliceTexCoord();
-  if (!insideTexture(tex) || sampleTexture(tex) < isoValue) discard;
+  vec3 voxel = sliceVoxel();
+  if (!insideVolume(voxel) || sampleVolume(voxel) < isoValue) discard;
   footprint = footprintTag();
 }

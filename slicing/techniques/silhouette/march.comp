@@ -92,8 +92,8 @@ void main() {
       for (uint rest = inRange & dilateRows(busy | neighboursBusy); rest != 0u;
            rest &= rest - 1u) {
         int j = findLSB(rest);
-        vec3 tex = sliceTexCoordOf(slice, pixelNdc(ivec2(x, origin.y + j - 1)));
-        filled |= insideTexture(tex) && sampleTexture(tex) >= isoValue ? 1u << uint(j) : 0u;
+        vec3 voxel = sliceVoxelOf(slice, pixelNdc(ivec2(x, origin.y + j - 1)));
+        filled |= insideVolume(voxel) && sampleVolume(voxel) >= isoValue ? 1u << uint(j) : 0u;
       }
       int parity = k & 1;
       columns[parity][column] = uvec2(filled, busy);

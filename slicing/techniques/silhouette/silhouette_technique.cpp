@@ -41,7 +41,8 @@ TechniqueInfo silhouetteTechniqueInfo() {
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<SilhouetteTechnique>(); },
           /*usesGradients=*/false,
-          /*checkValues=*/checkToneFillValues};
+          /*checkValues=*/checkToneFillValues,
+          /*needsOneTexture=*/tilesNeedOneTexture};
 }
 
 ResolvedOptions SilhouetteTechnique::resolve(const FrameContext& frame) {
@@ -70,6 +71,7 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
   const float iso = float(frame.options->number("iso"));
   programs_.finish = &finishProgram(frame, {"techniques/silhouette/silhouette.glsl"});
   if (pipeline_ == SlicingPipeline::Tiles) {
+    requireOneBrick(frame, "--pipeline tiles", "use --pipeline fast or paper (the same pixels)");
     // The march writes every pixel's record once: nothing to clear, no depth buffer.
     programs_.march =
         &marchProgram(frame, sources(), "techniques/silhouette/march.comp", kMarchShape);

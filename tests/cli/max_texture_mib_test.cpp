@@ -1,0 +1,62 @@
+// `vsil render --max-texture-mib N` through the built binary: gen:spheres:128 (float32, an 8 MiB
+// R32F texture) in bricks of at most 1 MiB (11 bricks of 16x128x128 texels, the fewest texels)
+// gives the same PNG, state and depth bytes as in one texture; what cannot follow the bricks
+// (--pipeline tiles) refuses with one line, exit 2 and no output file; the flag's range is checked.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "reference/test_support.h"
+
+namespace vsil {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string render(const fs::path& dir, const std::string& name, const std::string& flags) {
+  const std::string base = (dir / name).string();
+  const auto result = test::runVsil(
+      "render gen:spheres:128 " + flags + " --size 96x80 --view 37,-23 --sampling 0.9 --out " +
+      base + ".png --state-out " + base + "-state.png --depth-out " + base + "-depth.png");
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.err, "");
+  return test::readFileBytes(base + ".png") + "|" + test::readFileBytes(base + "-state.png") + "|" +
+         test::readFileBytes(base + "-depth.png");
+}
+
+TEST(MaxTextureMib, BricksRenderTheBytesOfOneTexture) {
+  const fs::path dir = test::scratchDir();
+  for (const std::string technique : {"--technique silhouette --pipeline paper",
+                                      "--technique silhouette", "--technique rightangle"}) {
+    SCOPED_TRACE(technique);
+    const std::string whole = render(dir, "whole", technique);
+    const std::string bricked = render(dir, "bricked", technique + " --max-texture-mib 1");
+    EXPECT_EQ(whole, bricked);
+  }
+}
+
+TEST(MaxTextureMib, TilesRefuseBricksWithOneLineAndNoFile) {
+  const fs::path dir = test::scratchDir();
+  const fs::path out = dir / "tiles.png";
+  const auto result = test::runVsil(
+      "render gen:spheres:128 --pipeline tiles --max-texture-mib 1 --size 32x32 --out " +
+      out.string());
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_EQ(result.err,
+            "vsil: --pipeline tiles needs the volume in one texture, and this volume takes 11 "
+            "bricks (1x1x11); use --pipeline fast or paper (the same pixels)\n");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(MaxTextureMib, IsCheckedBeforeAnyWork) {
+  for (const std::string value : {"0", "1809"}) {
+    const auto result =
+        test::runVsil("render gen:sphere:16 --max-texture-mib " + value + " --out /dev/null");
+    EXPECT_EQ(result.exitCode, 2) << value;
+    EXPECT_EQ(result.err,
+              "vsil: --max-texture-mib " + value + ": must be between 1 and 1808 MiB\n");
+  }
+}
+
+}  // namespace
+}  // namespace vsil
