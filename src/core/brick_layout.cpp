@@ -145,7 +145,11 @@ BrickLayout BrickLayout::choose(glm::ivec3 dims, std::size_t texelBytes,
                                 std::uint64_t maxTextureBytes, int maxTextureSide,
                                 Bricking bricking) {
   const std::uint64_t maxTexels = maxTextureBytes / std::max<std::size_t>(texelBytes, 1);
-  const glm::ivec3 whole(nextPowerOfTwo(dims.x), nextPowerOfTwo(dims.y), nextPowerOfTwo(dims.z));
+  // At least kMinStorage along an axis: a brick holds its overlap beside its own voxels (a
+  // DICOM series of 4x3x5 samples takes 8³ texels).
+  const glm::ivec3 whole = glm::max(
+      glm::ivec3(nextPowerOfTwo(dims.x), nextPowerOfTwo(dims.y), nextPowerOfTwo(dims.z)),
+      glm::ivec3(kMinStorage));
   const std::uint64_t voxels = std::uint64_t(dims.x) * dims.y * dims.z;
   const std::uint64_t wholeTexels = std::uint64_t(whole.x) * whole.y * whole.z;
   const bool wholeFits =

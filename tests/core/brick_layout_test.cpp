@@ -143,6 +143,15 @@ TEST(BrickLayout, JustOverAPowerOfTwoAddsASmallBrick) {
   EXPECT_TRUE(expectValid(four, below512 / kR16F, kSide));
 }
 
+TEST(BrickLayout, ThinVolumesTakeTheSmallestBrick) {
+  // Axes of fewer than 8 voxels still take 8 texels (a brick holds two of overlap on each side).
+  for (glm::ivec3 dims : {glm::ivec3(4, 3, 5), glm::ivec3(1), glm::ivec3(256, 256, 2)}) {
+    const BrickLayout layout = BrickLayout::choose(dims, kR16F, kLimit, kSide);
+    EXPECT_EQ(layout.size(), 1u) << dimsText(dims);
+    EXPECT_TRUE(expectValid(layout, kLimit / kR16F, kSide)) << dimsText(dims);
+  }
+}
+
 TEST(BrickLayout, PowersOfTwoAndSmallPaddingStayOneBrick) {
   for (glm::ivec3 dims : {glm::ivec3(512), glm::ivec3(256, 256, 128), glm::ivec3(41),
                           glm::ivec3(128, 128, 62), glm::ivec3(256, 256, 130)}) {
@@ -180,12 +189,12 @@ TEST(BrickLayout, SmallTextureLimitsGiveManySmallBricks) {
   EXPECT_THROW(BrickLayout::choose(glm::ivec3(64), kR32F, 1000, kSide), std::invalid_argument);
 }
 
-// Every size from 8 to 2100 along one axis, the others a few sizes: valid, and the texels
+// Every size from 1 to 2100 along one axis, the others a few sizes: valid, and the texels
 // within kMaxWaste of the voxels and overlap stored (or one texture within its padding share).
 TEST(BrickLayout, WasteIsBoundedOverASweepOfSizes) {
   double worst = 0;
   glm::ivec3 worstDims(0);
-  for (int n = 8; n <= 2100; ++n) {
+  for (int n = 1; n <= 2100; ++n) {
     for (glm::ivec3 dims : {glm::ivec3(n), glm::ivec3(n, 300, 19), glm::ivec3(1000, 777, n)}) {
       const BrickLayout layout = BrickLayout::choose(dims, kR16F, kLimit, kSide);
       ASSERT_TRUE(expectValid(layout, kLimit / kR16F, kSide));

@@ -186,5 +186,25 @@ TEST(BrickedVolumeLayout, PaddedVolumeIsBrickedAndTilesGetItInOneTexture) {
   expectSameBytes(fast.frame.depth, tiles.frame.depth, "depth");
 }
 
+// A volume thinner than a brick's overlap along some axis (a DICOM series of 4x3x5 samples)
+// takes one brick of 8³ texels and renders.
+TEST(BrickedVolumeLayout, ThinVolumeRendersInOneSmallBrick) {
+  Volume volume;
+  volume.source = "thin";
+  volume.dims = glm::ivec3(4, 3, 5);
+  volume.allocate(SampleType::UInt8);
+  const std::span<std::uint8_t> samples = volume.samples<std::uint8_t>();
+  for (std::size_t i = 0; i < samples.size(); ++i) samples[i] = std::uint8_t(i % 7 * 40);
+  Renderer renderer(test::sharedGlContext());
+  renderer.setVolume(volume);
+  EXPECT_EQ(renderer.brickCount(), 1u);
+  RenderSettings settings;
+  settings.technique = "silhouette";
+  settings.options = test::isoOptions(findTechnique("silhouette"), 100.0);
+  settings.size = {32, 32};
+  const RenderResult result = renderer.render(settings);
+  EXPECT_GT(cv::countNonZero(result.frame.state), 0) << "the thin volume shows";
+}
+
 }  // namespace
 }  // namespace vsil
