@@ -7,6 +7,10 @@
 // codecs for) and the samples go through the sink with Rescale Slope/Intercept applied (CT in
 // Hounsfield units). Several series in a folder: the one with the most slices, unless
 // LoadOptions::series names another; the others are listed in a warning.
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -92,6 +96,56 @@ StoredType storedTypeOfPixels(const std::string& where, const gdcm::PixelFormat&
   }
 }
 
+// GDCM checks some of its preconditions with assert(), which Debian's build keeps: a malformed
+// file can abort the process inside GDCM (a File Meta Information cut short trips
+// `is.good()` in FileMetaInformation::ReadCompat; libFuzzer found it within 52 inputs:
+// tests/bad_inputs/gdcm_assert.dcm). Each call into GDCM that reads files runs inside one of
+// these: stderr goes to /dev/null (assert's own line included; GDCM's warnings go to
+// GdcmWarnings anyway), and SIGABRT prints vsil's one-line error naming what is read on the
+// real stderr and exits 2 instead of dumping core. Nothing has been written then: a volume is
+// read before any output.
+class GdcmCall {
+ public:
+  explicit GdcmCall(const std::string& where)
+      : message_("vsil: " + where +
+                 ": GDCM failed one of its internal checks reading it (a malformed DICOM "
+                 "file)\n"),
+        stderr_(::dup(STDERR_FILENO)) {
+    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (null >= 0 && stderr_ >= 0) ::dup2(null, STDERR_FILENO);
+    if (null >= 0) ::close(null);
+    active_ = this;
+    struct sigaction action = {};
+    action.sa_handler = &GdcmCall::onAbort;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(SIGABRT, &action, &previous_);
+  }
+  ~GdcmCall() {
+    ::sigaction(SIGABRT, &previous_, nullptr);
+    active_ = nullptr;
+    if (stderr_ >= 0) {
+      ::dup2(stderr_, STDERR_FILENO);
+      ::close(stderr_);
+    }
+  }
+  GdcmCall(const GdcmCall&) = delete;
+  GdcmCall& operator=(const GdcmCall&) = delete;
+
+ private:
+  static void onAbort(int) {  // async-signal-safe: write and _exit only
+    if (active_) {
+      const int fd = active_->stderr_ >= 0 ? active_->stderr_ : STDERR_FILENO;
+      [[maybe_unused]] const auto written =
+          ::write(fd, active_->message_.data(), active_->message_.size());
+    }
+    ::_exit(2);
+  }
+  static inline GdcmCall* active_ = nullptr;
+  const std::string message_;
+  const int stderr_;  // the real stderr while GDCM runs
+  struct sigaction previous_ = {};
+};
+
 struct Slice {
   std::string file;
   double position = 0;  // along the normal
@@ -118,7 +172,12 @@ std::vector<Series> scanSeries(const std::string& where, const std::string& fold
                     "is a folder without files (a DICOM series is read from a folder of "
                     "slices)");
   }
-  if (!scanner.Scan(files)) throwInputError(where, "GDCM cannot scan its files");
+  bool scanned = false;
+  {
+    const GdcmCall call(where);
+    scanned = scanner.Scan(files);
+  }
+  if (!scanned) throwInputError(where, "GDCM cannot scan its files");
   std::map<std::string, Series> byUid;
   for (const std::string& file : files) {
     if (!scanner.IsKey(file.c_str())) continue;  // not DICOM
@@ -318,7 +377,12 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
   // The first slice's full header: pixel format, spacing, rescale, transfer syntax.
   gdcm::ImageReader first;
   first.SetFileName(slices.front().file.c_str());
-  if (!first.Read()) {
+  bool firstRead = false;
+  {
+    const GdcmCall call(path);
+    firstRead = first.Read();
+  }
+  if (!firstRead) {
     throwInputError(path, "GDCM cannot read slice " + fileLabel(slices.front().file));
   }
   const gdcm::Image& firstImage = first.GetImage();
@@ -376,7 +440,12 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
     gdcm::ImageReader reader;
     reader.SetFileName(slice.file.c_str());
     gdcmWarnings.incompletePixelData();  // forget what came before this slice
-    if (!reader.Read()) throwInputError(path, "GDCM cannot read " + where);
+    bool read = false;
+    {
+      const GdcmCall call(path);
+      read = reader.Read();
+    }
+    if (!read) throwInputError(path, "GDCM cannot read " + where);
     const gdcm::Image& image = reader.GetImage();
     if (int(image.GetColumns()) != dims.x || int(image.GetRows()) != dims.y ||
         storedTypeOfPixels(path + ": " + where, image.GetPixelFormat()) != type ||
@@ -393,7 +462,12 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
       throwInputError(path, where + ": the file ends inside its pixel data (truncated)");
     }
     buffer.resize(std::size_t(sliceBytes));
-    if (!image.GetBuffer(buffer.data())) {
+    bool decoded = false;
+    {
+      const GdcmCall call(path);
+      decoded = image.GetBuffer(buffer.data());
+    }
+    if (!decoded) {
       throwInputError(path, "GDCM cannot decode the pixel data of " + where + " (" +
                                 transferSyntaxName(image.GetTransferSyntax()) + ")");
     }

@@ -190,3 +190,10 @@ dicom_series('dicom_mixed_sizes', rows=[3, 3, 5], columns=[4, 4, 4])
 dicom_series('dicom_huge', rows=65535, columns=65535, pixels=bytes(8))
 dicom_series('dicom_rgb', rgb=True)
 dicom_series('dicom_no_normal', orientation=(1.0, 0.0, 0.0, 1.0, 0.0, 0.0))
+# Found by libFuzzer (target dicom): a slice of tests/io/dicom's ct_series with three bytes
+# changed trips an assert() inside GDCM's File Meta Information reader, which aborts.
+slice_bytes = bytearray(open(os.path.join(here, '..', 'io', 'dicom', 'ct_series', 'IM0000'), 'rb').read())
+for offset, value in ((166, 0x30), (679, 0x08), (870, 0x27)):
+    slice_bytes[offset] = value
+os.makedirs(os.path.join(here, 'dicom_gdcm_assert'), exist_ok=True)
+write('dicom_gdcm_assert/slice.dcm', bytes(slice_bytes))
