@@ -3,10 +3,7 @@
 // and reporting (rows, text, plot). runAnimateTable at the end calls them.
 #include "tables/animate_table.h"
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <stdlib.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,11 +16,10 @@
 #include <opencv2/core.hpp>
 
 #include "core/image_file.h"
+#include "harness/child_run.h"
 #include "harness/text_table.h"
 #include "slicing/gl_context.h"
 #include "tables/nk3_table.h"
-
-extern char** environ;
 
 namespace vsil::bench {
 namespace {
@@ -60,50 +56,6 @@ class ScratchFolder {
  private:
   fs::path path_;
 };
-
-struct ProcessRun {
-  int exitCode = -1;
-  double seconds = 0;
-  std::string error;  // the first line of its stderr when it failed
-};
-
-// Runs `vsil ARGS` (this very binary), stdout to /dev/null, stderr to `errFile`; waits.
-ProcessRun runVsil(const std::vector<std::string>& args, const fs::path& errFile) {
-  const std::string binary = fs::read_symlink("/proc/self/exe").string();
-  std::vector<std::string> all = {binary};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0644);
-  ProcessRun run;
-  const auto start = Clock::now();
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  int status = 0;
-  if (spawned == 0 && ::waitpid(pid, &status, 0) == pid) {
-    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  }
-  run.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  if (run.exitCode != 0) {
-    run.error = "exit " + std::to_string(run.exitCode);
-    if (FILE* in = std::fopen(errFile.c_str(), "r")) {
-      char line[512] = "";
-      if (std::fgets(line, sizeof line, in)) {
-        std::string text(line);
-        if (!text.empty() && text.back() == '\n') text.pop_back();
-        run.error += ": " + text;
-      }
-      std::fclose(in);
-    }
-  }
-  return run;
-}
 
 struct AnimateCase {
   std::string dataset;
@@ -172,7 +124,7 @@ AnimateCase measureCase(const std::string& dataset, const fs::path& file, double
       sizeText,  "--view",      kView,     "--frames",  std::to_string(kFrames),
       "--orbit", "360",         "--quiet", "--out-dir", animated.string()};
   animateArgs.insert(animateArgs.end(), glChoice.begin(), glChoice.end());
-  const ProcessRun animate = runVsil(animateArgs, errFile);
+  const ChildRun animate = runVsilChild(animateArgs, errFile);
   result.animateSeconds = animate.seconds;
   if (animate.exitCode != 0) {
     result.problems.push_back("vsil animate: " + animate.error);
@@ -204,7 +156,7 @@ AnimateCase measureCase(const std::string& dataset, const fs::path& file, double
                                            "--view", view[0].dump() + "," + view[1].dump(),
                                            "--out",  (rendered / frameName(i)).string()};
     renderArgs.insert(renderArgs.end(), glChoice.begin(), glChoice.end());
-    const ProcessRun render = runVsil(renderArgs, errFile);
+    const ChildRun render = runVsilChild(renderArgs, errFile);
     if (render.exitCode != 0) {
       result.problems.push_back("vsil render (frame " + std::to_string(i) + "): " + render.error);
       return result;

@@ -2,11 +2,7 @@
 // peak resident memory, remove the file; then the rows, the targets and the text.
 #include "tables/large_table.h"
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <stdlib.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,9 +16,8 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/format.h"
+#include "harness/child_run.h"
 #include "harness/text_table.h"
-
-extern char** environ;
 
 namespace vsil::bench {
 namespace {
@@ -110,54 +105,6 @@ void writeVolume(const fs::path& path, glm::ivec3 dims, Progress& progress) {
   if (!out) throw std::runtime_error("cannot write " + path.string() + " (disk full?)");
 }
 
-struct ProcessRun {
-  int exitCode = -1;
-  double seconds = 0;
-  double peakResidentBytes = 0;
-  std::string error;
-};
-
-// Runs `vsil ARGS` (this binary), stdout to /dev/null, stderr to `errFile`; waits, with its
-// resource usage (peak resident set).
-ProcessRun runVsil(const std::vector<std::string>& args, const fs::path& errFile) {
-  const std::string binary = fs::read_symlink("/proc/self/exe").string();
-  std::vector<std::string> all = {binary};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
-                                   0644);
-  ProcessRun run;
-  const auto start = Clock::now();
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  int status = 0;
-  struct rusage usage {};
-  if (spawned == 0 && ::wait4(pid, &status, 0, &usage) == pid) {
-    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    run.peakResidentBytes = double(usage.ru_maxrss) * 1024.0;  // Linux: KiB
-  }
-  run.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  if (run.exitCode != 0) {
-    run.error = "exit " + std::to_string(run.exitCode);
-    if (FILE* in = std::fopen(errFile.c_str(), "r")) {
-      char line[512] = "";
-      if (std::fgets(line, sizeof line, in)) {
-        std::string text(line);
-        if (!text.empty() && text.back() == '\n') text.pop_back();
-        run.error += ": " + text;
-      }
-      std::fclose(in);
-    }
-  }
-  return run;
-}
-
 struct LargeCase {
   LargeVolume volume;
   int size = 0;
@@ -197,7 +144,7 @@ LargeCase measureCase(const LargeVolume& volume, int size, int frames, const gl:
   const std::vector<std::string> glChoice = glArgs(gl);
   args.insert(args.end(), glChoice.begin(), glChoice.end());
   progress.step("vsil animate");
-  const ProcessRun run = runVsil(args, scratch.path() / "stderr");
+  const ChildRun run = runVsilChild(args, scratch.path() / "stderr");
   result.peakBytes = run.peakResidentBytes;
   if (run.exitCode != 0) {
     result.problem = "vsil animate: " + run.error;

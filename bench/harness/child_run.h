@@ -1,0 +1,20 @@
+#pragma once
+// Runs this very binary as a child process, for the tables that time whole commands
+// (`vsil animate`, the large table's renders) as a user runs them.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace vsil::bench {
+
+struct ChildRun {
+  int exitCode = -1;  // 128 + the signal when one ended it
+  double seconds = 0;
+  double peakResidentBytes = 0;  // the child's peak resident set (getrusage's ru_maxrss)
+  std::string error;             // "exit N: <the first line of its stderr>" when it failed
+};
+
+// Runs `vsil ARGS`, stdout to /dev/null, stderr to `errFile`, and waits for it.
+ChildRun runVsilChild(const std::vector<std::string>& args, const std::filesystem::path& errFile);
+
+}  // namespace vsil::bench
