@@ -29,13 +29,13 @@ using test::GlTest;
 // texels of R32F or smaller): 100 bricks (4·5·5, smaller ones at the ends).
 constexpr std::uint64_t kSmallBrickBytes = 32 * 32 * 32 * 4;
 
-struct Case {
+struct TechniqueCase {
   std::string name;
   std::string technique;
   OptionValues options;
 };
 
-std::vector<Case> cases() {
+std::vector<TechniqueCase> techniqueCases() {
   auto iso = [](const std::string& technique) {
     return test::isoOptions(findTechnique(technique), 0.5);
   };
@@ -101,7 +101,7 @@ TEST_F(BrickedVolume, ManyBricksRenderTheBytesOfOne) {
   ASSERT_GE(bricked.brickCount(), 27u);
   for (const ViewCase& view :
        {ViewCase{"perspective", 23.0, 37.0, false}, ViewCase{"orthographic", -61.0, -17.0, true}}) {
-    for (const Case& c : cases()) {
+    for (const TechniqueCase& c : techniqueCases()) {
       SCOPED_TRACE(c.name + ", " + view.name);
       RenderSettings settings;
       settings.technique = c.technique;
