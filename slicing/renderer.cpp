@@ -135,9 +135,8 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   const OptionReader options(info.options, settings.options, impl_->derivedDefaults);
   // Bricks the frame cannot follow: the volume in one texture when it fits (else the
   // technique refuses). It stays so for later frames (the same bytes either way).
-  if (impl_->volumeTexture->brickCount() > 1 &&
-      impl_->bricking == BrickLayout::Bricking::Compact && info.needsOneTexture &&
-      info.needsOneTexture(options)) {
+  if (impl_->volumeTexture->brickCount() > 1 && impl_->bricking == BrickLayout::Bricking::Compact &&
+      info.needsOneTexture && info.needsOneTexture(options)) {
     impl_->bricking = BrickLayout::Bricking::OneIfItFits;  // asked once per volume
     if (fitsOneTexture(impl_->dims, impl_->volumeTexture->internalFormat(),
                        impl_->maxTextureBytes)) {

@@ -46,10 +46,10 @@ class VolumeTexture {
  public:
   // `slabBytes`: about how many bytes of texels each converted slab holds (tests make it small
   // to cross many slab borders).
-  explicit VolumeTexture(
-      const Volume& volume, std::uint64_t maxTextureBytes = limits::kMaxTextureBytes,
-      std::size_t slabBytes = limits::kUploadSlabBytes,
-      BrickLayout::Bricking bricking = BrickLayout::Bricking::Compact);
+  explicit VolumeTexture(const Volume& volume,
+                         std::uint64_t maxTextureBytes = limits::kMaxTextureBytes,
+                         std::size_t slabBytes = limits::kUploadSlabBytes,
+                         BrickLayout::Bricking bricking = BrickLayout::Bricking::Compact);
   const BrickLayout& layout() const { return layout_; }
   std::size_t brickCount() const { return textures_.size(); }
   GLuint brickTexture(std::size_t brick) const { return textures_[brick].id(); }

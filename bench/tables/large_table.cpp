@@ -15,8 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/format.h"
 #include "harness/child_run.h"
+#include "harness/format.h"
 #include "harness/text_table.h"
 
 namespace vsil::bench {

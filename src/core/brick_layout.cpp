@@ -103,10 +103,10 @@ std::vector<AxisBricks> axisOptions(int dim, int maxSide) {
     bool beaten = false;
     for (std::size_t j = 0; j < options.size() && !beaten; ++j) {
       const AxisBricks& b = options[j];
-      const bool noWorse = b.count() <= a.count() && b.texels() <= a.texels() &&
-                           b.largest() <= a.largest();
-      const bool better = b.count() < a.count() || b.texels() < a.texels() ||
-                          b.largest() < a.largest();
+      const bool noWorse =
+          b.count() <= a.count() && b.texels() <= a.texels() && b.largest() <= a.largest();
+      const bool better =
+          b.count() < a.count() || b.texels() < a.texels() || b.largest() < a.largest();
       // Equal options: keep the first.
       beaten = noWorse && (better || j < i);
     }
@@ -147,9 +147,9 @@ BrickLayout BrickLayout::choose(glm::ivec3 dims, std::size_t texelBytes,
   const std::uint64_t maxTexels = maxTextureBytes / std::max<std::size_t>(texelBytes, 1);
   // At least kMinStorage along an axis: a brick holds its overlap beside its own voxels (a
   // DICOM series of 4x3x5 samples takes 8³ texels).
-  const glm::ivec3 whole = glm::max(
-      glm::ivec3(nextPowerOfTwo(dims.x), nextPowerOfTwo(dims.y), nextPowerOfTwo(dims.z)),
-      glm::ivec3(kMinStorage));
+  const glm::ivec3 whole =
+      glm::max(glm::ivec3(nextPowerOfTwo(dims.x), nextPowerOfTwo(dims.y), nextPowerOfTwo(dims.z)),
+               glm::ivec3(kMinStorage));
   const std::uint64_t voxels = std::uint64_t(dims.x) * dims.y * dims.z;
   const std::uint64_t wholeTexels = std::uint64_t(whole.x) * whole.y * whole.z;
   const bool wholeFits =
@@ -157,7 +157,8 @@ BrickLayout BrickLayout::choose(glm::ivec3 dims, std::size_t texelBytes,
   const double wholeStored = storedSide(dims.x, 1) * storedSide(dims.y, 1) * storedSide(dims.z, 1);
   if (wholeFits &&
       (bricking == Bricking::OneIfItFits || double(wholeTexels) <= kMaxWaste * wholeStored ||
-       double((wholeTexels - voxels) * texelBytes) <= kPaddingShareOfLimit * double(maxTextureBytes))) {
+       double((wholeTexels - voxels) * texelBytes) <=
+           kPaddingShareOfLimit * double(maxTextureBytes))) {
     return withStorage(dims, whole);
   }
   std::array<std::vector<AxisBricks>, 3> options;
@@ -177,9 +178,8 @@ BrickLayout BrickLayout::choose(glm::ivec3 dims, std::size_t texelBytes,
         if (std::uint64_t(x.largest()) * y.largest() * z.largest() > maxTexels) continue;
         const double bricks = double(x.count() * y.count() * z.count());
         const double texels = double(x.texels()) * double(y.texels()) * double(z.texels());
-        const double stored =
-            storedSide(dims.x, x.count()) * storedSide(dims.y, y.count()) *
-            storedSide(dims.z, z.count());
+        const double stored = storedSide(dims.x, x.count()) * storedSide(dims.y, y.count()) *
+                              storedSide(dims.z, z.count());
         const bool within = texels <= kMaxWaste * stored;
         bool better = false;
         if (!best[0] || within != bestWithin) {

@@ -51,12 +51,12 @@ class BrickLayout {
 
   // One brick (each axis padded to a power of two) when that texture fits in
   // `maxTextureBytes` and `maxTextureSide` and its padding is within kMaxWaste of the voxels or
-  // at most kPaddingShareOfLimit of `maxTextureBytes` (or, with Bricking::OneIfItFits, whenever it fits: for what cannot
-  // follow bricks, the tiles march); else, among the layouts whose bricks each fit, the fewest
-  // bricks whose texels are within kMaxWaste of the voxels and overlap they store (storedTexels; each brick
-  // costs a draw per slice piece), then the fewest texels. Along an axis the bricks are one
-  // power of two, then smaller ones at the end: 300 voxels take 256 + 64 texels, 400 take
-  // 256 + 128 + 32. Throws std::invalid_argument when not even 8³ texels fit.
+  // at most kPaddingShareOfLimit of `maxTextureBytes` (or, with Bricking::OneIfItFits, whenever it
+  // fits: for what cannot follow bricks, the tiles march); else, among the layouts whose bricks
+  // each fit, the fewest bricks whose texels are within kMaxWaste of the voxels and overlap they
+  // store (storedTexels; each brick costs a draw per slice piece), then the fewest texels. Along an
+  // axis the bricks are one power of two, then smaller ones at the end: 300 voxels take 256 + 64
+  // texels, 400 take 256 + 128 + 32. Throws std::invalid_argument when not even 8³ texels fit.
   enum class Bricking { Compact, OneIfItFits };
   static BrickLayout choose(glm::ivec3 dims, std::size_t texelBytes, std::uint64_t maxTextureBytes,
                             int maxTextureSide, Bricking bricking = Bricking::Compact);

@@ -45,9 +45,9 @@ std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample, boo
   std::uint64_t texels = voxels;
   if (voxels > 0) {
     try {
-      texels = BrickLayout::choose(dims, textureBytes, maxTextureBytes, kMaxVolumeSide,
-                                   oneTexture ? BrickLayout::Bricking::OneIfItFits
-                                              : BrickLayout::Bricking::Compact)
+      texels = BrickLayout::choose(
+                   dims, textureBytes, maxTextureBytes, kMaxVolumeSide,
+                   oneTexture ? BrickLayout::Bricking::OneIfItFits : BrickLayout::Bricking::Compact)
                    .texels();
     } catch (const std::invalid_argument&) {
       // No layout: the upload refuses it with its own error; count the voxels.

@@ -118,10 +118,10 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
   }
   const bool gradients = findTechnique(settings.technique).usesGradients;
   const bool oneTexture = needsOneTexture(settings.technique, settings.options);
-  const std::uint64_t bytes = limits::renderVolumeBytes(volume.dims, sampleTypeSize(volume.type()),
-                                                        gradients, limits.maxTextureBytes,
-                                                        oneTexture) +
-                              limits::renderImageBytes(settings.size, maxLineWidth(request.postfx));
+  const std::uint64_t bytes =
+      limits::renderVolumeBytes(volume.dims, sampleTypeSize(volume.type()), gradients,
+                                limits.maxTextureBytes, oneTexture) +
+      limits::renderImageBytes(settings.size, maxLineWidth(request.postfx));
   limits::checkMemory("rendering " + volume.source + " at --size " +
                           std::to_string(settings.size.x) + "x" + std::to_string(settings.size.y),
                       bytes, limits.maxBytes);
@@ -236,8 +236,7 @@ LoadOptions RenderJob::loadOptionsFor(const RenderRequest& request, LoadOptions 
   const glm::ivec2 size = request.settings.size;
   const std::uint64_t imageBytes = limits::renderImageBytes(size, maxLineWidth(request.postfx));
   const bool gradients = findTechnique(request.settings.technique).usesGradients;
-  const bool oneTexture =
-      needsOneTexture(request.settings.technique, request.settings.options);
+  const bool oneTexture = needsOneTexture(request.settings.technique, request.settings.options);
   const std::uint64_t maxTextureBytes = load.limits.maxTextureBytes;
   load.limits.taskBytes = [imageBytes, gradients, maxTextureBytes, oneTexture](glm::ivec3 dims,
                                                                                SampleType type) {

@@ -36,8 +36,8 @@ std::vector<int> sizesAlong(const BrickLayout& layout, int a) {
   for (int i = 0; i < counts[a]; ++i) {
     glm::ivec3 index(0);
     index[a] = i;
-    const auto n = (std::size_t(index.z) * counts.y + std::size_t(index.y)) * counts.x +
-                   std::size_t(index.x);
+    const auto n =
+        (std::size_t(index.z) * counts.y + std::size_t(index.y)) * counts.x + std::size_t(index.x);
     sizes.push_back(layout.bricks()[n].size[a]);
   }
   return sizes;
@@ -61,19 +61,20 @@ bool expectValid(const BrickLayout& layout, std::uint64_t maxTexels, int maxSide
       // Neighbours along the axis share their border; the ends are unbounded.
       const bool first = brick.index[a] == 0, last = brick.index[a] + 1 == counts[a];
       if (first != (brick.low[a] <= -1e29) || last != (brick.high[a] >= 1e29)) {
-        ADD_FAILURE() << where << ": brick " << dimsText(brick.index) << " axis " << a
-                      << " ends " << brick.low[a] << ", " << brick.high[a];
+        ADD_FAILURE() << where << ": brick " << dimsText(brick.index) << " axis " << a << " ends "
+                      << brick.low[a] << ", " << brick.high[a];
         return false;
       }
       // The voxels a sample in [low, high] reads (trilinear taps, and those of the central
       // differences one voxel away), within the volume.
-      const double low = std::max(brick.low[a], -0.5), high = std::min(brick.high[a], dims[a] - 0.5);
+      const double low = std::max(brick.low[a], -0.5),
+                   high = std::min(brick.high[a], dims[a] - 0.5);
       const int needFirst = std::max(0, int(std::floor(low)) - 1);
       const int needLast = std::min(dims[a] - 1, int(std::floor(high)) + 2);
       if (needFirst < brick.origin[a] || needLast > brick.origin[a] + size - 1) {
-        ADD_FAILURE() << where << ": brick " << dimsText(brick.index) << " axis " << a
-                      << " owns [" << low << ", " << high << "] and needs voxels " << needFirst
-                      << ".." << needLast << " but stores " << brick.origin[a] << ".."
+        ADD_FAILURE() << where << ": brick " << dimsText(brick.index) << " axis " << a << " owns ["
+                      << low << ", " << high << "] and needs voxels " << needFirst << ".."
+                      << needLast << " but stores " << brick.origin[a] << ".."
                       << brick.origin[a] + size - 1;
         return false;
       }
@@ -85,9 +86,9 @@ bool expectValid(const BrickLayout& layout, std::uint64_t maxTexels, int maxSide
       if (b.index[a] + 1 >= counts[a]) continue;
       glm::ivec3 next = b.index;
       ++next[a];
-      const Brick& c = layout.bricks()[(std::size_t(next.z) * counts.y + std::size_t(next.y)) *
-                                           counts.x +
-                                       std::size_t(next.x)];
+      const Brick& c =
+          layout.bricks()[(std::size_t(next.z) * counts.y + std::size_t(next.y)) * counts.x +
+                          std::size_t(next.x)];
       if (b.high[a] != c.low[a]) {
         ADD_FAILURE() << where << ": bricks " << dimsText(b.index) << " and " << dimsText(c.index)
                       << " meet at " << b.high[a] << " and " << c.low[a];
@@ -105,9 +106,8 @@ bool withinWaste(const BrickLayout& layout, std::size_t texelBytes, std::uint64_
   const std::uint64_t voxels = std::uint64_t(d.x) * d.y * d.z;
   const double ratio = double(layout.texels()) / layout.storedTexels();
   if (ratio <= BrickLayout::kMaxWaste) return true;
-  return layout.size() == 1 &&
-         double((layout.texels() - voxels) * texelBytes) <=
-             BrickLayout::kPaddingShareOfLimit * double(limit);
+  return layout.size() == 1 && double((layout.texels() - voxels) * texelBytes) <=
+                                   BrickLayout::kPaddingShareOfLimit * double(limit);
 }
 
 TEST(BrickLayout, ThreeHundredCubedIsOneTextureUnlessItsPaddingIsTooLarge) {
@@ -199,8 +199,8 @@ TEST(BrickLayout, WasteIsBoundedOverASweepOfSizes) {
       const BrickLayout layout = BrickLayout::choose(dims, kR16F, kLimit, kSide);
       ASSERT_TRUE(expectValid(layout, kLimit / kR16F, kSide));
       ASSERT_TRUE(withinWaste(layout, kR16F, kLimit))
-          << dimsText(dims) << ": " << layout.texels() << " texels for "
-          << layout.storedTexels() << " stored, " << layout.size() << " bricks";
+          << dimsText(dims) << ": " << layout.texels() << " texels for " << layout.storedTexels()
+          << " stored, " << layout.size() << " bricks";
       if (layout.size() > 1) {
         const double ratio = double(layout.texels()) / layout.storedTexels();
         if (ratio > worst) worst = ratio, worstDims = dims;

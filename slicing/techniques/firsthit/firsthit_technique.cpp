@@ -10,7 +10,9 @@ TechniqueInfo firstHitTechniqueInfo() {
           {isoOption()},
           FrameOutputs{.state = false, .color = true, .depth = true},
           [] { return std::make_unique<FirstHitTechnique>(); },
-          /*usesGradients=*/false, /*checkValues=*/{}, /*needsOneTexture=*/{}};
+          /*usesGradients=*/false,
+          /*checkValues=*/{},
+          /*needsOneTexture=*/{}};
 }
 
 BrickOccupancy FirstHitTechnique::occupancy(const FrameContext& frame) const {

@@ -36,15 +36,14 @@ TechniqueInfo illustrateTechniqueInfo() {
   return {"illustrate",
           "Ebert–Rheingans volume illustration: front-to-back compositing with "
           "boundary, silhouette, fading, sketch, distance, halo and tone effects",
-          illustrateOptions(),
-          FrameOutputs{.state = false, .color = true, .depth = false},
+          illustrateOptions(), FrameOutputs{.state = false, .color = true, .depth = false},
           [] { return std::make_unique<IllustrateTechnique>(); },
           /*usesGradients=*/true,
           /*checkValues=*/{},
           // The halo taps reach farther than a brick's overlap.
-          /*needsOneTexture=*/[](const OptionReader& options) {
-            return illustrationFromOptions(illustrateOptions(), options)
-                .effects.has(Effect::Halo);
+          /*needsOneTexture=*/
+          [](const OptionReader& options) {
+            return illustrationFromOptions(illustrateOptions(), options).effects.has(Effect::Halo);
           }};
 }
 
