@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
+#include <type_traits>
 
 #include "core/error.h"
 
@@ -78,6 +80,34 @@ std::uint64_t convertWideIntegers(float* out, const std::uint8_t* in, std::size_
   return inexact;
 }
 
+// Calls f(T{}) with the C++ type T that holds one stored sample of `type`.
+template <typename F>
+decltype(auto) withStoredCType(StoredType type, F&& f) {
+  switch (type) {
+    case StoredType::UInt8:
+      return f(std::uint8_t{});
+    case StoredType::Int8:
+      return f(std::int8_t{});
+    case StoredType::UInt16:
+      return f(std::uint16_t{});
+    case StoredType::Int16:
+      return f(std::int16_t{});
+    case StoredType::Int32:
+      return f(std::int32_t{});
+    case StoredType::UInt32:
+      return f(std::uint32_t{});
+    case StoredType::Int64:
+      return f(std::int64_t{});
+    case StoredType::UInt64:
+      return f(std::uint64_t{});
+    case StoredType::Float32:
+      return f(float{});
+    case StoredType::Float64:
+      return f(double{});
+  }
+  throw std::logic_error("withStoredCType: not a StoredType");
+}
+
 }  // namespace
 
 SampleSink::SampleSink(const std::string& where, Volume& volume, const VolumeSubset& subset,
@@ -132,49 +162,20 @@ template <typename Out>
 void SampleSink::decode(Out* out, const std::uint8_t* in, std::size_t inStep, std::size_t count,
                         std::uint64_t firstSample) {
   if constexpr (std::is_same_v<Out, float>) {
-    if (!rescale_.identity()) {
-      switch (fileType_) {
-        case StoredType::UInt8:
-          return decodeViaDouble<std::uint8_t>(out, in, inStep, count, firstSample);
-        case StoredType::Int8:
-          return decodeViaDouble<std::int8_t>(out, in, inStep, count, firstSample);
-        case StoredType::UInt16:
-          return decodeViaDouble<std::uint16_t>(out, in, inStep, count, firstSample);
-        case StoredType::Int16:
-          return decodeViaDouble<std::int16_t>(out, in, inStep, count, firstSample);
-        case StoredType::Int32:
-          return decodeViaDouble<std::int32_t>(out, in, inStep, count, firstSample);
-        case StoredType::UInt32:
-          return decodeViaDouble<std::uint32_t>(out, in, inStep, count, firstSample);
-        case StoredType::Int64:
-          return decodeViaDouble<std::int64_t>(out, in, inStep, count, firstSample);
-        case StoredType::UInt64:
-          return decodeViaDouble<std::uint64_t>(out, in, inStep, count, firstSample);
-        case StoredType::Float32:
-          return decodeViaDouble<float>(out, in, inStep, count, firstSample);
-        case StoredType::Float64:
-          return decodeViaDouble<double>(out, in, inStep, count, firstSample);
-      }
-    }
-    if (fileType_ == StoredType::Float64) {
-      return decodeViaDouble<double>(out, in, inStep, count, firstSample);
+    if (!rescale_.identity() || fileType_ == StoredType::Float64) {
+      return withStoredCType(fileType_, [&](auto sample) {
+        decodeViaDouble<decltype(sample)>(out, in, inStep, count, firstSample);
+      });
     }
     if (isWideInteger(fileType_)) {
-      std::uint64_t inexact = 0;
-      switch (fileType_) {
-        case StoredType::Int32:
-          inexact = convertWideIntegers<std::int32_t>(out, in, inStep, count, swap_);
-          break;
-        case StoredType::UInt32:
-          inexact = convertWideIntegers<std::uint32_t>(out, in, inStep, count, swap_);
-          break;
-        case StoredType::Int64:
-          inexact = convertWideIntegers<std::int64_t>(out, in, inStep, count, swap_);
-          break;
-        default:
-          inexact = convertWideIntegers<std::uint64_t>(out, in, inStep, count, swap_);
-          break;
-      }
+      const std::uint64_t inexact = withStoredCType(fileType_, [&](auto sample) -> std::uint64_t {
+        using Integer = decltype(sample);
+        if constexpr (std::is_integral_v<Integer> && sizeof(Integer) >= 4) {
+          return convertWideIntegers<Integer>(out, in, inStep, count, swap_);
+        } else {
+          throw std::logic_error("SampleSink: not a wide integer type");
+        }
+      });
       if (inexact) inexact_ += inexact;
       return;
     }
