@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <memory>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 #include "core/error.h"
@@ -171,33 +172,14 @@ glm::dmat4 toGlm(const nifti_dmat44& m) {
 
 // "RAS"-style letters for the positive direction of each index axis (nifti's L2R is +x = R).
 std::string axesOf(const nifti_dmat44& m) {
+  // The letter each of nifticlib's codes names, by code (NIFTI_L2R = 1 .. NIFTI_S2I = 6).
+  static_assert(NIFTI_L2R == 1 && NIFTI_R2L == 2 && NIFTI_P2A == 3 && NIFTI_A2P == 4 &&
+                NIFTI_I2S == 5 && NIFTI_S2I == 6);
+  constexpr std::string_view kLetters = "?RLAPSI";
   int codes[3] = {0, 0, 0};
   nifti_dmat44_to_orientation(m, &codes[0], &codes[1], &codes[2]);
   std::string axes;
-  for (int code : codes) {
-    switch (code) {
-      case NIFTI_L2R:
-        axes += 'R';
-        break;
-      case NIFTI_R2L:
-        axes += 'L';
-        break;
-      case NIFTI_P2A:
-        axes += 'A';
-        break;
-      case NIFTI_A2P:
-        axes += 'P';
-        break;
-      case NIFTI_I2S:
-        axes += 'S';
-        break;
-      case NIFTI_S2I:
-        axes += 'I';
-        break;
-      default:
-        axes += '?';
-    }
-  }
+  for (int code : codes) axes += code >= 1 && code <= 6 ? kLetters[std::size_t(code)] : '?';
   return axes;
 }
 
