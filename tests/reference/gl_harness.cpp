@@ -9,4 +9,10 @@ gl::GlContext& sharedGlContext() {
   return context;
 }
 
+RenderResult renderOnce(const Volume& volume, const RenderSettings& settings) {
+  Renderer renderer(sharedGlContext());
+  renderer.setVolume(volume);
+  return renderer.render(settings);
+}
+
 }  // namespace vsil::test

@@ -4,12 +4,17 @@
 // own targets and must leave no GL error.
 #include <gtest/gtest.h>
 
+#include "core/volume.h"
 #include "slicing/gl.h"
 #include "slicing/gl_context.h"
+#include "slicing/renderer.h"
 
 namespace vsil::test {
 
 gl::GlContext& sharedGlContext();
+
+// One frame of `volume` by a fresh Renderer on the shared context.
+RenderResult renderOnce(const Volume& volume, const RenderSettings& settings);
 
 class GlTest : public ::testing::Test {
  protected:

@@ -68,12 +68,6 @@ RenderSettings demipSettings(OptionValues options, double azimuth = 30, double e
   return settings;
 }
 
-RenderResult renderWithMap(const Volume& volume, const RenderSettings& settings) {
-  Renderer renderer(test::sharedGlContext());
-  renderer.setVolume(volume);
-  return renderer.render(settings);
-}
-
 // The largest channel difference over the pixels both frames show, and how many there are.
 struct ShownDifference {
   double largest = 0;
@@ -142,7 +136,7 @@ TEST_F(ColourSphereGl, PngMapMatchesTheCpuReference) {
     options["sphere-weight"] = 0.6;
     RenderSettings settings = demipSettings(options, c.azimuth);
     settings.camera.orthographic = c.orthographic;
-    const RenderResult gl = renderWithMap(volume, settings);
+    const RenderResult gl = test::renderOnce(volume, settings);
     const reference::ReferenceFrame cpu =
         reference::findReference("demip").render(volume, settings, 1e-4f);
     // Pixels whose first hit lies on another slice than the reference's are left out and
@@ -182,11 +176,11 @@ TEST_F(ColourSphereGl, AUniformPngGivesThatColoursBlend) {
   const Volume volume = generateVolume("blobs:48");
   // With no depth weighting demip's colour is mip's grey·(1 − w) + sphere·w.
   const double w = 0.4;
-  const RenderResult demip = renderWithMap(
+  const RenderResult demip = test::renderOnce(
       volume, demipSettings({{"sphere-map", map}, {"sphere-weight", w}, {"depth-weight", 0.0}}));
   RenderSettings mipSettings = demipSettings({});
   mipSettings.technique = "mip";
-  const RenderResult mip = renderWithMap(volume, mipSettings);
+  const RenderResult mip = test::renderOnce(volume, mipSettings);
   cv::Mat4f expected = mip.frame.color.clone();
   for (auto it = expected.begin(); it != expected.end(); ++it) {
     if (!((*it)[3] > 0)) continue;
@@ -206,9 +200,9 @@ TEST_F(ColourSphereGl, APngDrawnFromTheRedBlueFormulaLooksLikeRedBlue) {
     OptionValues options = turn;
     options["sphere-weight"] = 1.0;  // the sphere's colour alone
     options["sphere-map"] = std::string("red-blue");
-    const RenderResult builtin = renderWithMap(volume, demipSettings(options, 50));
+    const RenderResult builtin = test::renderOnce(volume, demipSettings(options, 50));
     options["sphere-map"] = map;
-    const RenderResult png = renderWithMap(volume, demipSettings(options, 50));
+    const RenderResult png = test::renderOnce(volume, demipSettings(options, 50));
     const ShownDifference d = compareShown(builtin.frame.color, png.frame.color);
     std::cout << "[ info ] " << d.shown << " pixels, largest difference " << d.largest * 255
               << "/255\n";
@@ -226,9 +220,9 @@ TEST_F(ColourSphereGl, TheLegendDrawsThePngMapAsUsed) {
   });
   const Volume volume = generateVolume("blobs:48");
   OptionValues options = {{"legend", true}, {"sphere-map", map}};
-  const RenderResult plain = renderWithMap(volume, demipSettings(options));
+  const RenderResult plain = test::renderOnce(volume, demipSettings(options));
   options["sphere-rotate"] = std::string("180,0");
-  const RenderResult turned = renderWithMap(volume, demipSettings(options));
+  const RenderResult turned = test::renderOnce(volume, demipSettings(options));
   const int radius = 96 / 10, margin = radius / 4;
   const cv::Point centre(112 - margin - radius - 1, 96 - margin - radius - 1);
   EXPECT_EQ(plain.frame.color(centre), cv::Vec4f(1, 1, 1, 1)) << "the cross";

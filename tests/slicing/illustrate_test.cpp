@@ -120,23 +120,16 @@ TEST_P(IllustrateMatchesReference, EveryChannelWithin2Of255) {
 INSTANTIATE_TEST_SUITE_P(Effects, IllustrateMatchesReference, ::testing::ValuesIn(kEffectCases),
                          [](const auto& info) { return info.param.name; });
 
-class IllustrateTest : public test::GlTest {
- protected:
-  RenderResult render(const Volume& volume, const RenderSettings& settings) {
-    Renderer renderer(test::sharedGlContext());
-    renderer.setVolume(volume);
-    return renderer.render(settings);
-  }
-};
+using IllustrateTest = test::GlTest;
 
 TEST_F(IllustrateTest, NeutralParametersGiveExactlyThePlainComposite) {
   const Volume volume = generateVolume("sphere:48");
-  const RenderResult plain = render(volume, illustrateSettings("", "k_os=0.3"));
+  const RenderResult plain = test::renderOnce(volume, illustrateSettings("", "k_os=0.3"));
   // Every effect but sketch (which has no neutral setting: it replaces the colour).
-  const RenderResult neutral =
-      render(volume, illustrateSettings("boundary,silhouette,fading,distance,halo,tone",
-                                        "k_os=0.3,k_gc=1,k_gs=0,k_sc=1,k_ss=0,k_fs=0,k_fv=0,k_fo=0,"
-                                        "k_ds=0,k_hd=0,k_ho=0,k_ta=1,k_td=0,k_ty=0,k_tb=0"));
+  const RenderResult neutral = test::renderOnce(
+      volume, illustrateSettings("boundary,silhouette,fading,distance,halo,tone",
+                                 "k_os=0.3,k_gc=1,k_gs=0,k_sc=1,k_ss=0,k_fs=0,k_fv=0,k_fo=0,"
+                                 "k_ds=0,k_hd=0,k_ho=0,k_ta=1,k_td=0,k_ty=0,k_tb=0"));
   EXPECT_GT(test::shownPixels(plain.frame), 500);
   EXPECT_EQ(test::differingPixels(plain.frame, neutral.frame), 0)
       << "max channel difference "
@@ -168,9 +161,9 @@ TEST_F(IllustrateTest, ToneShadingMakesTheLitSideWarmerAndTheFarSideCooler) {
   settings.camera.azimuthDeg = 0;
   settings.camera.elevationDeg = 0;
   settings.options["light"] = std::vector<std::string>{"0,90"};  // straight above
-  const RenderResult toned = render(volume, settings);
+  const RenderResult toned = test::renderOnce(volume, settings);
   settings.options.erase("effects");
-  const RenderResult plain = render(volume, settings);
+  const RenderResult plain = test::renderOnce(volume, settings);
   const cv::Rect top(30, 14, 20, 10), bottom(30, 56, 20, 10);  // rows top-down
   const double topWarmth = warmth(toned.frame.color, top);
   const double bottomWarmth = warmth(toned.frame.color, bottom);
@@ -192,9 +185,9 @@ TEST_F(IllustrateTest, SilhouetteEnhancementRaisesOpacityAtTheRimNotWhereTheSphe
   settings.camera.orthographic = true;
   settings.camera.azimuthDeg = 0;
   settings.camera.elevationDeg = 0;
-  const RenderResult enhanced = render(volume, settings);
+  const RenderResult enhanced = test::renderOnce(volume, settings);
   settings.options.erase("effects");
-  const RenderResult plain = render(volume, settings);
+  const RenderResult plain = test::renderOnce(volume, settings);
   const auto alphaRatio = [&](int x, int y) {
     return enhanced.frame.color(y, x)[3] / std::max(plain.frame.color(y, x)[3], 1e-6f);
   };
@@ -217,9 +210,9 @@ TEST_F(IllustrateTest, HalosDarkenJustOutsideTheOutlineAndChangeNothingInside) {
   settings.camera.orthographic = true;
   settings.camera.azimuthDeg = 0;
   settings.camera.elevationDeg = 0;
-  const RenderResult halo = render(volume, settings);
+  const RenderResult halo = test::renderOnce(volume, settings);
   settings.options.erase("effects");
-  const RenderResult plain = render(volume, settings);
+  const RenderResult plain = test::renderOnce(volume, settings);
   const int y = 48;
   int edge = 48;  // the outermost pixel of the centre row the plain ball covers
   while (edge + 1 < 96 && plain.frame.color(y, edge + 1)[3] > 1e-3f) ++edge;
@@ -249,9 +242,9 @@ TEST_F(IllustrateTest, DistanceBlendingMovesSamplesTowardTheBackgroundMonotonica
   settings.camera.azimuthDeg = 0;
   settings.camera.elevationDeg = 0;
   settings.background = Rgba{0, 0, 0, 255};  // c_b black: blending darkens
-  const RenderResult blended = render(volume, settings);
+  const RenderResult blended = test::renderOnce(volume, settings);
   settings.options.erase("effects");
-  const RenderResult plain = render(volume, settings);
+  const RenderResult plain = test::renderOnce(volume, settings);
   // Along the centre row the front surface lies deeper the farther from the centre: the share
   // of colour kept falls monotonically, from the centre out to the rim.
   const int y = 48;
@@ -278,14 +271,14 @@ TEST_F(IllustrateTest, SkippingChangesNoPixelAndEarlyTerminationNoChannelByMoreT
       RenderSettings s = settings;
       s.emptySpaceSkipping = false;
       s.earlyRayTermination = false;
-      return render(volume, s);
+      return test::renderOnce(volume, s);
     }();
     RenderSettings skipping = settings;
     skipping.earlyRayTermination = false;
-    const RenderResult skipped = render(volume, skipping);
+    const RenderResult skipped = test::renderOnce(volume, skipping);
     EXPECT_GT(test::shownPixels(reference.frame), 1000);
     EXPECT_EQ(test::differingPixels(reference.frame, skipped.frame), 0) << "effects " << effects;
-    const RenderResult both = render(volume, settings);
+    const RenderResult both = test::renderOnce(volume, settings);
     EXPECT_LE(test::maxChannelDifference(reference.frame.color, both.frame.color), 1.0 / 255.0)
         << "effects " << effects;
   }
@@ -295,9 +288,9 @@ TEST_F(IllustrateTest, OpacityIsCorrectedForTheSliceDistance) {
   // Twice the slices at the corrected opacity each: the same image to within 2/255.
   const Volume volume = generateVolume("sphere:48");
   RenderSettings settings = illustrateSettings("boundary,tone", "k_os=0.5");
-  const RenderResult once = render(volume, settings);
+  const RenderResult once = test::renderOnce(volume, settings);
   settings.samplesPerVoxel = 2.0;
-  const RenderResult twice = render(volume, settings);
+  const RenderResult twice = test::renderOnce(volume, settings);
   EXPECT_LE(test::maxChannelDifference(once.frame.color, twice.frame.color), 2.0 / 255.0);
 }
 

@@ -43,15 +43,9 @@ RenderSettings settingsFor(const std::string& technique, OptionValues options, d
   return settings;
 }
 
-RenderResult render(const Volume& volume, const RenderSettings& settings) {
-  Renderer renderer(test::sharedGlContext());
-  renderer.setVolume(volume);
-  return renderer.render(settings);
-}
-
 RenderResult renderTechnique(const Volume& volume, const std::string& technique,
                              OptionValues options, double azimuth = 0) {
-  return render(volume, settingsFor(technique, std::move(options), azimuth));
+  return test::renderOnce(volume, settingsFor(technique, std::move(options), azimuth));
 }
 
 float grey(const RenderResult& result, cv::Point pixel) {
@@ -201,7 +195,7 @@ TEST_F(MipTechniques, TransferFunctionColoursTheValueAndMatchesTheReference) {
   for (const auto& [technique, options] : cases) {
     SCOPED_TRACE(technique);
     RenderSettings settings = settingsFor(technique, options);
-    const RenderResult gl = render(volume, settings);
+    const RenderResult gl = test::renderOnce(volume, settings);
     const reference::ReferenceFrame cpu =
         reference::findReference(technique).render(volume, settings, 1e-4f);
     int shown = 0, differing = 0;
@@ -224,7 +218,7 @@ TEST_F(MipTechniques, TransferFunctionColoursTheValueAndMatchesTheReference) {
     EXPECT_EQ(differing, 0) << "max error " << maxError * 255 << "/255";
 
     settings.emptySpaceSkipping = false;
-    const RenderResult unskipped = render(volume, settings);
+    const RenderResult unskipped = test::renderOnce(volume, settings);
     EXPECT_EQ(cv::norm(gl.frame.color, unskipped.frame.color, cv::NORM_INF), 0.0);
   }
   const cv::Point centre = pixelOf(renderTechnique(volume, "mip", {}).view, {32, 32, 32});

@@ -26,12 +26,6 @@ RenderSettings sphereSettings(const std::string& technique) {
   return settings;
 }
 
-RenderResult renderToneFill(const Volume& volume, const RenderSettings& settings) {
-  Renderer renderer(test::sharedGlContext());
-  renderer.setVolume(volume);
-  return renderer.render(settings);
-}
-
 // Mean (r + g)/2 − b of the tone colours of the Filled pixels above (`upper`) or below the
 // middle third of the Filled disc: how warm (yellow) rather than cool (blue) that side is.
 double toneWarmth(const FrameBuffers& frame, bool upper) {
@@ -69,7 +63,7 @@ TEST_P(ToneFill, TheSideLitFromAboveIsWarmAndTheFarSideCool) {
   RenderSettings settings = sphereSettings(GetParam());
   settings.toneFill = Rgba{96, 96, 96, 255};  // a grey that leaves room below white
   settings.options["light"] = std::vector<std::string>{"0,90"};  // straight above
-  const RenderResult result = renderToneFill(volume, settings);
+  const RenderResult result = test::renderOnce(volume, settings);
   ASSERT_FALSE(result.frame.tone.empty());
   const double top = toneWarmth(result.frame, true), bottom = toneWarmth(result.frame, false);
   std::cout << "[ info ] warmth (r + g)/2 - b: top " << top << ", bottom " << bottom << "\n";
@@ -90,7 +84,7 @@ TEST_P(ToneFill, WithoutTheToneTermsTheFillIsTheBackgroundBlendedByDepth) {
   settings.background = Rgba{255, 0, 0, 255};
   settings.options["param"] =
       std::vector<std::string>{"k_ta=0,k_td=0,k_ty=0,k_tb=0", "k_ds=1,k_de=1"};
-  const RenderResult result = renderToneFill(volume, settings);
+  const RenderResult result = test::renderOnce(volume, settings);
   ASSERT_FALSE(result.frame.tone.empty());
   int filled = 0;
   double largest = 0;
@@ -117,10 +111,10 @@ TEST_P(ToneFill, AskingForItChangesNoStateDepthOrShade) {
   RenderSettings settings = sphereSettings(GetParam());
   settings.camera.orthographic = false;
   settings.camera.elevationDeg = 40;
-  const RenderResult plain = renderToneFill(volume, settings);
+  const RenderResult plain = test::renderOnce(volume, settings);
   EXPECT_TRUE(plain.frame.tone.empty()) << "no tone fill asked for";
   settings.toneFill = Rgba{96, 96, 96, 255};
-  RenderResult toned = renderToneFill(volume, settings);
+  RenderResult toned = test::renderOnce(volume, settings);
   ASSERT_FALSE(toned.frame.tone.empty());
   toned.frame.tone.release();
   EXPECT_EQ(test::differingPixels(plain.frame, toned.frame), 0);
