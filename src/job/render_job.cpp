@@ -106,6 +106,17 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
   return meta;
 }
 
+// What rendering `request` takes in memory for a volume of `dims` samples of `type`: its
+// textures and the structures beside them (limits::renderVolumeBytes) and the images.
+std::uint64_t renderBytes(const RenderRequest& request, glm::ivec3 dims, SampleType type,
+                          std::uint64_t maxTextureBytes) {
+  const RenderSettings& settings = request.settings;
+  return limits::renderVolumeBytes(dims, sampleTypeSize(type),
+                                   findTechnique(settings.technique).usesGradients, maxTextureBytes,
+                                   needsOneTexture(settings.technique, settings.options)) +
+         limits::renderImageBytes(settings.size, maxLineWidth(request.postfx));
+}
+
 // Once the volume is known: slices per frame and the whole render's memory.
 void checkVolumeWork(const Volume& volume, const RenderRequest& request,
                      const VolumeLimits& limits) {
@@ -116,12 +127,8 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
                      volume.source + " would need up to " + std::to_string(slices) +
                      " slices per frame, over the limit of " + std::to_string(limits::kMaxSlices));
   }
-  const bool gradients = findTechnique(settings.technique).usesGradients;
-  const bool oneTexture = needsOneTexture(settings.technique, settings.options);
   const std::uint64_t bytes =
-      limits::renderVolumeBytes(volume.dims, sampleTypeSize(volume.type()), gradients,
-                                limits.maxTextureBytes, oneTexture) +
-      limits::renderImageBytes(settings.size, maxLineWidth(request.postfx));
+      renderBytes(request, volume.dims, volume.type(), limits.maxTextureBytes);
   limits::checkMemory("rendering " + volume.source + " at --size " +
                           std::to_string(settings.size.x) + "x" + std::to_string(settings.size.y),
                       bytes, limits.maxBytes);
@@ -234,15 +241,11 @@ void RenderJob::checkRequest(const RenderRequest& request, const VolumeLimits& l
 
 LoadOptions RenderJob::loadOptionsFor(const RenderRequest& request, LoadOptions load) {
   const glm::ivec2 size = request.settings.size;
-  const std::uint64_t imageBytes = limits::renderImageBytes(size, maxLineWidth(request.postfx));
-  const bool gradients = findTechnique(request.settings.technique).usesGradients;
-  const bool oneTexture = needsOneTexture(request.settings.technique, request.settings.options);
-  const std::uint64_t maxTextureBytes = load.limits.maxTextureBytes;
-  load.limits.taskBytes = [imageBytes, gradients, maxTextureBytes, oneTexture](glm::ivec3 dims,
-                                                                               SampleType type) {
-    return limits::renderVolumeBytes(dims, sampleTypeSize(type), gradients, maxTextureBytes,
-                                     oneTexture) +
-           imageBytes;
+  // The same sum as checkVolumeWork's, before reading (the loader calls it with the header's
+  // dims and type).
+  load.limits.taskBytes = [request, maxTextureBytes = load.limits.maxTextureBytes](
+                              glm::ivec3 dims, SampleType type) {
+    return renderBytes(request, dims, type, maxTextureBytes);
   };
   load.limits.task = "rendering";
   load.limits.taskDetail = " at --size " + std::to_string(size.x) + "x" + std::to_string(size.y);
