@@ -8,17 +8,18 @@
 namespace vsil {
 
 gl::Program& marchProgram(const FrameContext& frame, const std::vector<std::string>& shared,
-                          const std::string& computeFile, const MarchShape& shape) {
+                          const std::string& computeFile, const MarchShape& shape,
+                          std::vector<std::string> defines) {
   std::vector<std::string> sources = shared;
   sources.push_back("shaders/tile_march.glsl");
-  return frame.programs->get(gl::computeProgram(
-      sources, computeFile,
-      {"MARCH_GROUP_X " + std::to_string(shape.group.x),
-       "MARCH_GROUP_Y " + std::to_string(shape.group.y),
-       "MARCH_TILE_X " + std::to_string(shape.tile.x),
-       "MARCH_TILE_Y " + std::to_string(shape.tile.y),
-       "MARCH_RANGE_SLICES " + std::to_string(frame.uniforms->slicesPerRange()),
-       "SLICE_STRIDE_VEC4 " + std::to_string(frame.uniforms->sliceStrideVec4())}));
+  defines.insert(defines.end(),
+                 {"MARCH_GROUP_X " + std::to_string(shape.group.x),
+                  "MARCH_GROUP_Y " + std::to_string(shape.group.y),
+                  "MARCH_TILE_X " + std::to_string(shape.tile.x),
+                  "MARCH_TILE_Y " + std::to_string(shape.tile.y),
+                  "MARCH_RANGE_SLICES " + std::to_string(frame.uniforms->slicesPerRange()),
+                  "SLICE_STRIDE_VEC4 " + std::to_string(frame.uniforms->sliceStrideVec4())});
+  return frame.programs->get(gl::computeProgram(sources, computeFile, defines));
 }
 
 void runMarch(const FrameContext& frame, gl::Program& program, const MarchShape& shape,

@@ -27,9 +27,10 @@ struct MarchShape {
 };
 
 // The march's program: common.glsl, `shared`, shaders/tile_march.glsl, then `computeFile`, built
-// for `shape` and the frame's slice layout.
+// for `shape` and the frame's slice layout, with the caller's own `defines`.
 gl::Program& marchProgram(const FrameContext& frame, const std::vector<std::string>& shared,
-                          const std::string& computeFile, const MarchShape& shape);
+                          const std::string& computeFile, const MarchShape& shape,
+                          std::vector<std::string> defines = {});
 
 // Runs a march over the whole viewport: draws the entry depth image, binds the entry and exit
 // depths and `record` (image unit Record), and dispatches one workgroup per tile for each range

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <random>
+#include <span>
 
 #include <gtest/gtest.h>
 
@@ -230,6 +232,72 @@ TEST_F(MipTechniques, TransferFunctionColoursTheValueAndMatchesTheReference) {
   const cv::Vec4f weak =
       renderTechnique(volume, "lmip", {{"tf", tf}, {"lmip-threshold", 0.3}}).frame.color(centre);
   EXPECT_EQ(weak[3], 0.0f) << "lmip's first local maximum, 0.5, is transparent";
+}
+
+// Noise over steps along z, some rising by more than material-eps at once, some by less: both
+// ways a ray's maximum can grow (max_march.comp's bound on the first hit).
+Volume noisySteps() {
+  Volume volume;
+  volume.name = "noisy steps";
+  volume.source = "test:noisy-steps";
+  volume.dims = {40, 36, 44};
+  volume.allocate(SampleType::Float32);
+  const std::span<float> samples = volume.samples<float>();
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> noise(0.0f, 0.3f);
+  for (int z = 0; z < volume.dims.z; ++z) {
+    for (int y = 0; y < volume.dims.y; ++y) {
+      for (int x = 0; x < volume.dims.x; ++x) {
+        const float step = float((z + x / 8) % 11) * 0.07f;
+        samples[volume.index(x, y, z)] = step + noise(random);
+      }
+    }
+  }
+  return volume;
+}
+
+// With the volume in one texture mip and demip march (max_march.comp); in bricks they draw
+// passes per slice (max_sample.frag, first_hit.frag). Both sample the same positions and must
+// leave the same bytes, the first hit included, for any material-eps.
+TEST_F(MipTechniques, MarchAndSlicePassesLeaveTheSameBytes) {
+  const Volume volume = noisySteps();
+  Renderer whole(test::sharedGlContext()), bricked(test::sharedGlContext());
+  whole.setVolume(volume);
+  bricked.setVolume(volume, 16 * 16 * 16 * 4);  // bricks of 16³ R32F texels
+  ASSERT_EQ(whole.brickCount(), 1u);
+  ASSERT_GT(bricked.brickCount(), 8u);
+  const std::vector<std::pair<std::string, OptionValues>> cases{
+      {"mip", {}},
+      {"demip", {}},
+      {"demip", {{"material-eps", 0.01}, {"depth-weight", 0.5}}},
+      {"demip", {{"material-eps", 0.2}, {"sphere-weight", 0.4}}},
+      {"demip", {{"material-eps", 5.0}}},
+  };
+  for (const bool orthographic : {false, true}) {
+    for (const auto& [technique, options] : cases) {
+      RenderSettings settings = settingsFor(technique, options, orthographic ? 17 : -33);
+      settings.camera.orthographic = orthographic;
+      settings.camera.elevationDeg = 21;
+      settings.samplesPerVoxel = 1.3;
+      const RenderResult marched = whole.render(settings);
+      const RenderResult sliced = bricked.render(settings);
+      SCOPED_TRACE(technique + " " + std::to_string(marched.frame.color.rows));
+      EXPECT_EQ(cv::norm(marched.frame.color, sliced.frame.color, cv::NORM_INF), 0.0);
+      if (technique == "demip") {
+        ASSERT_FALSE(marched.frame.depth.empty());
+        int differing = 0, hits = 0;
+        for (int y = 0; y < settings.size.y; ++y) {
+          for (int x = 0; x < settings.size.x; ++x) {
+            const float a = marched.frame.depth(y, x), b = sliced.frame.depth(y, x);
+            hits += !std::isnan(a);
+            differing += !(a == b || (std::isnan(a) && std::isnan(b)));
+          }
+        }
+        EXPECT_EQ(differing, 0);
+        EXPECT_GT(hits, 2000);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "slicing/techniques/mip/mip_options.h"
 #include "slicing/techniques/mip/sphere_legend.h"
 #include "slicing/texture_units.h"
+#include "slicing/tile_march.h"
 
 namespace vsil {
 
@@ -63,13 +64,30 @@ BrickOccupancy MipTechnique::occupancy(const FrameContext& frame) const {
   return reachesIso(window.low - eps);
 }
 
+namespace {
+// One invocation per pixel, as the first-hit march (hit_records.cpp): no pixel reads another's.
+constexpr MarchShape kMaxMarchShape{{16, 16}, {16, 16}};
+}  // namespace
+
+bool MipTechnique::marches(const FrameContext& frame) {
+  return frame.volume->brickCount() == 1 &&
+         int(frame.plan->slices.size()) <= frame.uniforms->slicesPerRange();
+}
+
+int MipTechnique::sweepCount(const FrameContext&) const {
+  return depthEnhanced_ && !marching_ ? 2 : 1;
+}
+
 void MipTechnique::beginFrame(const FrameContext& frame) {
   const glm::ivec2 size = frame.view->viewport;
   if (!targets_ || targets_->maximum.size() != size) {
     targets_.reset();
     targets_.emplace(Targets{gl::RenderTarget(size, GL_R32F, /*withDepthStencil=*/true),
+                             gl::RenderTarget(size, GL_RGBA32F),
                              gl::RenderTarget(size, GL_RGBA32F)});
   }
+  marching_ = marches(frame);
+  if (marching_) return;  // the march runs after the (empty) sweep, in endFrame
   maximumPass_ = &frame.programs->get(gl::slicePassProgram({}, "techniques/mip/max_sample.frag"));
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   const GLfloat noSample[4] = {kNoSample, 0, 0, 0};
@@ -85,7 +103,20 @@ void MipTechnique::beginSweep(const FrameContext& frame) {
                        targets_->maximum.texture(), float(frame.options->number("material-eps"))});
 }
 
+void MipTechnique::march(const FrameContext& frame) {
+  gl::Program& march =
+      marchProgram(frame, {}, "techniques/mip/max_march.comp", kMaxMarchShape,
+                   depthEnhanced_ ? std::vector<std::string>{"DEMIP"} : std::vector<std::string>{});
+  march.use();
+  march.set("noSample", kNoSample);
+  if (depthEnhanced_) {
+    march.set("materialEps", float(frame.options->number("material-eps")));
+  }
+  runMarch(frame, march, kMaxMarchShape, targets_->march);
+}
+
 void MipTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
+  if (marching_) return;
   if (frame.sweep == 1) {
     hits_.drawSlice(frame, slice);
     return;
@@ -141,6 +172,11 @@ FrameBuffers colourWithDepth(const gl::RenderTarget& colour, const gl::RenderTar
 
 void MipTechnique::endFrame(const FrameContext& frame) {
   const OptionReader& options = *frame.options;
+  if (marching_) march(frame);
+  // The march's record holds the maximum (.r) and the hit (.g, .b) where the passes per slice
+  // leave them in two targets.
+  const GLuint values = marching_ ? targets_->march.texture() : targets_->maximum.texture();
+  const GLuint hitRecord = marching_ ? targets_->march.texture() : hits_.record().texture();
   std::vector<std::string> defines;
   if (depthEnhanced_) {
     defines.push_back("DEMIP");
@@ -153,8 +189,7 @@ void MipTechnique::endFrame(const FrameContext& frame) {
     }
   }
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
-  gl::Program& finish =
-      useMipFinish(frame, defines, targets_->maximum.texture(), targets_->colour, transferTable_);
+  gl::Program& finish = useMipFinish(frame, defines, values, targets_->colour, transferTable_);
   if (depthEnhanced_) {
     const View& view = *frame.view;
     finish.set("depthWeight", float(options.number("depth-weight")));
@@ -169,7 +204,7 @@ void MipTechnique::endFrame(const FrameContext& frame) {
     }
     finish.set("volumeCentreEye", glm::vec3(view.eyeFromWorld * glm::dvec4(0, 0, 0, 1)));
     finish.set("depthRangeEye", glm::vec2(float(view.nearEye), float(view.farEye)));
-    gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, hits_.record().texture());
+    gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, hitRecord);
   }
   drawScreen(frame);
 }
@@ -197,7 +232,8 @@ FrameBuffers MipTechnique::readBack(const FrameContext& frame) {
   }
   // Every shown pixel has its hit: its maximum's own sample qualifies.
   FrameBuffers result =
-      colourWithDepth(targets_->colour, hits_.record(), 1, [](const cv::Vec4f&) { return true; });
+      colourWithDepth(targets_->colour, marching_ ? targets_->march : hits_.record(), 1,
+                      [](const cv::Vec4f&) { return true; });
   const OptionReader& options = *frame.options;
   if (options.enabled("legend")) {
     drawSphereLegend(result.color, colourSphere_, sphereFrameEye(options, *frame.view));

@@ -6,6 +6,9 @@
 // first-hit pass with a per-pixel threshold, hit_records.h, so its dead-pixel marking stops each
 // ray at its hit), and the finishing pass weights the grey by that sample's depth and tints it
 // from the colour sphere (colour_sphere.h). With both weights 0, demip draws mip's bytes.
+// When the volume is one texture and the frame's slices fit one march (tile_march.h), both
+// instead run as one compute dispatch sampling the same positions (max_march.comp): the same
+// bytes, and demip's search for the first hit costs an eighth of a sweep instead of a sweep.
 #include <functional>
 #include <optional>
 #include <string>
@@ -26,7 +29,7 @@ class MipTechnique : public Technique {
   explicit MipTechnique(bool depthEnhanced) : depthEnhanced_(depthEnhanced) {}
   // demip: reads --sphere-map (a PNG's texels).
   ResolvedOptions resolve(const FrameContext& frame) override;
-  int sweepCount(const FrameContext&) const override { return depthEnhanced_ ? 2 : 1; }
+  int sweepCount(const FrameContext& frame) const override;
   BrickOccupancy occupancy(const FrameContext& frame) const override;
   void beginFrame(const FrameContext& frame) override;
   void beginSweep(const FrameContext& frame) override;
@@ -36,12 +39,17 @@ class MipTechnique : public Technique {
 
  private:
   void uploadSphereMap();  // colourSphere_'s image into sphereMapTexture_
+  // Whether this frame marches (max_march.comp) instead of drawing passes per slice.
+  static bool marches(const FrameContext& frame);
+  void march(const FrameContext& frame);
 
   struct Targets {
     gl::RenderTarget maximum;  // R32F with the entry depth of empty-space skipping
     gl::RenderTarget colour;   // RGBA32F, premultiplied
+    gl::RenderTarget march;    // RGBA32F, the march's record (max_march.comp)
   };
   bool depthEnhanced_;
+  bool marching_ = false;
   std::optional<Targets> targets_;
   FirstHitRecorder hits_;  // demip's second sweep
   gl::Program* maximumPass_ = nullptr;
