@@ -234,12 +234,8 @@ class PythonRenderer {
   }
 
   // Uploads `volume` now (render does it when the volume changes; call this after changing a
-  // volume's samples in place).
-  void upload(const PyVolume& volume) {
-    py::gil_scoped_release release;
-    job_->setVolume(Volume::sharing(volume.volume), volume.volume->source);
-    uploaded_ = volume.volume;
-  }
+  // volume's samples in place), in bricks of the last render's max_texture_mib.
+  void upload(const PyVolume& volume) { uploadInBricks(volume, uploadedTextureBytes_); }
 
   Frame render(const py::object& input, const py::kwargs& kwargs) {
     // Flags that choose what render does not own here: the context is the Renderer's, and a
@@ -273,7 +269,10 @@ class PythonRenderer {
       uploaded_.reset();
     } else {
       const PyVolume& volume = input.cast<const PyVolume&>();
-      if (volume.volume != uploaded_) upload(volume);
+      const std::uint64_t textureBytes = loadOptions.limits.maxTextureBytes;
+      if (volume.volume != uploaded_ || textureBytes != uploadedTextureBytes_) {
+        uploadInBricks(volume, textureBytes);
+      }
     }
 
     RenderOutput output;
@@ -296,8 +295,16 @@ class PythonRenderer {
   }
 
  private:
+  void uploadInBricks(const PyVolume& volume, std::uint64_t maxTextureBytes) {
+    py::gil_scoped_release release;
+    job_->setVolume(Volume::sharing(volume.volume), volume.volume->source, maxTextureBytes);
+    uploaded_ = volume.volume;
+    uploadedTextureBytes_ = maxTextureBytes;
+  }
+
   std::unique_ptr<RenderJob> job_;
   std::shared_ptr<Volume> uploaded_;  // the volume the texture holds, when given as a Volume
+  std::uint64_t uploadedTextureBytes_ = limits::kMaxTextureBytes;  // its bricks' limit
 };
 
 // ---- postfx on arrays ----

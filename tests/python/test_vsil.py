@@ -117,6 +117,18 @@ def test_wrapping_an_array_copies_nothing(renderer):
         assert not (renderer.render(volume, iso=0.5, size=(64, 64)).state == 3).any()
 
 
+def test_a_volume_takes_the_renders_max_texture_mib(renderer):
+    # gen:spheres:128 is an 8 MiB float32 texture: 11 bricks at 1 MiB, the same bytes (the
+    # CLI's max_texture_mib test); the tiles march, which needs one texture, shows the bricks.
+    volume = vsil.generate("spheres", 128)
+    whole = renderer.render(volume, size=(96, 80), view=(37, -23))
+    bricked = renderer.render(volume, size=(96, 80), view=(37, -23), max_texture_mib=1)
+    assert np.array_equal(whole.image, bricked.image) and np.array_equal(whole.state, bricked.state)
+    with pytest.raises(ValueError, match="takes 11 bricks"):
+        renderer.render(volume, size=(32, 32), pipeline="tiles", max_texture_mib=1)
+    assert renderer.render(volume, size=(32, 32), pipeline="tiles").state.any()
+
+
 def test_loaded_data_is_a_view_that_keeps_the_volume_alive():
     volume = vsil.generate("spheres", 32)
     data = volume.data
