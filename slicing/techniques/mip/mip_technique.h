@@ -8,7 +8,8 @@
 // from the colour sphere (colour_sphere.h). With both weights 0, demip draws mip's bytes.
 // When the volume is one texture and the frame's slices fit one march (tile_march.h), both
 // instead run as one compute dispatch sampling the same positions (max_march.comp): the same
-// bytes, and demip's search for the first hit costs an eighth of a sweep instead of a sweep.
+// bytes, and demip's search for the first hit covers about the last rise of --material-eps
+// before it instead of the whole ray up to it.
 #include <functional>
 #include <optional>
 #include <string>
