@@ -4,7 +4,7 @@
 // above 0), 0 elsewhere. composite.frag applies halos only where it is 1, and lets transparent
 // samples where it is 0 leave before any halo work: without it every transparent sample in the
 // occupied bricks would pay the halo's taps (5–6× the plain composite's time on bonsai, as the
-// earlier developer measured; 2.9× with it, README). The occupancy margin of empty-space
+// earlier developer measured; 2.3–2.5× with it, README). The occupancy margin of empty-space
 // skipping covers the reach, so skipping still changes no pixel.
 //
 // Built on the CPU from the volume's samples (read back from its texture), one texture over
