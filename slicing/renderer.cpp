@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <optional>
 
@@ -106,7 +107,17 @@ Renderer::Renderer(gl::GlContext& context) : impl_(std::make_unique<Impl>()) {
   glBindVertexArray(0);
 }
 
-Renderer::~Renderer() = default;
+Renderer::~Renderer() {
+  // GL deletes objects by name in the current context: with another renderer's context current
+  // (two vsil.Renderer in one Python process), this one's names would delete that one's
+  // buffers and textures.
+  if (!impl_ || !impl_->context) return;
+  try {
+    impl_->context->makeCurrent();
+  } catch (const std::exception&) {
+    // Nothing can be made current any more: the objects go with the context.
+  }
+}
 
 std::size_t Renderer::brickCount() const {
   return impl_->volumeTexture ? impl_->volumeTexture->brickCount() : 0;

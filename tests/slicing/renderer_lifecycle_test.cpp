@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <memory>
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,7 @@
 #include "generators/generators.h"
 #include "reference/gl_harness.h"
 #include "slicing/gl.h"
+#include "slicing/gl_context.h"
 #include "slicing/renderer.h"
 #include "slicing/technique_table.h"
 
@@ -110,6 +112,32 @@ TEST_F(GlTest, RenderersLeakNoGlObjectsAndNoMemory) {
   EXPECT_LT(growthMiB, 4.0) << "resident set grew from " << residentBefore << " to "
                             << residentAfter << " bytes over " << kCycles / 2 << " cycles";
 #endif
+}
+
+// Two renderers on two contexts (two vsil.Renderer in one Python process): the one destroyed
+// while the other's context is current deletes its own objects, not the other's of the same
+// names, and the other renders on.
+TEST_F(GlTest, ARendererDestroyedUnderAnotherContextLeavesThatOnesObjects) {
+  const Volume volume = generateVolume("spheres:48");
+  RenderSettings settings;
+  settings.technique = "silhouette";
+  settings.options = test::isoOptions(findTechnique("silhouette"), 0.5);
+  settings.size = {64, 48};
+  Renderer staying(test::sharedGlContext());
+  staying.setVolume(volume);
+  const RenderResult before = staying.render(settings);
+  {
+    gl::GlContext otherContext(gl::contextOptionsFromEnvironment());
+    auto leaving = std::make_unique<Renderer>(otherContext);
+    leaving->setVolume(volume);
+    leaving->render(settings);
+    test::sharedGlContext().makeCurrent();  // as the other vsil.Renderer's next call would
+    leaving.reset();
+    test::sharedGlContext().makeCurrent();
+  }
+  const RenderResult after = staying.render(settings);
+  EXPECT_EQ(cv::norm(before.frame.state, after.frame.state, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::countNonZero(after.frame.state), 100);
 }
 
 }  // namespace
