@@ -279,9 +279,13 @@ TEST_F(MipTechniques, MarchAndSlicePassesLeaveTheSameBytes) {
       settings.camera.orthographic = orthographic;
       settings.camera.elevationDeg = 21;
       settings.samplesPerVoxel = 1.3;
+      SCOPED_TRACE(
+          technique + (orthographic ? ", orthographic" : ", perspective") +
+          (options.count("material-eps")
+               ? ", material-eps " + std::to_string(std::get<double>(options.at("material-eps")))
+               : ""));
       const RenderResult marched = whole.render(settings);
       const RenderResult sliced = bricked.render(settings);
-      SCOPED_TRACE(technique + " " + std::to_string(marched.frame.color.rows));
       EXPECT_EQ(cv::norm(marched.frame.color, sliced.frame.color, cv::NORM_INF), 0.0);
       if (technique == "demip") {
         ASSERT_FALSE(marched.frame.depth.empty());
