@@ -53,17 +53,27 @@ void drawScreen(const FrameContext& frame) {
   VSIL_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
 }
 
-cv::Mat readTargetFlipped(const gl::RenderTarget& target, int channels) {
+namespace {
+cv::Mat readFlipped(const gl::RenderTarget& target, int channels, GLenum format) {
   const glm::ivec2 size = target.size();
   cv::Mat image(size.y, size.x, CV_32FC(channels));
   VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer()));
   VSIL_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
   VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
-  VSIL_GL(
-      glReadPixels(0, 0, size.x, size.y, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT, image.data));
+  VSIL_GL(glReadPixels(0, 0, size.x, size.y, format, GL_FLOAT, image.data));
   cv::Mat flipped;
   cv::flip(image, flipped, 0);
   return flipped;
+}
+}  // namespace
+
+cv::Mat readTargetFlipped(const gl::RenderTarget& target, int channels) {
+  return readFlipped(target, channels, channels == 1 ? GL_RED : GL_RGBA);
+}
+
+cv::Mat1f readChannelFlipped(const gl::RenderTarget& target, int channel) {
+  static constexpr GLenum kFormats[] = {GL_RED, GL_GREEN, GL_BLUE, GL_ALPHA};
+  return readFlipped(target, 1, kFormats[channel]);
 }
 
 }  // namespace vsil

@@ -131,5 +131,7 @@ void drawScreen(const FrameContext& frame);
 // GL texture rows run bottom-up; FrameBuffers rows top-down. Reads the target's colour
 // attachment as floats with `channels` channels (1 or 4) and flips it.
 cv::Mat readTargetFlipped(const gl::RenderTarget& target, int channels);
+// The same for one channel (0 red … 3 alpha) of a float target: a quarter of the bytes.
+cv::Mat1f readChannelFlipped(const gl::RenderTarget& target, int channel);
 
 }  // namespace vsil

@@ -157,14 +157,24 @@ FrameBuffers colourWithDepth(const gl::RenderTarget& colour, const gl::RenderTar
                              const std::function<bool(const cv::Vec4f&)>& hasDepth) {
   FrameBuffers frame;
   frame.color = readTargetFlipped(colour, 4);
+  const float none = std::numeric_limits<float>::quiet_NaN();
+  if (!hasDepth) {
+    // Only the depth channel: every shown pixel has one.
+    frame.depth = readChannelFlipped(record, depthChannel);
+    for (int y = 0; y < frame.depth.rows; ++y) {
+      for (int x = 0; x < frame.depth.cols; ++x) {
+        if (!(frame.color(y, x)[3] > 0.0f)) frame.depth(y, x) = none;
+      }
+    }
+    return frame;
+  }
   const cv::Mat records = readTargetFlipped(record, 4);
   frame.depth.create(records.rows, records.cols);
   for (int y = 0; y < records.rows; ++y) {
     for (int x = 0; x < records.cols; ++x) {
       const cv::Vec4f& r = records.at<cv::Vec4f>(y, x);
       const bool shown = frame.color(y, x)[3] > 0.0f;
-      frame.depth(y, x) =
-          shown && hasDepth(r) ? r[depthChannel] : std::numeric_limits<float>::quiet_NaN();
+      frame.depth(y, x) = shown && hasDepth(r) ? r[depthChannel] : none;
     }
   }
   return frame;
@@ -232,8 +242,7 @@ FrameBuffers MipTechnique::readBack(const FrameContext& frame) {
   }
   // Every shown pixel has its hit: its maximum's own sample qualifies.
   FrameBuffers result =
-      colourWithDepth(targets_->colour, marching_ ? targets_->march : hits_.record(), 1,
-                      [](const cv::Vec4f&) { return true; });
+      colourWithDepth(targets_->colour, marching_ ? targets_->march : hits_.record(), 1, {});
   const OptionReader& options = *frame.options;
   if (options.enabled("legend")) {
     drawSphereLegend(result.color, colourSphere_, sphereFrameEye(options, *frame.view));

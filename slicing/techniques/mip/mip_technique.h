@@ -70,7 +70,8 @@ gl::Program& useMipFinish(const FrameContext& frame, std::vector<std::string> de
                           GLuint values, const gl::RenderTarget& colour,
                           std::optional<TransferFunctionTexture>& transferTable);
 // The colour target as the frame's colour, and channel `depthChannel` of `record` as its depth
-// where a pixel shows something and `hasDepth` holds for its record (NaN elsewhere).
+// where a pixel shows something and `hasDepth` holds for its record (NaN elsewhere); without
+// `hasDepth` every shown pixel has its depth, and only that channel is read back.
 FrameBuffers colourWithDepth(const gl::RenderTarget& colour, const gl::RenderTarget& record,
                              int depthChannel,
                              const std::function<bool(const cv::Vec4f&)>& hasDepth);
