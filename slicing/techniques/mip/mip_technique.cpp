@@ -74,8 +74,8 @@ bool MipTechnique::marches(const FrameContext& frame) {
          int(frame.plan->slices.size()) <= frame.uniforms->slicesPerRange();
 }
 
-int MipTechnique::sweepCount(const FrameContext&) const {
-  return depthEnhanced_ && !marching_ ? 2 : 1;
+int MipTechnique::sweepCount(const FrameContext& frame) const {
+  return depthEnhanced_ && !marches(frame) ? 2 : 1;
 }
 
 void MipTechnique::beginFrame(const FrameContext& frame) {
@@ -86,8 +86,7 @@ void MipTechnique::beginFrame(const FrameContext& frame) {
                              gl::RenderTarget(size, GL_RGBA32F),
                              gl::RenderTarget(size, GL_RGBA32F)});
   }
-  marching_ = marches(frame);
-  if (marching_) return;  // the march runs after the (empty) sweep, in endFrame
+  if (marches(frame)) return;  // the march runs after the (empty) sweep, in endFrame
   maximumPass_ = &frame.programs->get(gl::slicePassProgram({}, "techniques/mip/max_sample.frag"));
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   const GLfloat noSample[4] = {kNoSample, 0, 0, 0};
@@ -116,7 +115,7 @@ void MipTechnique::march(const FrameContext& frame) {
 }
 
 void MipTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
-  if (marching_) return;
+  if (marches(frame)) return;
   if (frame.sweep == 1) {
     hits_.drawSlice(frame, slice);
     return;
@@ -182,11 +181,12 @@ FrameBuffers colourWithDepth(const gl::RenderTarget& colour, const gl::RenderTar
 
 void MipTechnique::endFrame(const FrameContext& frame) {
   const OptionReader& options = *frame.options;
-  if (marching_) march(frame);
+  const bool marching = marches(frame);
+  if (marching) march(frame);
   // The march's record holds the maximum (.r) and the hit (.g, .b) where the passes per slice
   // leave them in two targets.
-  const GLuint values = marching_ ? targets_->march.texture() : targets_->maximum.texture();
-  const GLuint hitRecord = marching_ ? targets_->march.texture() : hits_.record().texture();
+  const GLuint values = marching ? targets_->march.texture() : targets_->maximum.texture();
+  const GLuint hitRecord = marching ? targets_->march.texture() : hits_.record().texture();
   std::vector<std::string> defines;
   if (depthEnhanced_) {
     defines.push_back("DEMIP");
@@ -242,7 +242,7 @@ FrameBuffers MipTechnique::readBack(const FrameContext& frame) {
   }
   // Every shown pixel has its hit: its maximum's own sample qualifies.
   FrameBuffers result =
-      colourWithDepth(targets_->colour, marching_ ? targets_->march : hits_.record(), 1, {});
+      colourWithDepth(targets_->colour, marches(frame) ? targets_->march : hits_.record(), 1, {});
   const OptionReader& options = *frame.options;
   if (options.enabled("legend")) {
     drawSphereLegend(result.color, colourSphere_, sphereFrameEye(options, *frame.view));

@@ -40,7 +40,8 @@ class MipTechnique : public Technique {
 
  private:
   void uploadSphereMap();  // colourSphere_'s image into sphereMapTexture_
-  // Whether this frame marches (max_march.comp) instead of drawing passes per slice.
+  // Whether this frame marches (max_march.comp) instead of drawing passes per slice: the same
+  // answer all frame long (the volume's bricks and the frame's slice count).
   static bool marches(const FrameContext& frame);
   void march(const FrameContext& frame);
 
@@ -50,7 +51,6 @@ class MipTechnique : public Technique {
     gl::RenderTarget march;    // RGBA32F, the march's record (max_march.comp)
   };
   bool depthEnhanced_;
-  bool marching_ = false;
   std::optional<Targets> targets_;
   FirstHitRecorder hits_;  // demip's second sweep
   gl::Program* maximumPass_ = nullptr;
