@@ -99,11 +99,11 @@ StoredType storedTypeOfPixels(const std::string& where, const gdcm::PixelFormat&
 // GDCM checks some of its preconditions with assert(), which Debian's build keeps: a malformed
 // file can abort the process inside GDCM (a File Meta Information cut short trips
 // `is.good()` in FileMetaInformation::ReadCompat; libFuzzer found it within 52 inputs:
-// tests/bad_inputs/gdcm_assert.dcm). Each call into GDCM that reads files runs inside one of
-// these: stderr goes to /dev/null (assert's own line included; GDCM's warnings go to
-// GdcmWarnings anyway), and SIGABRT prints vsil's one-line error naming what is read on the
-// real stderr and exits 2 instead of dumping core. Nothing has been written then: a volume is
-// read before any output.
+// tests/bad_inputs/dicom_gdcm_assert/slice.dcm). Each call into GDCM that reads files runs
+// inside one of these (withinGdcm): stderr goes to /dev/null (assert's own line included; GDCM's
+// warnings go to GdcmWarnings anyway), and SIGABRT prints vsil's one-line error naming what is read
+// on the real stderr and exits 2 instead of dumping core. Nothing has been written then: a volume
+// is read before any output.
 class GdcmCall {
  public:
   explicit GdcmCall(const std::string& where)
@@ -146,6 +146,13 @@ class GdcmCall {
   struct sigaction previous_ = {};
 };
 
+// What `call` (a call into GDCM that reads files) returns, run inside a GdcmCall.
+template <typename Call>
+auto withinGdcm(const std::string& where, Call&& call) {
+  const GdcmCall guard(where);
+  return call();
+}
+
 struct Slice {
   std::string file;
   double position = 0;  // along the normal
@@ -172,12 +179,9 @@ std::vector<Series> scanSeries(const std::string& where, const std::string& fold
                     "is a folder without files (a DICOM series is read from a folder of "
                     "slices)");
   }
-  bool scanned = false;
-  {
-    const GdcmCall call(where);
-    scanned = scanner.Scan(files);
+  if (!withinGdcm(where, [&] { return scanner.Scan(files); })) {
+    throwInputError(where, "GDCM cannot scan its files");
   }
-  if (!scanned) throwInputError(where, "GDCM cannot scan its files");
   std::map<std::string, Series> byUid;
   for (const std::string& file : files) {
     if (!scanner.IsKey(file.c_str())) continue;  // not DICOM
@@ -377,12 +381,7 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
   // The first slice's full header: pixel format, spacing, rescale, transfer syntax.
   gdcm::ImageReader first;
   first.SetFileName(slices.front().file.c_str());
-  bool firstRead = false;
-  {
-    const GdcmCall call(path);
-    firstRead = first.Read();
-  }
-  if (!firstRead) {
+  if (!withinGdcm(path, [&] { return first.Read(); })) {
     throwInputError(path, "GDCM cannot read slice " + fileLabel(slices.front().file));
   }
   const gdcm::Image& firstImage = first.GetImage();
@@ -440,12 +439,9 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
     gdcm::ImageReader reader;
     reader.SetFileName(slice.file.c_str());
     gdcmWarnings.incompletePixelData();  // forget what came before this slice
-    bool read = false;
-    {
-      const GdcmCall call(path);
-      read = reader.Read();
+    if (!withinGdcm(path, [&] { return reader.Read(); })) {
+      throwInputError(path, "GDCM cannot read " + where);
     }
-    if (!read) throwInputError(path, "GDCM cannot read " + where);
     const gdcm::Image& image = reader.GetImage();
     if (int(image.GetColumns()) != dims.x || int(image.GetRows()) != dims.y ||
         storedTypeOfPixels(path + ": " + where, image.GetPixelFormat()) != type ||
@@ -462,12 +458,7 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
       throwInputError(path, where + ": the file ends inside its pixel data (truncated)");
     }
     buffer.resize(std::size_t(sliceBytes));
-    bool decoded = false;
-    {
-      const GdcmCall call(path);
-      decoded = image.GetBuffer(buffer.data());
-    }
-    if (!decoded) {
+    if (!withinGdcm(path, [&] { return image.GetBuffer(buffer.data()); })) {
       throwInputError(path, "GDCM cannot decode the pixel data of " + where + " (" +
                                 transferSyntaxName(image.GetTransferSyntax()) + ")");
     }
