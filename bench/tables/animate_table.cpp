@@ -3,9 +3,6 @@
 // and reporting (rows, text, plot). runAnimateTable at the end calls them.
 #include "tables/animate_table.h"
 
-#include <stdlib.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -17,6 +14,7 @@
 
 #include "core/image_file.h"
 #include "harness/child_run.h"
+#include "harness/scratch_folder.h"
 #include "harness/text_table.h"
 #include "slicing/gl_context.h"
 #include "tables/nk3_table.h"
@@ -36,26 +34,6 @@ const std::vector<std::string> kDatasetNames = {"bonsai", "neghip"};
 constexpr int kDefaultSize = 512;
 
 // ---- Running ---------------------------------------------------------------------------------
-
-// A temporary folder for the frames of one case, removed with everything in it.
-class ScratchFolder {
- public:
-  ScratchFolder() {
-    std::string pattern = (fs::temp_directory_path() / "vsil-bench-animate-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot create " + pattern);
-    path_ = pattern;
-  }
-  ~ScratchFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  ScratchFolder(const ScratchFolder&) = delete;
-  ScratchFolder& operator=(const ScratchFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 struct AnimateCase {
   std::string dataset;
@@ -113,7 +91,7 @@ AnimateCase measureCase(const std::string& dataset, const fs::path& file, double
   const std::string sizeText = std::to_string(size) + "x" + std::to_string(size);
   const std::string isoText = nlohmann::json(iso).dump();
   progress.startCase(dataset + " " + std::to_string(size) + "² animate");
-  const ScratchFolder scratch;
+  const ScratchFolder scratch("animate");
   const fs::path animated = scratch.path() / "animate", rendered = scratch.path() / "render";
   fs::create_directory(rendered);
   const fs::path errFile = scratch.path() / "stderr";

@@ -2,9 +2,6 @@
 // peak resident memory, remove the file; then the rows, the targets and the text.
 #include "tables/large_table.h"
 
-#include <stdlib.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,6 +14,7 @@
 
 #include "harness/child_run.h"
 #include "harness/format.h"
+#include "harness/scratch_folder.h"
 #include "harness/text_table.h"
 
 namespace vsil::bench {
@@ -35,26 +33,6 @@ constexpr int kDefaultSize = 512;
 constexpr int kDefaultFrames = 3;
 constexpr const char* kIso = "128";
 constexpr long long kMaxMemoryMiB = 20 * 1024;
-
-// A temporary folder, removed with everything in it.
-class ScratchFolder {
- public:
-  ScratchFolder() {
-    std::string pattern = (fs::temp_directory_path() / "vsil-bench-large-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot create " + pattern);
-    path_ = pattern;
-  }
-  ~ScratchFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  ScratchFolder(const ScratchFolder&) = delete;
-  ScratchFolder& operator=(const ScratchFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 // Two spherical shells and a solid ball, smooth over a few voxels: silhouettes everywhere,
 // crossing brick borders. Written z slab by z slab on two threads.
@@ -126,7 +104,7 @@ LargeCase measureCase(const LargeVolume& volume, int size, int frames, const gl:
   result.volume = volume;
   result.size = size;
   progress.startCase(dimsLabel(volume.dims) + " uint8, " + std::to_string(size) + "²");
-  const ScratchFolder scratch;
+  const ScratchFolder scratch("large");
   const fs::path file = scratch.path() / "volume.raw";
   const auto writeStart = Clock::now();
   writeVolume(file, volume.dims, progress);
