@@ -17,6 +17,7 @@
 #include "core/transfer_function.h"
 #include "harness/dataset_choice.h"
 #include "harness/format.h"
+#include "harness/scratch_folder.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
 #include "io/volume_loader.h"
@@ -278,9 +279,11 @@ Measured measureDataset(const Choice& chosen, const std::vector<int>& sizes,
     return measured;
   }
   measured.dims = volume.dims;
-  const std::string tfPath =
-      writeTransferFunction(benchTransferFunction(chosen.dataset.iso),
-                            std::filesystem::temp_directory_path(), chosen.dataset.name);
+  // A folder of this run's own: two runs at once (the test suite's GL back ends) must not
+  // share the file, nor one remove it under the other.
+  const ScratchFolder scratch("illustrate");
+  const std::string tfPath = writeTransferFunction(benchTransferFunction(chosen.dataset.iso),
+                                                   scratch.path(), chosen.dataset.name);
   gl::GlContext context;
   Renderer renderer(context);
   renderer.setVolume(volume);
@@ -294,7 +297,6 @@ Measured measureDataset(const Choice& chosen, const std::vector<int>& sizes,
   for (auto& window : measured.windows) {
     window.cases = measureWindow(renderer, chosen.dataset, tfPath, window.size, options, progress);
   }
-  std::filesystem::remove(tfPath);
   return measured;
 }
 
