@@ -38,23 +38,31 @@ def decode_depth(path):
     [
         {"technique": "silhouette", "iso": 0.45, "width_near": 5, "width_far": 1, "fill": "shaded"},
         {"technique": "illustrate", "effects": "boundary,silhouette,tone", "view": (40, 10)},
-        {"technique": "demip", "size": (96, 64)},
+        {"technique": "demip", "size": (96, 64), "sphere_weight": 0.5, "depth_weight": 0.3},
         {"technique": "rightangle", "iso": 0.45, "fill": "tone", "param": "k_ty=0.4,k_ds=0.5",
          "light": (30, 70)},
+        {"technique": "mip", "window": (0.2, 0.9), "ortho": True},
+        {"technique": "lmip", "lmip_threshold": 0.5},
+        {"technique": "semantic", "rules": "example"},
     ],
-    ids=["silhouette", "illustrate", "demip", "rightangle_tone_fill"],
+    ids=["silhouette", "illustrate", "demip", "rightangle_tone_fill", "mip", "lmip", "semantic"],
 )
 def test_render_matches_the_command_line_byte_for_byte(tmp_path, renderer, options):
     options = {"size": (120, 90), **options}
     args = ["render", "gen:spheres:64", "--out", str(tmp_path / "cli.png")]
     for key, value in options.items():
         flag = "--" + key.replace("_", "-")
+        if value is True:
+            args.append(flag)
+            continue
         if isinstance(value, tuple):
             value = ("x" if key == "size" else ",").join(str(v) for v in value)
         args += [flag, str(value)]
     depth_out = options["technique"] == "silhouette"
     if depth_out:
         args += ["--state-out", str(tmp_path / "state.png"), "--depth-out", str(tmp_path / "d.png")]
+    if options["technique"] == "demip":
+        args += ["--depth-out", str(tmp_path / "d.png")]
     run_cli(*args)
 
     frame = renderer.render("gen:spheres:64", **options)
@@ -70,6 +78,14 @@ def test_render_matches_the_command_line_byte_for_byte(tmp_path, renderer, optio
         assert lines.any()
         assert np.array_equal(np.isnan(depth), ~lines)
         assert np.nanmax(np.abs(depth[lines] - frame.depth[lines])) <= 0.5 / 65534 + 1e-9
+    if options["technique"] == "demip":
+        # The first hit's depth where a ray met the volume, none elsewhere: in the file as in
+        # the frame.
+        depth = decode_depth(tmp_path / "d.png")
+        hit = ~np.isnan(frame.depth)
+        assert hit.any() and not hit.all()
+        assert np.array_equal(np.isnan(depth), ~hit)
+        assert np.nanmax(np.abs(depth - frame.depth)) <= 0.5 / 65534 + 1e-9
     assert frame.metadata["parameters"]["technique"] == options["technique"]
 
 
