@@ -80,17 +80,19 @@ int MipTechnique::sweepCount(const FrameContext& frame) const {
 
 void MipTechnique::beginFrame(const FrameContext& frame) {
   const glm::ivec2 size = frame.view->viewport;
-  if (!targets_ || targets_->maximum.size() != size) {
+  const bool marching = marches(frame);
+  if (!targets_ || targets_->colour.size() != size || targets_->marching != marching) {
     targets_.reset();
-    targets_.emplace(Targets{gl::RenderTarget(size, GL_R32F, /*withDepthStencil=*/true),
-                             gl::RenderTarget(size, GL_RGBA32F),
-                             gl::RenderTarget(size, GL_RGBA32F)});
+    targets_.emplace(Targets{gl::RenderTarget(size, GL_RGBA32F),
+                             marching ? gl::RenderTarget(size, GL_RGBA32F)
+                                      : gl::RenderTarget(size, GL_R32F, /*withDepthStencil=*/true),
+                             marching});
   }
-  if (marches(frame)) return;  // the march runs after the (empty) sweep, in endFrame
+  if (marching) return;  // the march runs after the (empty) sweep, in endFrame
   maximumPass_ = &frame.programs->get(gl::slicePassProgram({}, "techniques/mip/max_sample.frag"));
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   const GLfloat noSample[4] = {kNoSample, 0, 0, 0};
-  targets_->maximum.bindForDrawing();
+  targets_->values.bindForDrawing();
   VSIL_GL(glClearBufferfv(GL_COLOR, 0, noSample));
   frame.emptySpace->writeEntryDepth(glm::mat4(frame.view->clipFromVoxel()));
 }
@@ -99,7 +101,7 @@ void MipTechnique::beginSweep(const FrameContext& frame) {
   if (frame.sweep != 1) return;
   hits_.beginFrame(frame, SlicingPipeline::Fast,
                    FirstHitRecorder::MaterialThreshold{
-                       targets_->maximum.texture(), float(frame.options->number("material-eps"))});
+                       targets_->values.texture(), float(frame.options->number("material-eps"))});
 }
 
 void MipTechnique::march(const FrameContext& frame) {
@@ -111,7 +113,7 @@ void MipTechnique::march(const FrameContext& frame) {
   if (depthEnhanced_) {
     march.set("materialEps", float(frame.options->number("material-eps")));
   }
-  runMarch(frame, march, kMaxMarchShape, targets_->march);
+  runMarch(frame, march, kMaxMarchShape, targets_->values);
 }
 
 void MipTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
@@ -121,7 +123,7 @@ void MipTechnique::drawSlice(const FrameContext& frame, const SliceContext& slic
     return;
   }
   if (slice.vertexCount == 0) return;
-  targets_->maximum.bindForDrawing();
+  targets_->values.bindForDrawing();
   gl::DepthTest skipEmpty(GL_GREATER, /*write=*/false);
   gl::Blending keepMaximum(GL_MAX, GL_ONE, GL_ONE);
   maximumPass_->use();
@@ -185,8 +187,8 @@ void MipTechnique::endFrame(const FrameContext& frame) {
   if (marching) march(frame);
   // The march's record holds the maximum (.r) and the hit (.g, .b) where the passes per slice
   // leave them in two targets.
-  const GLuint values = marching ? targets_->march.texture() : targets_->maximum.texture();
-  const GLuint hitRecord = marching ? targets_->march.texture() : hits_.record().texture();
+  const GLuint values = targets_->values.texture();
+  const GLuint hitRecord = marching ? targets_->values.texture() : hits_.record().texture();
   std::vector<std::string> defines;
   if (depthEnhanced_) {
     defines.push_back("DEMIP");
@@ -242,7 +244,7 @@ FrameBuffers MipTechnique::readBack(const FrameContext& frame) {
   }
   // Every shown pixel has its hit: its maximum's own sample qualifies.
   FrameBuffers result =
-      colourWithDepth(targets_->colour, marches(frame) ? targets_->march : hits_.record(), 1, {});
+      colourWithDepth(targets_->colour, marches(frame) ? targets_->values : hits_.record(), 1, {});
   const OptionReader& options = *frame.options;
   if (options.enabled("legend")) {
     drawSphereLegend(result.color, colourSphere_, sphereFrameEye(options, *frame.view));

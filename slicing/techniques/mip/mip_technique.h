@@ -46,9 +46,12 @@ class MipTechnique : public Technique {
   void march(const FrameContext& frame);
 
   struct Targets {
-    gl::RenderTarget maximum;  // R32F with the entry depth of empty-space skipping
-    gl::RenderTarget colour;   // RGBA32F, premultiplied
-    gl::RenderTarget march;    // RGBA32F, the march's record (max_march.comp)
+    gl::RenderTarget colour;  // RGBA32F, premultiplied
+    // The per-pixel values the frame's path writes: the march's record (RGBA32F,
+    // max_march.comp), or the passes' maximum (R32F with the entry depth of empty-space
+    // skipping).
+    gl::RenderTarget values;
+    bool marching;
   };
   bool depthEnhanced_;
   std::optional<Targets> targets_;
