@@ -40,11 +40,6 @@ FileC load(const std::uint8_t* p, bool swap) {
   throwInputError(where, "sample " + std::to_string(index) + " " + what);
 }
 
-void checkFinite(const std::string& where, std::uint64_t index, double value) {
-  if (std::isnan(value)) badSample(where, index, "is NaN");
-  if (std::isinf(value)) badSample(where, index, "is infinite");
-}
-
 // Throws unless `value` is finite and within float32's range; `what` ("" or "rescaled ")
 // names it in the message.
 void checkFloat32(const std::string& where, std::uint64_t index, double value, const char* what) {
@@ -109,6 +104,11 @@ decltype(auto) withStoredCType(StoredType type, F&& f) {
 }
 
 }  // namespace
+
+void checkFinite(const std::string& where, std::uint64_t index, double value) {
+  if (std::isnan(value)) badSample(where, index, "is NaN");
+  if (std::isinf(value)) badSample(where, index, "is infinite");
+}
 
 SampleSink::SampleSink(const std::string& where, Volume& volume, const VolumeSubset& subset,
                        StoredType fileType, bool bigEndian, Rescale rescale)

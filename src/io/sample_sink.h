@@ -15,6 +15,10 @@
 
 namespace vsil::io {
 
+// Throws InputError "<where>: sample <index> is NaN" (or "is infinite") unless `value` is finite:
+// what every reader, and vsil.Volume over a numpy array, refuses to render.
+void checkFinite(const std::string& where, std::uint64_t index, double value);
+
 class SampleSink {
  public:
   // `volume` holds subset.dims() samples of keptSampleType(fileType, rescale)

@@ -9,11 +9,13 @@
 //
 // Keyword arguments become the command line's flags (width_near=4 -> --width-near 4) and are
 // parsed by the CLI's own table (cli/cli_render_options.h), so the two cannot drift apart.
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <pybind11/numpy.h>
@@ -27,6 +29,7 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/volume.h"
+#include "io/sample_sink.h"
 #include "io/volume_loader.h"
 #include "job/render_job.h"
 #include "postfx/broaden.h"
@@ -73,6 +76,18 @@ bool borrowIfType(Volume& volume, const py::array& array, std::shared_ptr<void> 
   return true;
 }
 
+// As every reader: a NaN or infinite sample is bad input, not a value to render. Checked when
+// an array is wrapped and again at each upload (its samples may have changed in place).
+void requireFiniteSamples(const Volume& volume) {
+  volume.visit([](auto samples) {
+    if constexpr (std::is_floating_point_v<typename decltype(samples)::value_type>) {
+      for (std::size_t i = 0; i < samples.size(); ++i) {
+        if (!std::isfinite(samples[i])) io::checkFinite("vsil.Volume", i, samples[i]);
+      }
+    }
+  });
+}
+
 PyVolume wrapArray(const py::array& array, std::vector<double> spacing, std::string name) {
   if (array.ndim() != 3) {
     throw InputError("vsil.Volume: expected a 3-dimensional array (z, y, x), got " +
@@ -111,6 +126,7 @@ PyVolume wrapArray(const py::array& array, std::vector<double> spacing, std::str
                      " are not supported (uint8, int8, uint16, int16, float32; convert with "
                      "a.astype(numpy.float32))");
   }
+  requireFiniteSamples(*volume);
   return {volume, array};
 }
 
@@ -296,6 +312,7 @@ class PythonRenderer {
 
  private:
   void uploadInBricks(const PyVolume& volume, std::uint64_t maxTextureBytes) {
+    requireFiniteSamples(*volume.volume);
     py::gil_scoped_release release;
     job_->setVolume(Volume::sharing(volume.volume), volume.volume->source, maxTextureBytes);
     uploaded_ = volume.volume;

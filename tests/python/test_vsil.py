@@ -192,6 +192,29 @@ def test_bad_input_raises_value_error_with_the_cli_message(tmp_path, renderer):
         vsil.broaden(np.zeros((8, 8), np.uint8), width=0)
 
 
+@pytest.mark.parametrize("bad, what", [(np.nan, "is NaN"), (np.inf, "is infinite")])
+def test_a_non_finite_sample_is_refused_as_the_cli_refuses_it(tmp_path, renderer, bad, what):
+    samples = np.ones((4, 5, 6), np.float32)
+    samples[2, 1, 3] = bad  # sample 2·30 + 1·6 + 3 = 69 in (z, y, x) order, as in the file
+    with pytest.raises(ValueError) as error:
+        vsil.Volume(samples)
+    assert str(error.value) == f"vsil.Volume: sample 69 {what}"
+    # Written in place after wrapping: refused at the upload, the renderer keeps what it had.
+    finite = np.ones((4, 5, 6), np.float32)
+    volume = vsil.Volume(finite)
+    renderer.render(volume, technique="mip", size=(8, 8))
+    finite[2, 1, 3] = bad
+    with pytest.raises(ValueError, match=f"sample 69 {what}"):
+        renderer.upload(volume)
+    assert renderer.render(volume, technique="mip", size=(8, 8)).image.shape == (8, 8, 4)
+    raw = tmp_path / "bad.raw"
+    samples.tofile(raw)
+    cli = subprocess.run([VSIL, "render", str(raw), "--dims", "6x5x4", "--type", "float32",
+                          "--out", str(tmp_path / "x.png")], capture_output=True, text=True)
+    assert cli.returncode == 2 and not (tmp_path / "x.png").exists()
+    assert cli.stderr.strip().endswith(f"bad.raw: sample 69 {what}")
+
+
 def test_an_iso_outside_the_range_warns(renderer):
     with pytest.warns(UserWarning, match="outside the data's range"):
         renderer.render("gen:sphere:16", iso=1000, size=(32, 32))
