@@ -14,10 +14,13 @@ namespace vsil::reference {
 
 namespace {
 
-// The samples pixel (x, y) sees, front to back, with their slices.
+// The samples pixel (x, y) sees, front to back, with their slices. `low` and `high` bound what
+// the shader may sample there instead: its position may round to a neighbouring 1/1024 voxel
+// (SliceSampler::sliceVoxelCandidates).
 struct RaySample {
   const Slice* slice;
   float value;
+  float low, high;
 };
 
 class RaySampler {
@@ -40,13 +43,22 @@ class RaySampler {
     for (std::size_t k = 0; k < setup_.plan.slices.size(); ++k) {
       const Slice& slice = setup_.plan.slices[k];
       if (slice.polygonVoxel.empty()) continue;
-      const glm::vec3 voxel = sampler_.sliceVoxel(x, y, coords_[k]);
+      const std::vector<glm::vec3> candidates = sampler_.sliceVoxelCandidates(x, y, coords_[k]);
+      const glm::vec3 voxel = candidates.front();
       // Distance to the nearer face per axis.
       const glm::vec3 inner = glm::min(voxel + 0.5f, dims_ - 0.5f - voxel);
       const float nearest = std::min({inner.x, inner.y, inner.z});
       if (std::abs(nearest) < kFaceEpsilon) onBoxFace = true;
       if (!sampler_.insideVolume(voxel)) continue;
-      samples.push_back({&slice, sampler_.sample(voxel)});
+      RaySample sample{&slice, sampler_.sample(voxel), 0, 0};
+      sample.low = sample.high = sample.value;
+      for (std::size_t i = 1; i < candidates.size(); ++i) {
+        if (!sampler_.insideVolume(candidates[i])) continue;  // near a face: onBoxFace
+        const float value = sampler_.sample(candidates[i]);
+        sample.low = std::min(sample.low, value);
+        sample.high = std::max(sample.high, value);
+      }
+      samples.push_back(sample);
     }
     return samples;
   }
@@ -59,9 +71,10 @@ class RaySampler {
   glm::vec3 dims_;
 };
 
-float maximumOf(const std::vector<RaySample>& samples) {
+float maximumOf(const std::vector<RaySample>& samples,
+                float RaySample::*bound = &RaySample::value) {
   float maximum = -std::numeric_limits<float>::infinity();
-  for (const auto& s : samples) maximum = std::max(maximum, s.value);
+  for (const auto& s : samples) maximum = std::max(maximum, s.*bound);
   return maximum;
 }
 
@@ -161,15 +174,24 @@ ReferenceFrame render(const Volume& volume, const RenderSettings& settings, floa
       if (onBoxFace) result.ambiguous(y, x) = 1;
       if (samples.empty()) continue;
       const float maximum = maximumOf(samples);
+      // The shader's maximum lies between these (its positions may round otherwise).
+      const float lowest = maximumOf(samples, &RaySample::low);
+      const float highest = maximumOf(samples, &RaySample::high);
+      if (highest - lowest > isoEpsilon) result.ambiguous(y, x) = 1;
       if (classify.nearEdge(maximum, isoEpsilon)) result.ambiguous(y, x) = 1;
       const glm::vec4 classified = classify(maximum);
       if (!(classified.a > 0)) continue;
       glm::vec3 colour(classified);
       if (depthEnhanced) {
-        const float threshold = maximum - float(options.number("material-eps"));
+        const float eps = float(options.number("material-eps"));
+        const float threshold = maximum - eps;
         const RaySample* hit = nullptr;
         for (const auto& s : samples) {
-          if (std::abs(s.value - threshold) <= isoEpsilon) result.ambiguous(y, x) = 1;
+          // Whether the shader may count this sample as of the material and may not: its value
+          // and the threshold each within their bounds, widened by float rounding.
+          const bool may = s.high + isoEpsilon >= lowest - eps;
+          const bool must = s.low - isoEpsilon >= highest - eps;
+          if (may && !must) result.ambiguous(y, x) = 1;
           if (s.value >= threshold) {
             hit = &s;
             break;

@@ -82,6 +82,37 @@ glm::vec3 SliceSampler::sliceVoxel(int x, int y, const SliceVoxelCoords& slice) 
   return quantizedVoxel(ndc.x * slice.perNdcX + ndc.y * slice.perNdcY + slice.atNdcOrigin);
 }
 
+std::vector<glm::vec3> SliceSampler::sliceVoxelCandidates(int x, int y,
+                                                          const SliceVoxelCoords& slice) const {
+  const glm::vec2 ndc = fragmentNdc(x, y);
+  const glm::vec3 a = ndc.x * slice.perNdcX, b = ndc.y * slice.perNdcY;
+  const glm::vec3 unrounded = a + b + slice.atNdcOrigin;
+  const glm::vec3 rounded = sliceVoxel(x, y, slice);
+  // Per axis, the steps (units of 1/1024 voxel) the position may round to, sliceVoxel's first.
+  std::vector<float> steps[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    const float magnitude =
+        std::abs(a[axis]) + std::abs(b[axis]) + std::abs(slice.atNdcOrigin[axis]);
+    const float ulp = std::nextafter(magnitude, INFINITY) - magnitude;
+    const float t = unrounded[axis] * 1024.0f + 0.5f;
+    const float step = rounded[axis] * 1024.0f;  // exact: a multiple of 1/1024
+    // Four units in the last place of the largest term, in steps: two fused roundings and the
+    // sums' own, with room to spare (and the + 0.5's rounding).
+    const float slack =
+        4.0f * 1024.0f * ulp + (std::nextafter(std::abs(t), INFINITY) - std::abs(t));
+    steps[axis] = {step};
+    if (t - step < slack) steps[axis].push_back(step - 1);
+    if (step + 1 - t < slack) steps[axis].push_back(step + 1);
+  }
+  std::vector<glm::vec3> candidates;
+  for (float sz : steps[2]) {
+    for (float sy : steps[1]) {
+      for (float sx : steps[0]) candidates.push_back(glm::vec3(sx, sy, sz) * (1.0f / 1024.0f));
+    }
+  }
+  return candidates;
+}
+
 bool SliceSampler::insideVolume(glm::vec3 voxel) const {
   return glm::all(glm::greaterThanEqual(voxel, glm::vec3(-0.5f))) &&
          glm::all(glm::lessThanEqual(voxel, dims_ - 0.5f));

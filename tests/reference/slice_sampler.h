@@ -50,6 +50,11 @@ class SliceSampler {
   // What the slice passes sample (common.glsl sliceVoxel): the voxel position of pixel (x, y)
   // on a slice, and whether it lies in the volume's box.
   glm::vec3 sliceVoxel(int x, int y, const SliceVoxelCoords& slice) const;
+  // sliceVoxel first, then the other positions the shader may round to: its float rounding
+  // before quantizedVoxel may differ from this computation's by a few units in the last place
+  // (a fused multiply-add, another order), which tips the rounding to 1/1024 voxel the other
+  // way where the unrounded position lies that close to a boundary between two steps.
+  std::vector<glm::vec3> sliceVoxelCandidates(int x, int y, const SliceVoxelCoords& slice) const;
   bool insideVolume(glm::vec3 voxel) const;
   glm::vec3 gradientVoxel(glm::vec3 voxel) const;
   // −∇f/|∇f| in eye space, 0 where the gradient vanishes (common.glsl outwardNormalEye).
