@@ -139,10 +139,11 @@ TEST_F(ColourSphereGl, PngMapMatchesTheCpuReference) {
     const RenderResult gl = test::renderOnce(volume, settings);
     const reference::ReferenceFrame cpu =
         reference::findReference("demip").render(volume, settings, 1e-4f);
-    // Pixels whose first hit lies on another slice than the reference's are left out and
-    // counted: there demip's depth term differs whatever the map (a pre-existing disagreement of
-    // demip's first-hit sweep with its reference, one pixel of this turned orthographic view,
-    // that sphere weight 0 shows as well), which is not what this test is about.
+    // Pixels whose first hit may lie on another slice (the reference's ambiguous ones: a value
+    // near the threshold, or a position the shader's rounding may tip) are left out; everywhere
+    // else the first hit must be the reference's. (With demip's slice passes one pixel of the
+    // turned orthographic view disagreed; the march, which a volume in one texture gets, does
+    // not.)
     int shown = 0, otherHit = 0;
     double largest = 0;
     for (int y = 0; y < settings.size.y; ++y) {
@@ -162,7 +163,7 @@ TEST_F(ColourSphereGl, PngMapMatchesTheCpuReference) {
     }
     std::cout << "[ info ] " << c.name << ": " << shown << " pixels shown, largest difference "
               << largest << "; " << otherHit << " pixels with another first hit\n";
-    EXPECT_LE(otherHit, 2);
+    EXPECT_EQ(otherHit, 0);
     EXPECT_GT(shown, 1000);
     // As the demip entry of the reference table: float rounding only (here also GLSL's atan
     // against std::atan2 on a map whose colours change by at most 0.4 per radian).
