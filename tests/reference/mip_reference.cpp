@@ -260,12 +260,22 @@ ReferenceFrame renderLmip(const Volume& volume, const RenderSettings& settings, 
       if (onBoxFace) result.ambiguous(y, x) = 1;
       if (samples.empty()) continue;
       const RaySample* top = nullptr;  // the highest sample of the run above the threshold
+      // Whether values within these bounds (the shader's may round otherwise: RaySample) may
+      // compare either way with one another, up to float rounding.
+      const auto close = [isoEpsilon](float low, float high, float otherLow, float otherHigh) {
+        return high + isoEpsilon >= otherLow && low - isoEpsilon <= otherHigh;
+      };
       for (const auto& s : samples) {
-        if (std::abs(s.value - threshold) <= isoEpsilon) result.ambiguous(y, x) = 1;
-        if (top && std::abs(s.value - top->value) <= isoEpsilon) result.ambiguous(y, x) = 1;
+        if (close(s.low, s.high, threshold, threshold)) result.ambiguous(y, x) = 1;
+        if (top && close(s.low, s.high, top->low, top->high)) result.ambiguous(y, x) = 1;
         if (top && s.value < top->value) break;  // the run falls: top is the local maximum
         if (s.value >= threshold && (!top || s.value > top->value)) top = &s;
       }
+      // The value shown may be open too: the local maximum's own, or without a run the plain
+      // maximum, as mip's.
+      const float shownLow = top ? top->low : maximumOf(samples, &RaySample::low);
+      const float shownHigh = top ? top->high : maximumOf(samples, &RaySample::high);
+      if (shownHigh - shownLow > isoEpsilon) result.ambiguous(y, x) = 1;
       const float shown = top ? top->value : maximumOf(samples);
       if (classify.nearEdge(shown, isoEpsilon)) result.ambiguous(y, x) = 1;
       const glm::vec4 classified = classify(shown);

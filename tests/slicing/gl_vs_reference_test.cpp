@@ -36,7 +36,7 @@ struct Scene {
   bool orthographic;
   // False where the slice-pass pipelines (fast, paper, and firsthit's) disagree with the
   // reference at a pixel or two away from the iso value: bonsai and engine (README, Tests,
-  // known issue). There only the marches (the tiles pipeline, mip and demip), which test the
+  // known issue). There only the marches (the tiles pipeline, mip, demip, lmip), which test the
   // texture extent as the reference does instead of rasterising slice polygons, are compared,
   // and they must match.
   bool slicePassesMatch = true;
@@ -109,11 +109,11 @@ TEST_P(GlMatchesReference, PixelByPixel) {
   const Case& c = GetParam();
   if (c.scene.volume.rfind("gen:", 0) != 0) VSIL_REQUIRE_DATASETS();
   const auto pipeline = c.variant.find("pipeline");
-  // mip and demip march whenever the volume is one texture, as every scene's is here
-  // (MipTechnique::marches).
+  // mip, demip and lmip march whenever the volume is one texture, as every scene's is here
+  // (MipTechnique::marches, LmipTechnique::marches).
   const bool marched =
       (pipeline != c.variant.end() && std::get<std::string>(pipeline->second) == "tiles") ||
-      c.technique == "mip" || c.technique == "demip";
+      c.technique == "mip" || c.technique == "demip" || c.technique == "lmip";
   if (!c.scene.slicePassesMatch && !marched) {
     GTEST_SKIP() << "known issue: the slice passes disagree with the reference at 1-2 pixels "
                     "away from the iso value on this scene (README, Tests)";

@@ -6,6 +6,7 @@
 #include "slicing/techniques/mip/mip_options.h"
 #include "slicing/techniques/mip/mip_technique.h"
 #include "slicing/texture_units.h"
+#include "slicing/tile_march.h"
 
 namespace vsil {
 
@@ -24,6 +25,15 @@ BrickOccupancy LmipTechnique::occupancy(const FrameContext&) const {
   return [](ValueRange) { return true; };
 }
 
+namespace {
+// One invocation per pixel, as the first-hit march: no pixel reads another's.
+constexpr MarchShape kLmipMarchShape{{16, 16}, {16, 16}};
+}  // namespace
+
+bool LmipTechnique::marches(const FrameContext& frame) {
+  return frame.volume->brickCount() == 1;
+}
+
 void LmipTechnique::beginFrame(const FrameContext& frame) {
   const glm::ivec2 size = frame.view->viewport;
   if (!targets_ || targets_->record.size() != size) {
@@ -33,6 +43,7 @@ void LmipTechnique::beginFrame(const FrameContext& frame) {
     targets_.emplace(Targets{std::move(record), gl::EmptyFramebuffer(size, depth),
                              gl::RenderTarget(size, GL_RGBA32F)});
   }
+  if (marches(frame)) return;  // the march runs after the (empty) sweep, in endFrame
   slicePass_ = &frame.programs->get(
       gl::slicePassProgram(hitRecordSources(), "techniques/mip/lmip_slice.frag"));
   slicePass_->use();
@@ -45,7 +56,7 @@ void LmipTechnique::beginFrame(const FrameContext& frame) {
 }
 
 void LmipTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
-  if (slice.vertexCount == 0) return;
+  if (marches(frame) || slice.vertexCount == 0) return;
   {
     // The record's depth buffer without the record itself: the pass samples the record, so
     // it must not be drawn into as well; it writes through the image.
@@ -63,6 +74,14 @@ void LmipTechnique::drawSlice(const FrameContext& frame, const SliceContext& sli
 }
 
 void LmipTechnique::endFrame(const FrameContext& frame) {
+  if (marches(frame)) {
+    gl::Program& march =
+        marchProgram(frame, hitRecordSources(), "techniques/mip/lmip_march.comp", kLmipMarchShape);
+    march.use();
+    march.set("lmipThreshold", float(frame.options->number("lmip-threshold")));
+    march.set("noSample", kNoSample);
+    runMarch(frame, march, kLmipMarchShape, targets_->record);
+  }
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   gl::Program& finish =
       useMipFinish(frame, {"LMIP"}, targets_->record.texture(), targets_->colour, transferTable_);

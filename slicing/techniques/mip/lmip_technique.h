@@ -4,6 +4,8 @@
 // where it never reaches the threshold, through mip's window or --tf. One sweep; the record is
 // updated in place per slice (lmip_slice.frag); pixels whose maximum is found are retired (marked
 // dead). No brick is skipped: any sample, however low, may end a run, so none can be left out.
+// When the volume is one texture, a march (lmip_march.comp) does the same search instead, each
+// ray stopping at its own maximum: the same record, the same bytes.
 #include <optional>
 
 #include "slicing/technique.h"
@@ -23,6 +25,10 @@ class LmipTechnique : public Technique {
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:
+  // Whether this frame marches (lmip_march.comp) instead of drawing passes per slice: the
+  // volume is one texture (the record carries the search from one dispatch to the next).
+  static bool marches(const FrameContext& frame);
+
   struct Targets {
     gl::RenderTarget record;         // RGBA32F (lmip_slice.frag) with the entry depth
     gl::EmptyFramebuffer depthOnly;  // the record's depth buffer alone, for retiring pixels
