@@ -43,8 +43,8 @@ class RaySampler {
     for (std::size_t k = 0; k < setup_.plan.slices.size(); ++k) {
       const Slice& slice = setup_.plan.slices[k];
       if (slice.polygonVoxel.empty()) continue;
-      const std::vector<glm::vec3> candidates = sampler_.sliceVoxelCandidates(x, y, coords_[k]);
-      const glm::vec3 voxel = candidates.front();
+      const VoxelCandidates candidates = sampler_.sliceVoxelCandidates(x, y, coords_[k]);
+      const glm::vec3 voxel = candidates.positions[0];
       // Distance to the nearer face per axis.
       const glm::vec3 inner = glm::min(voxel + 0.5f, dims_ - 0.5f - voxel);
       const float nearest = std::min({inner.x, inner.y, inner.z});
@@ -52,9 +52,10 @@ class RaySampler {
       if (!sampler_.insideVolume(voxel)) continue;
       RaySample sample{&slice, sampler_.sample(voxel), 0, 0};
       sample.low = sample.high = sample.value;
-      for (std::size_t i = 1; i < candidates.size(); ++i) {
-        if (!sampler_.insideVolume(candidates[i])) continue;  // near a face: onBoxFace
-        const float value = sampler_.sample(candidates[i]);
+      for (int i = 1; i < candidates.count; ++i) {
+        const glm::vec3 other = candidates.positions[std::size_t(i)];
+        if (!sampler_.insideVolume(other)) continue;  // near a face: onBoxFace
+        const float value = sampler_.sample(other);
         sample.low = std::min(sample.low, value);
         sample.high = std::max(sample.high, value);
       }

@@ -82,14 +82,16 @@ glm::vec3 SliceSampler::sliceVoxel(int x, int y, const SliceVoxelCoords& slice) 
   return quantizedVoxel(ndc.x * slice.perNdcX + ndc.y * slice.perNdcY + slice.atNdcOrigin);
 }
 
-std::vector<glm::vec3> SliceSampler::sliceVoxelCandidates(int x, int y,
-                                                          const SliceVoxelCoords& slice) const {
+VoxelCandidates SliceSampler::sliceVoxelCandidates(int x, int y,
+                                                   const SliceVoxelCoords& slice) const {
   const glm::vec2 ndc = fragmentNdc(x, y);
   const glm::vec3 a = ndc.x * slice.perNdcX, b = ndc.y * slice.perNdcY;
   const glm::vec3 unrounded = a + b + slice.atNdcOrigin;
   const glm::vec3 rounded = sliceVoxel(x, y, slice);
-  // Per axis, the steps (units of 1/1024 voxel) the position may round to, sliceVoxel's first.
-  std::vector<float> steps[3];
+  // Per axis, the steps (units of 1/1024 voxel) the position may round to, sliceVoxel's first:
+  // one or two (the slack is far below half a step).
+  float steps[3][2];
+  int stepCount[3];
   for (int axis = 0; axis < 3; ++axis) {
     const float magnitude =
         std::abs(a[axis]) + std::abs(b[axis]) + std::abs(slice.atNdcOrigin[axis]);
@@ -100,14 +102,19 @@ std::vector<glm::vec3> SliceSampler::sliceVoxelCandidates(int x, int y,
     // sums' own, with room to spare (and the + 0.5's rounding).
     const float slack =
         4.0f * 1024.0f * ulp + (std::nextafter(std::abs(t), INFINITY) - std::abs(t));
-    steps[axis] = {step};
-    if (t - step < slack) steps[axis].push_back(step - 1);
-    if (step + 1 - t < slack) steps[axis].push_back(step + 1);
+    steps[axis][0] = step;
+    stepCount[axis] = 1;
+    if (t - step < slack) steps[axis][stepCount[axis]++] = step - 1;
+    if (step + 1 - t < slack) steps[axis][stepCount[axis]++] = step + 1;
   }
-  std::vector<glm::vec3> candidates;
-  for (float sz : steps[2]) {
-    for (float sy : steps[1]) {
-      for (float sx : steps[0]) candidates.push_back(glm::vec3(sx, sy, sz) * (1.0f / 1024.0f));
+  // Fixed storage: the references ask for every sample of every pixel.
+  VoxelCandidates candidates;
+  for (int z = 0; z < stepCount[2]; ++z) {
+    for (int y = 0; y < stepCount[1]; ++y) {
+      for (int x = 0; x < stepCount[0]; ++x) {
+        candidates.positions[std::size_t(candidates.count++)] =
+            glm::vec3(steps[0][x], steps[1][y], steps[2][z]) * (1.0f / 1024.0f);
+      }
     }
   }
   return candidates;

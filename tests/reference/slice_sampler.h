@@ -2,6 +2,7 @@
 // The CPU twin of slicing/shaders/common.glsl: the same sample positions (pixel centres on the
 // view-aligned slice planes of slicing/slicer.h), computed in float with the same operations,
 // and trilinear interpolation as OpenGL defines it for a clamped float 3D texture.
+#include <array>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -35,6 +36,12 @@ glm::vec4 sampleGradientTexels(const GradientTexels& texels, glm::vec3 voxel);
 // A voxel position rounded as the shaders round it (common.glsl quantizedVoxel).
 glm::vec3 quantizedVoxel(glm::vec3 voxel);
 
+// Up to eight voxel positions (two per axis), the first the one sliceVoxel computes.
+struct VoxelCandidates {
+  std::array<glm::vec3, 8> positions;
+  int count = 0;
+};
+
 class SliceSampler {
  public:
   SliceSampler(const Volume& volume, const View& view);
@@ -54,7 +61,7 @@ class SliceSampler {
   // before quantizedVoxel may differ from this computation's by a few units in the last place
   // (a fused multiply-add, another order), which tips the rounding to 1/1024 voxel the other
   // way where the unrounded position lies that close to a boundary between two steps.
-  std::vector<glm::vec3> sliceVoxelCandidates(int x, int y, const SliceVoxelCoords& slice) const;
+  VoxelCandidates sliceVoxelCandidates(int x, int y, const SliceVoxelCoords& slice) const;
   bool insideVolume(glm::vec3 voxel) const;
   glm::vec3 gradientVoxel(glm::vec3 voxel) const;
   // −∇f/|∇f| in eye space, 0 where the gradient vanishes (common.glsl outwardNormalEye).
