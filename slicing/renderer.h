@@ -39,6 +39,12 @@ struct RenderSettings {
   // termination, slicing/compositing.h): no channel changes by more than 1/255. Off: every
   // sample in occupied space is composited.
   bool earlyRayTermination = true;
+  // Whether FrameBuffers::depth is wanted where a colour technique makes it beside its colour
+  // (demip's first hit, lmip's local maximum): reading it back costs 5-10 ms per 512² frame, so
+  // callers that write no depth (`vsil render` without --depth-out, `vsil animate`, the bench)
+  // turn it off and get no depth. Techniques with pixel states and firsthit always return theirs
+  // (broadening and their colour are made from it).
+  bool readDepth = true;
   // The colour the frame will be composed over (`--background`) when the caller chose one;
   // techniques that blend towards it read FrameContext::background (distance colour blending's
   // c_b: illustrate's, the tone fill's). Unset: the technique's own choice (a style's), else white.

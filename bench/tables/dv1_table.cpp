@@ -85,9 +85,10 @@ cv::Mat1b coverage(const cv::Mat4f& colour) {
 }
 
 // The columns take turns frame by frame (load from other processes falls on all alike).
-// Timed: Renderer::render (both sweeps, glFinish, readback). Checked after the timed region:
-// every frame shows something; MIP and DEMIP show the same pixels (DEMIP only shades them);
-// the colour sphere changes some pixel.
+// Timed: Renderer::render (both sweeps, glFinish, readback of the colour; no depth, as `vsil
+// render` without --depth-out). Checked after the timed region: every frame shows something;
+// MIP and DEMIP show the same pixels (DEMIP only shades them); the colour sphere changes some
+// pixel.
 std::vector<CaseResult> measureWindow(Renderer& renderer, int window, const BenchOptions& options) {
   const auto& columns = dv1Columns();
   std::vector<CaseResult> results(columns.size());
@@ -101,6 +102,7 @@ std::vector<CaseResult> measureWindow(Renderer& renderer, int window, const Benc
       settings.size = {window, window};
       settings.camera.azimuthDeg = kOrbitStartDeg + kOrbitStepDeg * std::max(timed, 0);
       settings.camera.elevationDeg = kElevationDeg;
+      settings.readDepth = false;
       const auto start = std::chrono::steady_clock::now();
       RenderResult frame = renderer.render(settings);
       const double ms = millisecondsSince(start);
@@ -248,16 +250,16 @@ TableResult runDv1Table(const BenchOptions& options, Progress& progress) {
   }
   progress.finish();
 
-  char method[600];
+  char method[800];
   std::snprintf(
       method, sizeof method,
       "method: %d warm-up + %d timed frames per column, MIP/DEMIP/DEMIP+sphere/DVR "
       "taking turns, orbit from azimuth %.0f° in steps of %.1f° at elevation %.0f°, 1 slice per "
       "voxel, window = the value range, DEMIP defaults (d_w 0.15, eps 5 %% of the "
       "range, exact depth), sphere weight %.1f (red-blue), DVR = illustrate with no "
-      "effects; frame time = Renderer::render (every sweep + glFinish + readback; the "
-      "gradient texture DVR shades with is built once per volume, on its first frame, "
-      "a warm-up frame with --warmup >= 1), fps = 1000 / median",
+      "effects; frame time = Renderer::render (every sweep + glFinish + readback of the "
+      "colour, no depth; the gradient texture DVR shades with is built once per volume, on "
+      "its first frame, a warm-up frame with --warmup >= 1), fps = 1000 / median",
       options.warmup, options.frames, kOrbitStartDeg, kOrbitStepDeg, kElevationDeg, kSphereWeight);
   table.notes.push_back(method);
   table.notes.push_back("not measured: the paper's MIDA column (no MIDA technique)");

@@ -115,7 +115,8 @@ std::string progressText(int done, int total, double seconds) {
 void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
   const auto start = Clock::now();
   const LoadOptions loadOptions = toLoadOptions(renderFlags.volume);
-  const RenderRequest base = toRenderRequest(renderFlags);
+  RenderRequest base = toRenderRequest(renderFlags);
+  base.settings.readDepth = false;  // frames are images only
   RenderJob::checkRequest(base, loadOptions.limits);
   const AnimationPlan plan(base, animationSpec(flags), loadOptions.limits);
   checkOutputs(flags, base.settings.size);

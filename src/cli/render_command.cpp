@@ -38,7 +38,8 @@ void checkOutputs(const RenderFlags& flags, const RenderOutputs& outputs) {
 void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   const auto start = std::chrono::steady_clock::now();
   const LoadOptions loadOptions = toLoadOptions(flags.volume);
-  const RenderRequest request = toRenderRequest(flags);
+  RenderRequest request = toRenderRequest(flags);
+  request.settings.readDepth = !outputs.depthOut.empty();
   RenderJob::checkRequest(request, loadOptions.limits);
   checkOutputs(flags, outputs);
   const gl::ContextOptions glOptions = toContextOptions(flags.gl);

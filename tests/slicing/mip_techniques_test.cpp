@@ -304,5 +304,28 @@ TEST_F(MipTechniques, MarchAndSlicePassesLeaveTheSameBytes) {
   }
 }
 
+// RenderSettings::readDepth off (`vsil render` without --depth-out): the same colour, no depth.
+TEST_F(MipTechniques, DepthIsReadBackOnlyWhenAsked) {
+  const Volume volume = twoBalls();
+  Renderer renderer(test::sharedGlContext());
+  renderer.setVolume(volume);
+  const std::vector<std::pair<std::string, OptionValues>> cases{
+      {"demip", {{"depth-weight", 0.3}}},
+      {"demip", {{"sphere-weight", 0.5}, {"legend", true}}},
+      {"lmip", {{"lmip-threshold", 0.5}}},
+  };
+  for (const auto& [technique, options] : cases) {
+    SCOPED_TRACE(technique);
+    RenderSettings settings = settingsFor(technique, options, 30);
+    const RenderResult withDepth = renderer.render(settings);
+    settings.readDepth = false;
+    const RenderResult colourOnly = renderer.render(settings);
+    ASSERT_FALSE(withDepth.frame.depth.empty());
+    EXPECT_GT(cv::countNonZero(withDepth.frame.depth == withDepth.frame.depth), 500);
+    EXPECT_TRUE(colourOnly.frame.depth.empty());
+    EXPECT_EQ(cv::norm(withDepth.frame.color, colourOnly.frame.color, cv::NORM_INF), 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace vsil

@@ -237,14 +237,15 @@ void MipTechnique::uploadSphereMap() {
 }
 
 FrameBuffers MipTechnique::readBack(const FrameContext& frame) {
-  if (!depthEnhanced_) {
-    FrameBuffers frame;
-    frame.color = readTargetFlipped(targets_->colour, 4);
-    return frame;
+  FrameBuffers result;
+  if (depthEnhanced_ && frame.settings->readDepth) {
+    // Every shown pixel has its hit: its maximum's own sample qualifies.
+    result = colourWithDepth(targets_->colour, marches(frame) ? targets_->values : hits_.record(),
+                             1, {});
+  } else {
+    result.color = readTargetFlipped(targets_->colour, 4);
   }
-  // Every shown pixel has its hit: its maximum's own sample qualifies.
-  FrameBuffers result =
-      colourWithDepth(targets_->colour, marches(frame) ? targets_->values : hits_.record(), 1, {});
+  if (!depthEnhanced_) return result;
   const OptionReader& options = *frame.options;
   if (options.enabled("legend")) {
     drawSphereLegend(result.color, colourSphere_, sphereFrameEye(options, *frame.view));
