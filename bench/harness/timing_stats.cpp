@@ -1,5 +1,7 @@
 #include "harness/timing_stats.h"
 
+#include <time.h>
+
 #include <algorithm>
 
 namespace vsil::bench {
@@ -20,6 +22,12 @@ TimingStats summarize(const std::vector<double>& milliseconds) {
   stats.msMax = *highest;
   stats.msMedian = median(milliseconds);
   return stats;
+}
+
+double processCpuMs() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
 }
 
 }  // namespace vsil::bench

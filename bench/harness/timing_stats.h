@@ -16,4 +16,8 @@ struct TimingStats {
 double median(std::vector<double> values);
 TimingStats summarize(const std::vector<double>& milliseconds);
 
+// CPU time of the whole process so far, in ms (every llvmpipe thread): a frame's difference is
+// steadier than its wall time on a loaded machine, since it counts work, not waiting.
+double processCpuMs();
+
 }  // namespace vsil::bench

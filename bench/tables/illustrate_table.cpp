@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <limits>
 
@@ -131,14 +130,6 @@ struct Measured {
   };
   std::vector<Window> windows;
 };
-
-// CPU time of the whole process (every llvmpipe thread): steadier than wall time on a loaded
-// machine, since it counts work, not waiting.
-double processCpuMs() {
-  timespec now{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-  return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
-}
 
 RenderSettings caseSettings(const IllustrateCase& c, const IllustrateDataset& d,
                             const std::string& tfPath, int window) {

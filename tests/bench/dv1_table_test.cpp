@@ -20,6 +20,7 @@ TEST(Dv1Table, MeasuresAndChecksMipDemipTheSphereAndDvr) {
                     (dir / "dv1.json").string());
   ASSERT_EQ(result.exitCode, 0) << result.err << result.out;
   EXPECT_NE(result.out.find("DEMIP/MIP"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("cpu DEMIP/MIP"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("Aneurysm 512²·120 76.2 / 54.5"), std::string::npos) << result.out;
   const auto json = nlohmann::json::parse(test::readFileBytes(dir / "dv1.json"));
   int measured = 0;
@@ -28,6 +29,7 @@ TEST(Dv1Table, MeasuresAndChecksMipDemipTheSphereAndDvr) {
     ++measured;
     EXPECT_EQ(row["check"], "ok") << row.dump();
     EXPECT_GT(row["fps"].get<double>(), 0.0) << row.dump();
+    EXPECT_GT(row["cpu_ms_median"].get<double>(), 0.0) << row.dump();
     EXPECT_EQ(row["frames"], 2);
     // The paper measured only the aneurysm of these, and only at 512².
     EXPECT_TRUE(row["paper_fps"].is_null()) << row.dump();
