@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iostream>
 #include <memory>
 
 #include <gtest/gtest.h>
@@ -114,9 +115,21 @@ TEST_F(GlTest, RenderersLeakNoGlObjectsAndNoMemory) {
   (void)residentBefore;
   (void)residentAfter;
 #else
-  const double growthMiB = (double(residentAfter) - double(residentBefore)) / (1 << 20);
-  EXPECT_LT(growthMiB, 4.0) << "resident set grew from " << residentBefore << " to "
-                            << residentAfter << " bytes over " << kCycles / 2 << " cycles";
+  const auto mebibytes = [](std::size_t from, std::size_t to) {
+    return (double(to) - double(from)) / (1 << 20);
+  };
+  double growthMiB = mebibytes(residentBefore, residentAfter);
+  if (growthMiB >= 4.0) {
+    // A one-off step (seen: 6.1 MiB under ctest -j2, the same build passing alone) does not
+    // come again; a leak grows by as much over the next cycles.
+    for (int i = 0; i < kCycles / 2; ++i) renderCycle(volume);
+    const double again = mebibytes(residentAfter, residentBytes());
+    std::cout << "[ info ] resident set grew by " << growthMiB << " MiB, then by " << again
+              << " MiB over " << kCycles / 2 << " more cycles\n";
+    growthMiB = std::min(growthMiB, again);
+  }
+  EXPECT_LT(growthMiB, 4.0) << "resident set grew by 4 MiB or more over " << kCycles / 2
+                            << " cycles, twice running";
 #endif
 }
 
