@@ -90,15 +90,11 @@ void LmipTechnique::endFrame(const FrameContext& frame) {
 }
 
 FrameBuffers LmipTechnique::readBack(const FrameContext& frame) {
-  if (!frame.settings->readDepth) {
-    FrameBuffers result;
-    result.color = readTargetFlipped(targets_->colour, 4);
-    return result;
-  }
   const float threshold = float(frame.options->number("lmip-threshold"));
   // A depth where the ray met the threshold: the local maximum's.
-  return colourWithDepth(targets_->colour, targets_->record, 3,
-                         [threshold](const cv::Vec4f& r) { return r[2] >= threshold; });
+  return colourWithDepth(
+      targets_->colour, targets_->record, 3,
+      [threshold](const cv::Vec4f& r) { return r[2] >= threshold; }, frame.settings->readDepth);
 }
 
 }  // namespace vsil

@@ -155,9 +155,11 @@ gl::Program& useMipFinish(const FrameContext& frame, std::vector<std::string> de
 
 FrameBuffers colourWithDepth(const gl::RenderTarget& colour, const gl::RenderTarget& record,
                              int depthChannel,
-                             const std::function<bool(const cv::Vec4f&)>& hasDepth) {
+                             const std::function<bool(const cv::Vec4f&)>& hasDepth,
+                             bool readDepth) {
   FrameBuffers frame;
   frame.color = readTargetFlipped(colour, 4);
+  if (!readDepth) return frame;
   const float none = std::numeric_limits<float>::quiet_NaN();
   if (!hasDepth) {
     // Only the depth channel: every shown pixel has one.
@@ -237,15 +239,15 @@ void MipTechnique::uploadSphereMap() {
 }
 
 FrameBuffers MipTechnique::readBack(const FrameContext& frame) {
-  FrameBuffers result;
-  if (depthEnhanced_ && frame.settings->readDepth) {
-    // Every shown pixel has its hit: its maximum's own sample qualifies.
-    result = colourWithDepth(targets_->colour, marches(frame) ? targets_->values : hits_.record(),
-                             1, {});
-  } else {
-    result.color = readTargetFlipped(targets_->colour, 4);
+  if (!depthEnhanced_) {
+    FrameBuffers frame;
+    frame.color = readTargetFlipped(targets_->colour, 4);
+    return frame;
   }
-  if (!depthEnhanced_) return result;
+  // Every shown pixel has its hit: its maximum's own sample qualifies.
+  FrameBuffers result =
+      colourWithDepth(targets_->colour, marches(frame) ? targets_->values : hits_.record(), 1, {},
+                      frame.settings->readDepth);
   const OptionReader& options = *frame.options;
   if (options.enabled("legend")) {
     drawSphereLegend(result.color, colourSphere_, sphereFrameEye(options, *frame.view));

@@ -74,9 +74,10 @@ gl::Program& useMipFinish(const FrameContext& frame, std::vector<std::string> de
                           std::optional<TransferFunctionTexture>& transferTable);
 // The colour target as the frame's colour, and channel `depthChannel` of `record` as its depth
 // where a pixel shows something and `hasDepth` holds for its record (NaN elsewhere); without
-// `hasDepth` every shown pixel has its depth, and only that channel is read back.
+// `hasDepth` every shown pixel has its depth, and only that channel is read back. With
+// `readDepth` false (RenderSettings::readDepth) the colour alone: no depth.
 FrameBuffers colourWithDepth(const gl::RenderTarget& colour, const gl::RenderTarget& record,
                              int depthChannel,
-                             const std::function<bool(const cv::Vec4f&)>& hasDepth);
+                             const std::function<bool(const cv::Vec4f&)>& hasDepth, bool readDepth);
 
 }  // namespace vsil
