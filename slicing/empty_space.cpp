@@ -23,6 +23,10 @@ int firstVoxel(int brick) {
 int lastVoxel(int brick) {
   return (brick + 1) * kB + 1;
 }
+// Those of them inside a volume `dim` voxels long.
+std::pair<int, int> voxelRange(int brick, int dim) {
+  return {std::max(0, firstVoxel(brick)), std::min(dim - 1, lastVoxel(brick))};
+}
 
 }  // namespace
 
@@ -33,9 +37,6 @@ BrickRanges::BrickRanges(const Volume& volume)
   const auto unite = [](ValueRange& r, ValueRange other) {
     r.min = std::min(r.min, other.min);
     r.max = std::max(r.max, other.max);
-  };
-  auto voxelRange = [](int brick, int dim) {
-    return std::pair{std::max(0, firstVoxel(brick)), std::min(dim - 1, lastVoxel(brick))};
   };
   const glm::ivec3 d = dims_, b = bricks_;
   ranges_.assign(std::size_t(b.x) * b.y * b.z, none);
@@ -88,6 +89,29 @@ BrickRanges::BrickRanges(const Volume& volume)
   layers(0);
 }
 
+std::vector<bool> bricksReading(const std::vector<std::uint8_t>& voxels, glm::ivec3 dims) {
+  const glm::ivec3 bricks = (dims + kB - 1) / kB;
+  std::vector<bool> reading(std::size_t(bricks.x) * bricks.y * bricks.z);
+  auto holdsOne = [&](glm::ivec3 brick) {
+    const auto [x0, x1] = voxelRange(brick.x, dims.x);
+    const auto [y0, y1] = voxelRange(brick.y, dims.y);
+    const auto [z0, z1] = voxelRange(brick.z, dims.z);
+    for (int z = z0; z <= z1; ++z) {
+      for (int y = y0; y <= y1; ++y) {
+        const auto row = voxels.begin() + std::ptrdiff_t((std::size_t(z) * dims.y + y) * dims.x);
+        if (std::any_of(row + x0, row + x1 + 1, [](std::uint8_t v) { return v != 0; })) return true;
+      }
+    }
+    return false;
+  };
+  for (int bz = 0, i = 0; bz < bricks.z; ++bz) {
+    for (int by = 0; by < bricks.y; ++by) {
+      for (int bx = 0; bx < bricks.x; ++bx, ++i) reading[std::size_t(i)] = holdsOne({bx, by, bz});
+    }
+  }
+  return reading;
+}
+
 ValueRange BrickRanges::range(glm::ivec3 brick) const {
   return ranges_[(std::size_t(brick.z) * bricks_.y + brick.y) * bricks_.x + brick.x];
 }
@@ -100,35 +124,8 @@ glm::dvec3 BrickRanges::regionHigh(glm::ivec3 brick) const {
   return glm::min(glm::dvec3((brick + 1) * kB), glm::dvec3(dims_)) - 0.5;
 }
 
-namespace {
-
-// Grows the occupied bricks (x fastest) by `margin` bricks along each axis in turn: a box of
-// (2·margin + 1)³ bricks around each.
-void growOccupied(std::vector<bool>& occupied, glm::ivec3 bricks, int margin) {
-  for (int axis = 0; axis < 3 && margin > 0; ++axis) {
-    const std::vector<bool> before = occupied;
-    const glm::ivec3 stride(1, bricks.x, bricks.x * bricks.y);
-    for (int bz = 0; bz < bricks.z; ++bz) {
-      for (int by = 0; by < bricks.y; ++by) {
-        for (int bx = 0; bx < bricks.x; ++bx) {
-          const glm::ivec3 b(bx, by, bz);
-          const int i = bx + by * stride.y + bz * stride.z;
-          const int lo = std::max(0, b[axis] - margin);
-          const int hi = std::min(bricks[axis] - 1, b[axis] + margin);
-          for (int k = lo; k <= hi && !occupied[std::size_t(i)]; ++k) {
-            if (before[std::size_t(i + (k - b[axis]) * stride[axis])])
-              occupied[std::size_t(i)] = true;
-          }
-        }
-      }
-    }
-  }
-}
-
-}  // namespace
-
 OccupiedFaces occupiedFaces(const BrickRanges& ranges, const BrickOccupancy& occupied,
-                            const View& view, int margin) {
+                            const View& view, const std::vector<bool>& alsoOccupied) {
   const glm::dmat4 voxelFromEye = glm::inverse(view.eyeFromVoxel);
   // Perspective: a face is turned to the eye when the eye lies beyond its plane; orthographic:
   // when the direction towards the eye points out of it.
@@ -141,11 +138,11 @@ OccupiedFaces occupiedFaces(const BrickRanges& ranges, const BrickOccupancy& occ
   for (int bz = 0, i = 0; bz < bricks.z; ++bz) {
     for (int by = 0; by < bricks.y; ++by) {
       for (int bx = 0; bx < bricks.x; ++bx, ++i) {
-        occupiedBricks[std::size_t(i)] = occupied(ranges.range({bx, by, bz}));
+        occupiedBricks[std::size_t(i)] = (!alsoOccupied.empty() && alsoOccupied[std::size_t(i)]) ||
+                                         occupied(ranges.range({bx, by, bz}));
       }
     }
   }
-  growOccupied(occupiedBricks, bricks, margin);
   auto isOccupied = [&](glm::ivec3 b) {
     return glm::all(glm::greaterThanEqual(b, glm::ivec3(0))) &&
            glm::all(glm::lessThan(b, bricks)) &&
@@ -211,7 +208,8 @@ EmptySpaceSkipping::EmptySpaceSkipping()
 }
 
 void EmptySpaceSkipping::prepare(const BrickRanges& ranges, const BrickOccupancy& occupied,
-                                 const View& view, bool enabled, int margin) {
+                                 const View& view, bool enabled,
+                                 const std::vector<bool>& alsoOccupied) {
   enabled_ = enabled;
   entryVertices_ = exitVertices_ = 0;
   if (!exitDepth_ || exitDepth_->size() != view.viewport) {
@@ -224,7 +222,7 @@ void EmptySpaceSkipping::prepare(const BrickRanges& ranges, const BrickOccupancy
   VSIL_GL(glClearBufferfv(GL_COLOR, 0, exitClear));
   if (!enabled) return;
 
-  OccupiedFaces faces = occupiedFaces(ranges, occupied, view, margin);
+  OccupiedFaces faces = occupiedFaces(ranges, occupied, view, alsoOccupied);
   entryVertices_ = GLsizei(faces.entry.size());
   exitVertices_ = GLsizei(faces.exit.size());
   std::vector<glm::vec3>& vertices = faces.entry;  // entry faces first, then exit faces
@@ -234,8 +232,7 @@ void EmptySpaceSkipping::prepare(const BrickRanges& ranges, const BrickOccupancy
                        vertices.data(), GL_STREAM_DRAW));
 
   gl::Blending farthest(GL_MAX, GL_ONE, GL_ONE);
-  drawFaces(depthAsColorProgram_, glm::mat4(view.clipFromVoxel()), entryVertices_,
-            exitVertices_);
+  drawFaces(depthAsColorProgram_, glm::mat4(view.clipFromVoxel()), entryVertices_, exitVertices_);
 }
 
 void EmptySpaceSkipping::drawEntryDepthImage(const glm::mat4& clipFromVoxel) {

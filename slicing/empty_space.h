@@ -16,6 +16,7 @@
 // passes, which have no depth test, read the entry depth from an image instead. Skipped
 // pixels are exactly those whose samples stay below the iso value, so no output changes (the
 // GL tests compare against a CPU reference that samples everything).
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -52,6 +53,11 @@ class BrickRanges {
 // Whether a brick may hold anything a technique shows, from its value range.
 using BrickOccupancy = std::function<bool(ValueRange brick)>;
 
+// The bricks (x fastest, as BrickRanges numbers them) that read a voxel set in `voxels` (`dims`
+// voxels, x fastest): every sample position whose nearest or filtered voxels include one lies in
+// such a brick. For Technique::alsoOccupied.
+std::vector<bool> bricksReading(const std::vector<std::uint8_t>& voxels, glm::ivec3 dims);
+
 // Triangles, in voxel coordinates, of the boundary faces of the occupied bricks: each occupied
 // brick's region grown by kEntryMargin voxels (so that float rounding in rasterization never
 // matters), and none that lies inside the next occupied brick (a ray crossing it is inside that
@@ -62,10 +68,10 @@ struct OccupiedFaces {
   std::vector<glm::vec3> entry;
   std::vector<glm::vec3> exit;
 };
-// `margin` > 0 grows the occupied bricks by that many bricks in every direction first
-// (Technique::occupancyMargin).
+// `alsoOccupied` (empty, or one flag per brick) adds bricks whatever their value range
+// (Technique::alsoOccupied).
 OccupiedFaces occupiedFaces(const BrickRanges& ranges, const BrickOccupancy& occupied,
-                            const View& view, int margin = 0);
+                            const View& view, const std::vector<bool>& alsoOccupied = {});
 constexpr double kEntryMargin = 0.5;
 
 // The GL side: per frame, the occupied bricks' entry faces (drawn into a technique's depth
@@ -76,7 +82,7 @@ class EmptySpaceSkipping {
   // Uploads this frame's faces and draws the exit depth image; `enabled` false turns skipping
   // off (entry depth 0, exit depth 1 everywhere).
   void prepare(const BrickRanges& ranges, const BrickOccupancy& occupied, const View& view,
-               bool enabled, int margin = 0);
+               bool enabled, const std::vector<bool>& alsoOccupied = {});
   // Into the bound framebuffer's depth-stencil buffer: stencil 0 and, per pixel, a depth no
   // greater than that of the first slice whose sample there may reach the iso value (1 where
   // none can). Colour buffers are left untouched.
@@ -93,7 +99,7 @@ class EmptySpaceSkipping {
   void drawFaces(gl::Program& program, const glm::mat4& clipFromVoxel, GLint first, GLsizei count);
 
   bool enabled_ = true;
-  gl::Program entryProgram_;        // shaders/occupied_faces.{vert,frag}: depth only
+  gl::Program entryProgram_;         // shaders/occupied_faces.{vert,frag}: depth only
   gl::Program depthAsColorProgram_;  // the window depth as colour (exit image, entry image)
   gl::BufferName buffer_;
   gl::VertexArrayName vertexArray_;

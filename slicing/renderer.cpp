@@ -225,7 +225,7 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   result.options.update(resolved.details);
   if (!impl_->emptySpace) impl_->emptySpace.emplace();
   impl_->emptySpace->prepare(*impl_->brickRanges, technique.occupancy(frame), result.view,
-                             settings.emptySpaceSkipping, technique.occupancyMargin(frame));
+                             settings.emptySpaceSkipping, technique.alsoOccupied(frame));
   frame.emptySpace = &*impl_->emptySpace;
 
   technique.beginFrame(frame);

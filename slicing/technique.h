@@ -98,10 +98,10 @@ class Technique {
   // Which bricks may hold something this frame shows (empty_space.h); the others are skipped
   // without sampling, so the occupancy must refuse only bricks that cannot change a pixel.
   virtual BrickOccupancy occupancy(const FrameContext& frame) const = 0;
-  // Occupied bricks grow by this many bricks in every direction before empty space is skipped:
-  // for techniques whose samples read a neighbourhood (illustrate's halos add opacity beside
-  // what the occupancy admits).
-  virtual int occupancyMargin(const FrameContext&) const { return 0; }
+  // Bricks occupied whatever their value range (one flag per brick, bricksReading; empty:
+  // none): for techniques whose samples read a neighbourhood (illustrate's halos add opacity
+  // beside what the occupancy admits).
+  virtual std::vector<bool> alsoOccupied(const FrameContext&) const { return {}; }
   virtual void beginFrame(const FrameContext& frame) = 0;
   virtual void beginSweep(const FrameContext&) {}
   virtual void drawSlice(const FrameContext& frame, const SliceContext& slice) = 0;

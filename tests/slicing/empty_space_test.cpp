@@ -105,6 +105,53 @@ TEST(BrickRanges, BoundEveryTrilinearSampleInTheirRegion) {
   EXPECT_EQ(checked, 200000);
 }
 
+TEST(BricksReading, HoldEverySamplePositionWhoseNearestVoxelIsSet) {
+  // One set voxel at a time, on and beside brick borders: every position within half a voxel
+  // of it (what GL_NEAREST reads) lies in the region of a brick marked as reading it, and no
+  // brick beyond its reach is marked.
+  const glm::ivec3 dims(2 * kB + 5, kB + 3, 3 * kB + 1);
+  const glm::ivec3 bricks = (dims + kB - 1) / kB;
+  std::mt19937 random(5);
+  for (const glm::ivec3 voxel :
+       {glm::ivec3(0), glm::ivec3(kB - 1, kB, 2 * kB), glm::ivec3(kB, kB - 1, 3 * kB), dims - 1,
+        glm::ivec3(2 * kB + 1, 3, kB + 4)}) {
+    std::vector<std::uint8_t> voxels(std::size_t(dims.x) * dims.y * dims.z);
+    voxels[(std::size_t(voxel.z) * dims.y + voxel.y) * dims.x + voxel.x] = 1;
+    const std::vector<bool> reading = bricksReading(voxels, dims);
+    ASSERT_EQ(reading.size(), std::size_t(bricks.x) * bricks.y * bricks.z);
+    auto marked = [&](glm::ivec3 b) {
+      return bool(reading[(std::size_t(b.z) * bricks.y + b.y) * bricks.x + b.x]);
+    };
+    std::uniform_real_distribution<float> within(-0.5f, 0.5f);
+    for (int i = 0; i < 2000; ++i) {
+      const glm::vec3 p =
+          glm::vec3(voxel) + glm::vec3(within(random), within(random), within(random));
+      if (glm::any(glm::lessThan(p, glm::vec3(-0.5f))) ||
+          glm::any(glm::greaterThan(p, glm::vec3(dims) - 0.5f)))
+        continue;
+      const glm::ivec3 brick =
+          glm::clamp(glm::ivec3(glm::floor((p + 0.5f) / float(kB))), glm::ivec3(0), bricks - 1);
+      ASSERT_TRUE(marked(brick)) << "voxel " << voxel.x << "," << voxel.y << "," << voxel.z;
+    }
+    int count = 0;
+    for (int bz = 0; bz < bricks.z; ++bz) {
+      for (int by = 0; by < bricks.y; ++by) {
+        for (int bx = 0; bx < bricks.x; ++bx) {
+          const glm::ivec3 b(bx, by, bz);
+          count += marked(b);
+          // Marked bricks lie within two voxels of the set one.
+          if (marked(b)) {
+            EXPECT_TRUE(glm::all(glm::greaterThanEqual(voxel, b * kB - 2)));
+            EXPECT_TRUE(glm::all(glm::lessThanEqual(voxel, (b + 1) * kB + 1)));
+          }
+        }
+      }
+    }
+    EXPECT_GE(count, 1);
+    EXPECT_LE(count, 8);
+  }
+}
+
 TEST(OccupiedFaces, OneBrickShowsEachOfItsSixFacesOnExactlyOneSide) {
   const Volume volume = spikesVolume({4 * kB, 4 * kB, 4 * kB}, {{kB + 3, 2 * kB + 4, kB + 5}});
   const BrickRanges ranges(volume);

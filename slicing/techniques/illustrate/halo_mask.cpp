@@ -1,5 +1,6 @@
 #include "slicing/techniques/illustrate/halo_mask.h"
 
+#include "slicing/empty_space.h"
 #include "slicing/volume_texture.h"
 
 #include <algorithm>
@@ -63,6 +64,7 @@ void HaloMaskTexture::update(const std::vector<double>& key, const VolumeTexture
   glGetIntegerv(GL_TEXTURE_BINDING_3D, &bound);
   std::vector<std::uint8_t> mask = haloMaskVoxels(samples.data(), dims, visible, reach);
   samples = {};
+  bricks_ = bricksReading(mask, dims);
   for (auto& m : mask) m = m ? 255 : 0;
   if (!texture_) texture_ = gl::createTexture();
   VSIL_GL(glBindTexture(GL_TEXTURE_3D, texture_.id()));

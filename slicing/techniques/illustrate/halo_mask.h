@@ -4,8 +4,8 @@
 // above 0), 0 elsewhere. composite.frag applies halos only where it is 1, and lets transparent
 // samples where it is 0 leave before any halo work: without it every transparent sample in the
 // occupied bricks would pay the halo's taps (5–6× the plain composite's time on bonsai, as the
-// earlier developer measured; 2.3–2.5× with it, README). The occupancy margin of empty-space
-// skipping covers the reach, so skipping still changes no pixel.
+// earlier developer measured; 2.3–2.5× with it, README). Empty-space skipping counts the bricks
+// that read a voxel of the mask as occupied (bricks()), so skipping still changes no pixel.
 //
 // Built on the CPU from the volume's samples (read back from its texture), one texture over
 // the volume's voxels: halos read it by voxel index, so illustrate refuses halos on a volume of
@@ -39,9 +39,13 @@ class HaloMaskTexture {
   void update(const std::vector<double>& key, const VolumeTexture& volume,
               const std::function<bool(float)>& visible, int reach);
   GLuint id() const { return texture_.id(); }
+  // The bricks that read a voxel of the mask (empty_space.h bricksReading): with halo opacity,
+  // these are occupied whatever the transfer function says of their values.
+  const std::vector<bool>& bricks() const { return bricks_; }
 
  private:
   std::vector<double> key_;
+  std::vector<bool> bricks_;
   gl::TextureName texture_;
 };
 

@@ -82,6 +82,18 @@ ResolvedOptions IllustrateTechnique::resolve(const FrameContext& frame) {
     table_ =
         illustration_.transferFunction->table(frame.valueRange, TransferFunctionTexture::kEntries);
   }
+  if (illustration_.effects.has(Effect::Halo)) {
+    // Here, not in beginFrame: the empty-space skipping asks for the mask's bricks before it.
+    requireOneBrick(frame, "illustrate's halo effect",
+                    "leave out the halo effect, or give a larger --max-texture-mib");
+    const int reach = haloMaskReach(illustration_["k_hr"]);
+    std::vector<double> key{double(frame.volumeGeneration), double(reach),
+                            illustration_.transferFunction ? 1.0 : 0.0,
+                            illustration_["k_os"] > 0 ? 1.0 : 0.0};
+    for (const auto& entry : table_) key.push_back(entry.a > 0 ? 1.0 : 0.0);
+    haloMask_.update(key, *frame.volume, visibleValues(illustration_, table_, frame.valueRange),
+                     reach);
+  }
   ResolvedOptions resolved;
   resolved.background = illustration_.background;
   resolved.details["illustration"] = illustration_.toJson();
@@ -125,13 +137,11 @@ BrickOccupancy IllustrateTechnique::occupancy(const FrameContext& frame) const {
   return [opaque, range](ValueRange brick) { return opaque && brick.max > range.min; };
 }
 
-int IllustrateTechnique::occupancyMargin(const FrameContext&) const {
-  if (!illustration_.effects.has(Effect::Halo) || !(illustration_["k_ho"] > 0)) return 0;
-  // Halo opacity appears only where the halo mask is 1: within its reach of a visible voxel
-  // (which lies in an occupied brick), the sample half a voxel from its nearest texel, and one
-  // voxel more for rounding.
-  const int reach = haloMaskReach(illustration_["k_hr"]) + 2;
-  return (reach + BrickRanges::kBrickSize - 1) / BrickRanges::kBrickSize;
+std::vector<bool> IllustrateTechnique::alsoOccupied(const FrameContext&) const {
+  // Halo opacity appears where the halo mask is 1, also in bricks the transfer function leaves
+  // transparent.
+  if (!illustration_.effects.has(Effect::Halo) || !(illustration_["k_ho"] > 0)) return {};
+  return haloMask_.bricks();
 }
 
 void IllustrateTechnique::beginFrame(const FrameContext& frame) {
@@ -146,15 +156,6 @@ void IllustrateTechnique::beginFrame(const FrameContext& frame) {
   gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D,
                   frame.gradients->texture().brickTexture(0));
   if (illustration_.effects.has(Effect::Halo)) {
-    requireOneBrick(frame, "illustrate's halo effect",
-                    "leave out the halo effect, or give a larger --max-texture-mib");
-    const int reach = haloMaskReach(illustration_["k_hr"]);
-    std::vector<double> key{double(frame.volumeGeneration), double(reach),
-                            illustration_.transferFunction ? 1.0 : 0.0,
-                            illustration_["k_os"] > 0 ? 1.0 : 0.0};
-    for (const auto& entry : table_) key.push_back(entry.a > 0 ? 1.0 : 0.0);
-    haloMask_.update(key, *frame.volume, visibleValues(illustration_, table_, frame.valueRange),
-                     reach);
     gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_3D, haloMask_.id());
   }
   setUniforms(frame);

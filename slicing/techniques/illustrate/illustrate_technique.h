@@ -49,7 +49,7 @@ class IllustrateTechnique : public Technique {
  public:
   ResolvedOptions resolve(const FrameContext& frame) override;
   BrickOccupancy occupancy(const FrameContext& frame) const override;
-  int occupancyMargin(const FrameContext& frame) const override;
+  std::vector<bool> alsoOccupied(const FrameContext& frame) const override;
   void beginFrame(const FrameContext& frame) override;
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
   void endFrame(const FrameContext&) override {}
