@@ -72,8 +72,8 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
       const glm::dvec3 voxel = glm::normalize(voxelFromEye * eye) * tap.distanceVoxels;
       taps.push_back({glm::vec3(voxel), worldFromEye * glm::vec3(-eye), float(tap.weight)});
     }
-    mask = haloMaskVoxels(texels.data(), volume.dims, visibleValues(ill, table, range),
-                          haloMaskReach(ill["k_hr"]));
+    mask =
+        haloMaskVoxels(texels.data(), volume.dims, visibleValues(ill, table, range), ill["k_hr"]);
   }
   const auto maskAt = [&](glm::ivec3 t) {
     return float(mask[(std::size_t(t.z) * std::size_t(volume.dims.y) + std::size_t(t.y)) *

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -16,6 +17,7 @@
 #include "gl_harness.h"
 #include "illustrate_reference.h"
 #include "slicing/renderer.h"
+#include "slicing/techniques/illustrate/halo_mask.h"
 
 namespace vsil {
 namespace {
@@ -232,6 +234,40 @@ TEST_F(IllustrateTest, HalosDarkenJustOutsideTheOutlineAndChangeNothingInside) {
     for (int k = 0; k < 4; ++k) {
       EXPECT_NEAR(halo.frame.color(y, x)[k], plain.frame.color(y, x)[k], 1e-5) << "x " << x;
     }
+  }
+}
+
+TEST(HaloMask, MarksExactlyTheVoxelsWithinTheRadiusOfAVisibleOne) {
+  // Against the definition, voxel by voxel: a few visible voxels (value > 0.5) in a volume of
+  // odd dims, every radius kind (below one voxel, whole, between whole numbers).
+  const glm::ivec3 dims(23, 17, 13);
+  std::vector<float> samples(std::size_t(dims.x) * dims.y * dims.z, 0.0f);
+  std::vector<glm::ivec3> visible{{0, 0, 0}, {22, 16, 12}, {11, 8, 6}};
+  std::mt19937 random(9);
+  for (int i = 0; i < 4; ++i) {
+    visible.push_back({int(random() % 23), int(random() % 17), int(random() % 13)});
+  }
+  for (const glm::ivec3& v : visible) {
+    samples[(std::size_t(v.z) * dims.y + v.y) * dims.x + v.x] = 1.0f;
+  }
+  for (const double radius : {0.5, 1.0, 1.5, 2.9, 4.0, 6.5}) {
+    const std::vector<std::uint8_t> mask = haloMaskVoxels(
+        samples.data(), dims, [](float value) { return value > 0.5f; }, radius);
+    int marked = 0;
+    for (int z = 0; z < dims.z; ++z) {
+      for (int y = 0; y < dims.y; ++y) {
+        for (int x = 0; x < dims.x; ++x) {
+          const bool near = std::any_of(visible.begin(), visible.end(), [&](glm::ivec3 v) {
+            const glm::ivec3 d = v - glm::ivec3(x, y, z);
+            return double(d.x * d.x + d.y * d.y + d.z * d.z) <= radius * radius;
+          });
+          const bool inMask = mask[(std::size_t(z) * dims.y + y) * dims.x + x] != 0;
+          ASSERT_EQ(inMask, near) << "radius " << radius << " voxel " << x << "," << y << "," << z;
+          marked += inMask;
+        }
+      }
+    }
+    EXPECT_GE(marked, 7);
   }
 }
 

@@ -10,59 +10,64 @@ namespace vsil {
 
 namespace {
 
-// One axis of a box dilation: out[i] = 1 where in[j] is 1 for some |j − i| <= reach along
-// `stride` (a run of `count` voxels starting at `first`).
-void dilateRun(const std::uint8_t* in, std::uint8_t* out, std::size_t first, std::size_t stride,
-               int count, int reach) {
-  // The last index with a 1 seen so far (from the front), then from the back.
-  int last = -(reach + 1);
+constexpr std::uint16_t kFar = 0xFFFF;  // farther than any radius from a visible voxel
+
+// One axis of the squared distance transform, truncated to `reach` voxels: along the run of
+// `count` values from `first` by `stride`, d[i] = min over |k| <= reach of d[i + k] + k².
+// `scratch` holds a copy of the run.
+void nearestAlong(std::uint16_t* d, std::size_t first, std::size_t stride, int count, int reach,
+                  std::vector<std::uint16_t>& scratch) {
+  scratch.resize(std::size_t(count));
+  for (int i = 0; i < count; ++i) scratch[std::size_t(i)] = d[first + std::size_t(i) * stride];
   for (int i = 0; i < count; ++i) {
-    if (in[first + std::size_t(i) * stride]) last = i;
-    out[first + std::size_t(i) * stride] = i - last <= reach;
-  }
-  last = count + reach + 1;
-  for (int i = count - 1; i >= 0; --i) {
-    if (in[first + std::size_t(i) * stride]) last = i;
-    if (last - i <= reach) out[first + std::size_t(i) * stride] = 1;
+    int best = scratch[std::size_t(i)];
+    const int lo = std::max(0, i - reach), hi = std::min(count - 1, i + reach);
+    for (int j = lo; j <= hi; ++j) {
+      if (scratch[std::size_t(j)] == kFar) continue;
+      best = std::min(best, int(scratch[std::size_t(j)]) + (j - i) * (j - i));
+    }
+    d[first + std::size_t(i) * stride] = std::uint16_t(std::min(best, int(kFar)));
   }
 }
 
 }  // namespace
 
-int haloMaskReach(double radiusVoxels) {
-  return int(std::ceil(radiusVoxels));
-}
-
 std::vector<std::uint8_t> haloMaskVoxels(const float* samples, glm::ivec3 dims,
-                                         const std::function<bool(float)>& visible, int reach) {
+                                         const std::function<bool(float)>& visible, double radius) {
   const std::size_t count = std::size_t(dims.x) * std::size_t(dims.y) * std::size_t(dims.z);
-  std::vector<std::uint8_t> mask(count), other(count);
-  for (std::size_t i = 0; i < count; ++i) mask[i] = visible(samples[i]) ? 1 : 0;
+  // Squared distances in voxels to the nearest visible voxel, one axis at a time (exact: the
+  // squared Euclidean distance separates into the axes' squares), looking no farther than the
+  // radius.
+  const int reach = int(std::floor(radius));
+  std::vector<std::uint16_t> distance2(count);
+  for (std::size_t i = 0; i < count; ++i) distance2[i] = visible(samples[i]) ? 0 : kFar;
   const std::size_t row = std::size_t(dims.x), plane = row * std::size_t(dims.y);
+  std::vector<std::uint16_t> scratch;
   for (std::size_t z = 0; z < std::size_t(dims.z); ++z) {
     for (std::size_t y = 0; y < std::size_t(dims.y); ++y) {
-      dilateRun(mask.data(), other.data(), z * plane + y * row, 1, dims.x, reach);
+      nearestAlong(distance2.data(), z * plane + y * row, 1, dims.x, reach, scratch);
     }
-  }
-  for (std::size_t z = 0; z < std::size_t(dims.z); ++z) {
     for (std::size_t x = 0; x < row; ++x) {
-      dilateRun(other.data(), mask.data(), z * plane + x, row, dims.y, reach);
+      nearestAlong(distance2.data(), z * plane + x, row, dims.y, reach, scratch);
     }
   }
   for (std::size_t i = 0; i < plane; ++i) {
-    dilateRun(mask.data(), other.data(), i, plane, dims.z, reach);
+    nearestAlong(distance2.data(), i, plane, dims.z, reach, scratch);
   }
-  return other;
+  std::vector<std::uint8_t> mask(count);
+  const double limit = radius * radius;
+  for (std::size_t i = 0; i < count; ++i) mask[i] = double(distance2[i]) <= limit ? 1 : 0;
+  return mask;
 }
 
 void HaloMaskTexture::update(const std::vector<double>& key, const VolumeTexture& volume,
-                             const std::function<bool(float)>& visible, int reach) {
+                             const std::function<bool(float)>& visible, double radius) {
   if (texture_ && key == key_) return;
   const glm::ivec3 dims = volume.dims();
   std::vector<float> samples = volume.readVoxels();
   GLint bound = 0;
   glGetIntegerv(GL_TEXTURE_BINDING_3D, &bound);
-  std::vector<std::uint8_t> mask = haloMaskVoxels(samples.data(), dims, visible, reach);
+  std::vector<std::uint8_t> mask = haloMaskVoxels(samples.data(), dims, visible, radius);
   samples = {};
   bricks_ = bricksReading(mask, dims);
   for (auto& m : mask) m = m ? 255 : 0;

@@ -86,13 +86,13 @@ ResolvedOptions IllustrateTechnique::resolve(const FrameContext& frame) {
     // Here, not in beginFrame: the empty-space skipping asks for the mask's bricks before it.
     requireOneBrick(frame, "illustrate's halo effect",
                     "leave out the halo effect, or give a larger --max-texture-mib");
-    const int reach = haloMaskReach(illustration_["k_hr"]);
-    std::vector<double> key{double(frame.volumeGeneration), double(reach),
+    const double radius = illustration_["k_hr"];
+    std::vector<double> key{double(frame.volumeGeneration), radius,
                             illustration_.transferFunction ? 1.0 : 0.0,
                             illustration_["k_os"] > 0 ? 1.0 : 0.0};
     for (const auto& entry : table_) key.push_back(entry.a > 0 ? 1.0 : 0.0);
     haloMask_.update(key, *frame.volume, visibleValues(illustration_, table_, frame.valueRange),
-                     reach);
+                     radius);
   }
   ResolvedOptions resolved;
   resolved.background = illustration_.background;
