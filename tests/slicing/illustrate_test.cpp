@@ -250,7 +250,7 @@ TEST(HaloMask, MarksExactlyTheVoxelsWithinTheRadiusOfAVisibleOne) {
   for (const glm::ivec3& v : visible) {
     samples[(std::size_t(v.z) * dims.y + v.y) * dims.x + v.x] = 1.0f;
   }
-  for (const double radius : {0.5, 1.0, 1.5, 2.9, 4.0, 6.5}) {
+  for (const double radius : {0.5, 1.0, 1.5, 2.9, 4.0, 6.5, 32.0}) {
     const std::vector<std::uint8_t> mask = haloMaskVoxels(
         samples.data(), dims, [](float value) { return value > 0.5f; }, radius);
     int marked = 0;
