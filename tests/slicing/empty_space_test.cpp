@@ -394,6 +394,12 @@ std::vector<SceneCase> sceneCases() {
                          technique.name, options, spec});
       }
     }
+    // Halos add opacity beside the spikes, in bricks their values leave empty
+    // (Technique::alsoOccupied).
+    OptionValues halo;
+    halo["effects"] = std::string("halo");
+    halo["param"] = std::vector<std::string>{"k_os=4,k_hr=5,k_ho=3"};
+    cases.push_back({"illustrate_halo" + viewName, "illustrate", halo, spec});
   }
   return cases;
 }
