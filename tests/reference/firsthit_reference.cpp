@@ -9,7 +9,7 @@ ReferenceFrame renderFirstHit(const Volume& volume, const RenderSettings& settin
   const ReferenceSetup setup = setUpReference(volume, settings);
   const float iso = float(setup.options.number("iso"));
   const SliceSampler sampler(volume, setup.view);
-  const FirstHitFinder firstHits(volume, setup);
+  const FirstHitFinder firstHits(setup);
   ReferenceFrame result = emptyReferenceFrame(setup, settings.size, /*color=*/true);
   for (int y = 0; y < settings.size.y; ++y) {
     for (int x = 0; x < settings.size.x; ++x) {

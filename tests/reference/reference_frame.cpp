@@ -34,7 +34,7 @@ ReferenceFrame emptyReferenceFrame(const ReferenceSetup& setup, glm::ivec2 size,
   return result;
 }
 
-FirstHitFinder::FirstHitFinder(const Volume& volume, const ReferenceSetup& setup) : setup_(setup) {
+FirstHitFinder::FirstHitFinder(const ReferenceSetup& setup) : setup_(setup) {
   for (const Slice& slice : setup.plan.slices) {
     coords_.push_back(sliceVoxelCoords(setup.view, slice.eyeDistance));
   }

@@ -47,7 +47,7 @@ struct FirstHit {
 };
 class FirstHitFinder {
  public:
-  FirstHitFinder(const Volume& volume, const ReferenceSetup& setup);
+  explicit FirstHitFinder(const ReferenceSetup& setup);
   FirstHit at(const SliceSampler& sampler, int x, int y, float iso, float isoEpsilon) const;
 
  private:

@@ -14,7 +14,7 @@ ReferenceFrame renderRightAngle(const Volume& volume, const RenderSettings& sett
   const float exponent = float(setup.options.number("ra-exponent"));
   const float threshold = float(setup.options.number("ra-threshold"));
   const SliceSampler sampler(volume, setup.view);
-  const FirstHitFinder firstHits(volume, setup);
+  const FirstHitFinder firstHits(setup);
   const ToneFillReference toneFill(settings, setup);
   ReferenceFrame result = emptyReferenceFrame(setup, settings.size);
   result.frame.tone = toneFill.emptyImage(settings.size);
