@@ -91,8 +91,9 @@ struct ResolvedOptions {
 class Technique {
  public:
   virtual ~Technique() = default;
-  // First in every frame, before occupancy(): reads the options and any files they name (styles,
-  // transfer functions); throws InputError for bad ones.
+  // First in every frame, before occupancy() and alsoOccupied(): reads the options and any files
+  // they name (styles, transfer functions), throwing InputError for bad ones, and prepares what
+  // those two answer from (illustrate's halo mask).
   virtual ResolvedOptions resolve(const FrameContext&) { return {}; }
   virtual int sweepCount(const FrameContext&) const { return 1; }
   // Which bricks may hold something this frame shows (empty_space.h); the others are skipped
