@@ -78,10 +78,11 @@ float maxGradientMagnitude(const float* samples, glm::ivec3 dims, glm::dvec3 spa
 }
 
 GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm::dvec3 spacing,
-                                     float maxMagnitude, int zBegin, int zEnd) {
+                                     float maxMagnitude, int zBegin, int zEnd, bool withValues) {
   GradientTexels texels;
   texels.dims = glm::ivec3(dims.x, dims.y, zEnd - zBegin);
   texels.maxMagnitude = maxMagnitude;
+  texels.holdsValues = withValues;
   texels.halves.resize(4 * std::size_t(dims.x) * std::size_t(dims.y) *
                        std::size_t(std::max(0, zEnd - zBegin)));
   const GradientAt gradient{samples, dims, 0.5 / spacing};
@@ -91,14 +92,14 @@ GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm:
         texels.halves.data() + 4 * std::size_t(s0) * std::size_t(dims.x) * std::size_t(dims.y);
     for (int z = zBegin + s0; z < zBegin + s1; ++z) {
       for (int y = 0; y < dims.y; ++y) {
+        const float* row =
+            samples + (std::size_t(z) * std::size_t(dims.y) + std::size_t(y)) * std::size_t(dims.x);
         for (int x = 0; x < dims.x; ++x, out += 4) {
-          const glm::vec3 g = gradient(x, y, z);
-          const float length = std::sqrt(glm::dot(g, g));
-          const glm::vec3 n = length > 0 ? g / length : glm::vec3(0.0f);
-          out[0] = glm::packHalf1x16(n.x);
-          out[1] = glm::packHalf1x16(n.y);
-          out[2] = glm::packHalf1x16(n.z);
-          out[3] = glm::packHalf1x16(std::min(1.0f, length * toNormalized));
+          const glm::vec3 g = gradient(x, y, z) * toNormalized;
+          out[0] = glm::packHalf1x16(g.x);
+          out[1] = glm::packHalf1x16(g.y);
+          out[2] = glm::packHalf1x16(g.z);
+          out[3] = glm::packHalf1x16(withValues ? row[x] : 0.0f);
         }
       }
     }
@@ -106,22 +107,32 @@ GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm:
   return texels;
 }
 
-GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm::dvec3 spacing) {
+GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm::dvec3 spacing,
+                                     bool withValues) {
   return computeGradientTexels(samples, dims, spacing, maxGradientMagnitude(samples, dims, spacing),
-                               0, dims.z);
+                               0, dims.z, withValues);
+}
+
+bool gradientsCanHoldValues(GLenum volumeInternalFormat) {
+  return volumeInternalFormat == GL_R16F;
 }
 
 GradientTexture::GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing) {
   const auto start = std::chrono::steady_clock::now();
   const glm::ivec3 dims = volume.dims();
+  holdsValues_ = gradientsCanHoldValues(volume.internalFormat());
   GradientTexels texels;
   {
     const std::vector<float> samples = volume.readVoxels();
-    texels = computeGradientTexels(samples.data(), dims, spacing);
+    texels = computeGradientTexels(samples.data(), dims, spacing, holdsValues_);
   }
   textures_ = uploadBricked(volume.layout(), dims, GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT,
                             4 * sizeof(std::uint16_t), texels.halves.data());
   buildMs_ = millisecondsSince(start);
+}
+
+void GradientTexture::addDefines(std::vector<std::string>& defines) const {
+  if (holdsValues_) defines.emplace_back("GRADIENTS_HOLD_VALUES");
 }
 
 void GradientTextureCache::reset(const VolumeTexture* volume, glm::dvec3 spacing) {

@@ -31,8 +31,10 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
   const ValueRange range = valueRange(volume);
   const SliceSampler sampler(volume, view);
   const std::vector<float> texels = textureTexels(volume);
+  // The values come from the volume's own texels (sampler.sample), whether or not the GL path
+  // reads them from the gradient texture.
   const GradientTexels gradients =
-      computeGradientTexels(texels.data(), volume.dims, volume.spacing);
+      computeGradientTexels(texels.data(), volume.dims, volume.spacing, /*withValues=*/false);
   const Rgba background = settings.background.value_or(ill.background.value_or(kDefaultBackground));
 
   const glm::mat3 worldFromEye(glm::transpose(glm::dmat3(view.eyeFromWorld)));
@@ -99,16 +101,14 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
         const float nearFeature = has(Effect::Halo) ? maskAt(nearestTexel(voxel, volume.dims)) : 0;
         if (material.a <= 0 && nearFeature <= 0) continue;  // adds nothing
 
-        const glm::vec4 g = sampleGradientTexels(gradients, voxel);
-        const glm::vec3 direction(g);
-        const float length2 = glm::dot(direction, direction);
-        const glm::vec3 n = length2 > 0 ? -direction / std::sqrt(length2) : glm::vec3(0.0f);
-        const float magnitude = g.a;
+        const SplitGradient g = splitGradient(sampleGradientTexels(gradients, voxel));
+        const glm::vec3 n = -g.direction;
+        const float magnitude = g.magnitude;
         const glm::vec3 toViewer =
             view.orthographic ? glm::vec3(0, 0, 1)
                               : -glm::normalize(sampler.eyePoint(x, y, float(slice.eyeDistance)));
         const glm::vec3 v = worldFromEye * toViewer;
-        const float facing = length2 > 0 ? std::abs(glm::dot(n, v)) : 1.0f;  // none: facing
+        const float facing = g.hasDirection ? std::abs(glm::dot(n, v)) : 1.0f;  // none: facing
 
         float opacity = material.a;
         glm::vec3 base(material);
@@ -124,11 +124,11 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
           float h = 0;
           for (const Tap& tap : taps) {
             const glm::ivec3 t = nearestTexel(voxel + tap.offset, volume.dims);
-            const glm::vec4 gn = gradients.at(t.x, t.y, t.z);
-            const glm::vec3 nn = -glm::vec3(gn);
+            const SplitGradient gn = splitGradient(gradients.at(t.x, t.y, t.z));
+            const glm::vec3 nn = -gn.direction;
             const float towards = std::max(glm::dot(nn, tap.direction), 0.0f);
             const float across = std::max(1.0f - std::abs(glm::dot(nn, v)), 0.0f);
-            h += tap.weight * gn.a * std::pow(towards, formulas.p("k_hpe")) *
+            h += tap.weight * gn.magnitude * std::pow(towards, formulas.p("k_hpe")) *
                  std::pow(across, formulas.p("k_hse"));
           }
           h *= (1.0f - magnitude) * nearFeature;

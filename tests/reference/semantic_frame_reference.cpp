@@ -93,7 +93,7 @@ ReferenceFrame renderSemantic(const Volume& volume, const RenderSettings& settin
   const SliceSampler sampler(volume, view);
   const std::vector<float> texels = textureTexels(volume);
   const GradientTexels gradients =
-      computeGradientTexels(texels.data(), volume.dims, volume.spacing);
+      computeGradientTexels(texels.data(), volume.dims, volume.spacing, /*withValues=*/false);
   const glm::mat3 worldFromEye(glm::transpose(glm::dmat3(view.eyeFromWorld)));
   const glm::mat3 eyeFromWorld = glm::transpose(worldFromEye);
   const glm::vec3 spacing(volume.spacing);
@@ -138,13 +138,11 @@ ReferenceFrame renderSemantic(const Volume& volume, const RenderSettings& settin
         const int interval = std::min(int(data * float(intervals)), intervals - 1);
         if (!onPlane && !visible[std::size_t(interval)]) continue;
 
-        const glm::vec4 g = sampleGradientTexels(gradients, voxel);
-        const glm::vec3 gradient(g);
-        const float length2 = glm::dot(gradient, gradient);
-        const glm::vec3 direction = length2 > 0 ? gradient / std::sqrt(length2) : glm::vec3(0.0f);
+        const SplitGradient g = splitGradient(sampleGradientTexels(gradients, voxel));
+        const glm::vec3 direction = g.direction;
         AttributeInputs inputs{};
         inputs[int(AttributeSource::Data)] = data;
-        inputs[int(AttributeSource::Gradient)] = g.a;
+        inputs[int(AttributeSource::Gradient)] = g.magnitude;
         inputs[int(AttributeSource::CursorDistance)] =
             glm::length(physical - cursorPhysical) * inverseDiagonal;
         inputs[int(AttributeSource::PlaneDistance)] =

@@ -39,6 +39,14 @@ glm::vec4 sampleGradientTexels(const GradientTexels& texels, glm::vec3 voxel) {
   return result;
 }
 
+SplitGradient splitGradient(glm::vec4 texel) {
+  const glm::vec3 g(texel);
+  const float length2 = glm::dot(g, g);
+  if (!(length2 > 0)) return {};
+  const float inverseLength = 1.0f / std::sqrt(length2);
+  return {g * inverseLength, std::min(length2 * inverseLength, 1.0f), true};
+}
+
 LinearTaps linearTaps(float u, int n) {
   const float t = u * float(n) - 0.5f;
   const float base = std::floor(t);

@@ -33,6 +33,15 @@ std::vector<float> textureTexels(const Volume& volume);
 // texture() returns from the RGBA16F texels, clamped at the edges).
 glm::vec4 sampleGradientTexels(const GradientTexels& texels, glm::vec3 voxel);
 
+// A gradient texel or an interpolation of them, (g/M, ·), split as shaders/gradients.glsl
+// splitGradient splits it.
+struct SplitGradient {
+  glm::vec3 direction{0.0f};  // g/|g|, 0 where g vanishes
+  float magnitude = 0;        // min(|g/M|, 1)
+  bool hasDirection = false;  // g ≠ 0
+};
+SplitGradient splitGradient(glm::vec4 texel);
+
 // A voxel position rounded as the shaders round it (common.glsl quantizedVoxel).
 glm::vec3 quantizedVoxel(glm::vec3 voxel);
 

@@ -3,12 +3,11 @@
 // built with (#defines BOUNDARY, SILHOUETTE, FADING, SKETCH, DISTANCE, HALO, TONE; the
 // formulas in shaders/illustration.glsl), shaded, and written premultiplied and corrected for
 // the slice distance (shaders/compositing.glsl) for the front-to-back blending.
-// In: the volume, its gradient texture (slicing/gradient_texture.h: unit direction of ∇f in
-// world axes, |∇f| normalized), the transfer function (TRANSFER_TABLE: a 1D texture over the
+// In: the volume, its gradient texture (shaders/gradients.glsl: ∇f/max|∇f| in world axes, with
+// the values where it holds them), the transfer function (TRANSFER_TABLE: a 1D texture over the
 // data's range; otherwise the paper's power function over one colour), with HALO the halo mask
 // (halo_mask.h). Out: (c·α, α).
 
-layout(binding = UNIT_GRADIENT) uniform sampler3D gradientTexture;
 uniform mat3 worldFromEye;  // rotation: eye-space directions into the gradients' axes
 // Samples at or below this value are transparent (the transfer function is 0 up to it): they
 // leave before classification. llvmpipe leaves a block of fragments once all of them are
@@ -62,11 +61,14 @@ ivec3 nearestTexel(vec3 voxel) {
 float haloSize(vec3 voxel, vec3 v, float gradientMagnitude) {
   float h = 0.0;
   for (int k = 0; k < HALO_TAPS; ++k) {
-    vec4 g = texelFetch(gradientTexture, nearestTexel(voxel + haloOffsets[k]), 0);
-    vec3 n = -g.xyz;
+    vec3 direction;
+    float magnitude;
+    splitGradient(texelFetch(gradientTexture, nearestTexel(voxel + haloOffsets[k]), 0).xyz,
+                  direction, magnitude);
+    vec3 n = -direction;
     float towards = max(dot(n, haloDirections[k]), 0.0);
     float across = max(1.0 - abs(dot(n, v)), 0.0);
-    h += haloWeights[k] * g.a * pow(towards, k_hpe) * pow(across, k_hse);
+    h += haloWeights[k] * magnitude * pow(towards, k_hpe) * pow(across, k_hse);
   }
   return h * (1.0 - gradientMagnitude);
 }
@@ -75,28 +77,29 @@ float haloSize(vec3 voxel, vec3 v, float gradientMagnitude) {
 void main() {
   vec3 voxel = sliceVoxel();
   if (!insideVolume(voxel)) discard;
-  float value = sampleVolume(voxel);
+  vec4 fetched;
+  float value = sampleValue(voxel, fetched);
 #ifdef HALO
   float nearFeature = texelFetch(haloMask, nearestTexel(voxel), 0).r;
   if (value <= transparentBelow && nearFeature <= 0.0) discard;
   vec4 material = classify(value);
   if (material.a <= 0.0 && nearFeature <= 0.0) discard;
 #else
-  // A transparent sample adds nothing (and costs no gradient).
+  // A transparent sample adds nothing (and, unless the value came with it, costs no gradient).
   if (value <= transparentBelow) discard;
   vec4 material = classify(value);
   if (material.a <= 0.0) discard;
 #endif
-  vec4 g = texture(gradientTexture, brickTexCoord(voxel));
-  float length2 = dot(g.xyz, g.xyz);
-  vec3 n = length2 > 0.0 ? g.xyz * -inversesqrt(length2) : vec3(0.0);
-  float gradientMagnitude = g.a;
+  vec3 direction;
+  float gradientMagnitude;
+  bool hasDirection = splitGradient(gradientAt(voxel, fetched), direction, gradientMagnitude);
+  vec3 n = -direction;  // outward
   vec3 toViewerEye = orthographic != 0 ? vec3(0.0, 0.0, 1.0)
                                        : -normalize(eyePointAt(sliceEyeDistance));
   vec3 v = worldFromEye * toViewerEye;
   // A vanishing gradient has no direction: it counts as facing the viewer (as in common.glsl),
   // so flat regions get no silhouette, sketch or fading of their own.
-  float facing = length2 > 0.0 ? abs(dot(n, v)) : 1.0;
+  float facing = hasDirection ? abs(dot(n, v)) : 1.0;
 
   float opacity = material.a;
   vec3 base = material.rgb;

@@ -145,16 +145,18 @@ std::vector<bool> IllustrateTechnique::alsoOccupied(const FrameContext&) const {
 }
 
 void IllustrateTechnique::beginFrame(const FrameContext& frame) {
+  const GradientTexture& gradients = frame.gradients->texture();
+  std::vector<std::string> defines = illustrateDefines(illustration_);
+  gradients.addDefines(defines);
   program_ = &frame.programs->get(gl::slicePassProgram(
-      {kCompositingSource, "shaders/illustration.glsl"}, "techniques/illustrate/composite.frag",
-      illustrateDefines(illustration_)));
+      {kCompositingSource, "shaders/gradients.glsl", "shaders/illustration.glsl"},
+      "techniques/illustrate/composite.frag", std::move(defines)));
   if (illustration_.transferFunction) {
     if (!transferTexture_) transferTexture_.emplace();
     transferTexture_->upload(*illustration_.transferFunction, frame.valueRange);
     gl::bindTexture(gl::TextureUnit::TransferFunction, GL_TEXTURE_1D, transferTexture_->id());
   }
-  gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D,
-                  frame.gradients->texture().brickTexture(0));
+  gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D, gradients.brickTexture(0));
   if (illustration_.effects.has(Effect::Halo)) {
     gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_3D, haloMask_.id());
   }

@@ -10,7 +10,7 @@
 // and the highest priority met so far are updated in place (images), and on entering a region
 // of higher priority the colour so far is scaled by 1 − p_f.
 // With SEMANTIC_PLANE_SHOW: samples within half a voxel of the plane show the data as grey.
-// In: the volume, its gradient texture (gradient_texture.h), the tables (semantic.glsl), the
+// In: the volume, its gradient texture (shaders/gradients.glsl), the tables (semantic.glsl), the
 // sphere atlas (UNIT_AUXILIARY2), the visible data intervals (UNIT_AUXILIARY3).
 
 #ifdef SEMANTIC_FLAT
@@ -23,7 +23,6 @@ uniform float terminationOpacity;
 layout(location = 0) out vec4 result;
 #endif
 
-layout(binding = UNIT_GRADIENT) uniform sampler3D gradientTexture;
 layout(binding = UNIT_AUXILIARY2) uniform sampler3D sphereAtlas;
 layout(binding = UNIT_AUXILIARY3) uniform sampler2D visibleIntervals;  // R32F, 1 row
 uniform float valueMin, valueScale;  // data = (value − valueMin)·valueScale
@@ -54,7 +53,8 @@ void main() {
   // Nothing behind can show any more: opaque, and no higher priority left to enter.
   if (dst.a >= terminationOpacity && top >= topPriority) discard;
 #endif
-  float value = sampleVolume(voxel);
+  vec4 fetched;
+  float value = sampleValue(voxel, fetched);
   float data = clamp((value - valueMin) * valueScale, 0.0, 1.0);
   vec3 physical = voxel * voxelSpacing;
 #ifdef SEMANTIC_PLANE_SHOW
@@ -68,12 +68,12 @@ void main() {
     int k = min(int(data * float(size - 1)), size - 2);
     if (!onPlane && texelFetch(visibleIntervals, ivec2(k, 0), 0).r <= 0.0) discard;
   }
-  vec4 g = texture(gradientTexture, brickTexCoord(voxel));
-  float length2 = dot(g.xyz, g.xyz);
-  vec3 direction = length2 > 0.0 ? g.xyz * inversesqrt(length2) : vec3(0.0);
+  vec3 direction;
+  float gradientMagnitude;
+  splitGradient(gradientAt(voxel, fetched), direction, gradientMagnitude);
 
   semanticData = data;
-  semanticGradient = g.a;
+  semanticGradient = gradientMagnitude;
 #ifdef SEMANTIC_SOURCE_CURSOR_DISTANCE
   semanticCursorDistance = length(physical - cursorPhysical) * inverseDiagonal;
 #endif

@@ -72,16 +72,20 @@ TechniqueInfo semanticTechniqueInfo() {
           /*needsOneTexture=*/{}};
 }
 
-gl::ProgramSpec semanticProgram(const CompiledRules& compiled, bool flat, bool planeShow) {
+gl::ProgramSpec semanticProgram(const CompiledRules& compiled, bool flat, bool planeShow,
+                                const GradientTexture& gradients) {
   const auto file = [](const char* path) { return gl::ShaderSource::file(path); };
   gl::ProgramSpec spec;
   spec.vertex = {file("shaders/common.glsl"), file("shaders/slice.vert")};
-  spec.fragment = {file("shaders/common.glsl"), file(kCompositingSource),
+  spec.fragment = {file("shaders/common.glsl"),
+                   file(kCompositingSource),
+                   file("shaders/gradients.glsl"),
                    file("techniques/semantic/semantic.glsl"),
                    gl::ShaderSource::generated("rules", compiled.glsl),
                    file("techniques/semantic/semantic.frag")};
   if (flat) spec.defines.emplace_back("SEMANTIC_FLAT");
   if (planeShow) spec.defines.emplace_back("SEMANTIC_PLANE_SHOW");
+  gradients.addDefines(spec.defines);
   return spec;
 }
 
@@ -135,9 +139,11 @@ ResolvedOptions SemanticTechnique::resolve(const FrameContext& frame) {
     atlasKey_ = atlasKey;
   }
 
+  const GradientTexture& gradients = frame.gradients->texture();  // built before the timing
   const int buildsBefore = frame.programs->builds();
   const auto buildStart = std::chrono::steady_clock::now();
-  program_ = &frame.programs->get(semanticProgram(compiled_, flat_, interaction_.planeShow));
+  program_ =
+      &frame.programs->get(semanticProgram(compiled_, flat_, interaction_.planeShow, gradients));
   const double buildMs = millisecondsSince(buildStart);
 
   ResolvedOptions resolved;

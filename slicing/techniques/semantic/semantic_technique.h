@@ -20,6 +20,7 @@
 #include <string>
 
 #include "slicing/compositing.h"
+#include "slicing/gradient_texture.h"
 #include "slicing/technique_table.h"
 #include "slicing/techniques/semantic/semantic_scene.h"
 
@@ -28,7 +29,8 @@ namespace vsil {
 TechniqueInfo semanticTechniqueInfo();
 
 // The program for a compiled rule base and mode.
-gl::ProgramSpec semanticProgram(const CompiledRules& compiled, bool flat, bool planeShow);
+gl::ProgramSpec semanticProgram(const CompiledRules& compiled, bool flat, bool planeShow,
+                                const GradientTexture& gradients);
 
 class SemanticTechnique : public Technique {
  public:
