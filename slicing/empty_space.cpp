@@ -31,7 +31,7 @@ std::pair<int, int> voxelRange(int brick, int dim) {
 }  // namespace
 
 BrickRanges::BrickRanges(const Volume& volume)
-    : dims_(volume.dims), bricks_((volume.dims + kB - 1) / kB) {
+    : dims_(volume.dims), bricks_(bricksCovering(volume.dims)) {
   const float inf = std::numeric_limits<float>::infinity();
   const ValueRange none{inf, -inf};
   const auto unite = [](ValueRange& r, ValueRange other) {
@@ -90,7 +90,7 @@ BrickRanges::BrickRanges(const Volume& volume)
 }
 
 std::vector<bool> bricksReading(const std::vector<std::uint8_t>& voxels, glm::ivec3 dims) {
-  const glm::ivec3 bricks = (dims + kB - 1) / kB;
+  const glm::ivec3 bricks = BrickRanges::bricksCovering(dims);
   std::vector<bool> reading(std::size_t(bricks.x) * bricks.y * bricks.z);
   auto holdsOne = [&](glm::ivec3 brick) {
     const auto [x0, x1] = voxelRange(brick.x, dims.x);

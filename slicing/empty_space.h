@@ -37,6 +37,9 @@ class BrickRanges {
 
   explicit BrickRanges(const Volume& volume);
 
+  // How many bricks cover a volume of `dims` voxels along each axis.
+  static glm::ivec3 bricksCovering(glm::ivec3 dims) { return (dims + kBrickSize - 1) / kBrickSize; }
+
   glm::ivec3 bricks() const { return bricks_; }
   // The smallest and largest voxel a trilinear sample inside the brick can read.
   ValueRange range(glm::ivec3 brick) const;
