@@ -162,6 +162,8 @@ RenderResult Renderer::render(const RenderSettings& settings) {
       planSlices(result.view, impl_->dims, impl_->spacing, settings.samplesPerVoxel);
   result.sliceCount = int(plan.slices.size());
   result.sliceStepEye = plan.stepEye;
+  result.textureFormat = impl_->volumeTexture->internalFormat() == GL_R16F ? "R16F" : "R32F";
+  result.textureBricks = impl_->volumeTexture->layout().counts();
 
   // All slice pieces (slicer.h slicePieces) as triangle fans in one buffer, uploaded once per
   // frame.

@@ -72,6 +72,10 @@ struct RenderResult {
   Rgba background = kDefaultBackground;  // what the frame was made for and is composed over
   int sliceCount = 0;                    // slices drawn, not counting the extra empty one
   double sliceStepEye = 0;
+  // How the frame held the volume (slicing/volume_texture.h): "R16F" or "R32F", and the bricks
+  // along x, y and z ({1, 1, 1}: one texture).
+  std::string textureFormat;
+  glm::ivec3 textureBricks{0};
   RenderTimings timings;
 };
 

@@ -94,6 +94,9 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
                      {"value_range", {range.min, range.max}}};
   meta["slices"] = result.sliceCount;
   meta["slice_step_eye"] = result.sliceStepEye;
+  meta["volume_texture"] = {
+      {"format", result.textureFormat},
+      {"bricks", {result.textureBricks.x, result.textureBricks.y, result.textureBricks.z}}};
   meta["camera"] = {{"eye_from_voxel", matrixRowMajor(result.view.eyeFromVoxel)},
                     {"clip_from_eye", matrixRowMajor(result.view.clipFromEye)},
                     {"viewport", {result.view.viewport.x, result.view.viewport.y}},

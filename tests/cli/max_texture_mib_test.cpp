@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "reference/test_support.h"
 
@@ -13,25 +14,33 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string render(const fs::path& dir, const std::string& name, const std::string& flags) {
+// The output bytes, and `--meta-out`'s volume_texture into `texture`.
+std::string render(const fs::path& dir, const std::string& name, const std::string& flags,
+                   nlohmann::json& texture) {
   const std::string base = (dir / name).string();
-  const auto result = test::runVsil(
-      "render gen:spheres:128 " + flags + " --size 96x80 --view 37,-23 --sampling 0.9 --out " +
-      base + ".png --state-out " + base + "-state.png --depth-out " + base + "-depth.png");
+  const auto result = test::runVsil("render gen:spheres:128 " + flags +
+                                    " --size 96x80 --view 37,-23 --sampling 0.9 --out " + base +
+                                    ".png --state-out " + base + "-state.png --depth-out " + base +
+                                    "-depth.png --meta-out " + base + ".json");
   EXPECT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.err, "");
+  texture = nlohmann::json::parse(test::readFileBytes(base + ".json"))["volume_texture"];
   return test::readFileBytes(base + ".png") + "|" + test::readFileBytes(base + "-state.png") + "|" +
          test::readFileBytes(base + "-depth.png");
 }
 
-TEST(MaxTextureMib, BricksRenderTheBytesOfOneTexture) {
+TEST(MaxTextureMib, BricksRenderTheBytesOfOneTextureAndTheMetadataSaysSo) {
   const fs::path dir = test::scratchDir();
   for (const std::string technique : {"--technique silhouette --pipeline paper",
                                       "--technique silhouette", "--technique rightangle"}) {
     SCOPED_TRACE(technique);
-    const std::string whole = render(dir, "whole", technique);
-    const std::string bricked = render(dir, "bricked", technique + " --max-texture-mib 1");
+    nlohmann::json wholeTexture, brickedTexture;
+    const std::string whole = render(dir, "whole", technique, wholeTexture);
+    const std::string bricked =
+        render(dir, "bricked", technique + " --max-texture-mib 1", brickedTexture);
     EXPECT_EQ(whole, bricked);
+    EXPECT_EQ(wholeTexture, nlohmann::json({{"format", "R32F"}, {"bricks", {1, 1, 1}}}));
+    EXPECT_EQ(brickedTexture, nlohmann::json({{"format", "R32F"}, {"bricks", {1, 1, 11}}}));
   }
 }
 
