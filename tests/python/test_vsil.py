@@ -167,6 +167,16 @@ def test_a_raw_file_loads_as_the_array_that_wrote_it(tmp_path, dtype):
     assert np.array_equal(cropped.data, array[2:5, 0:6, 1:4])
 
 
+def test_the_metadata_says_how_the_volume_was_held(renderer):
+    # R16F where every sample is an integer of magnitude up to 2048 (exact in half floats), else
+    # R32F; one texture at this size.
+    ramp = np.arange(16 * 16 * 16).reshape(16, 16, 16)
+    for array, expected in [(ramp.astype(np.uint8), "R16F"), (ramp.astype(np.uint16), "R32F"),
+                            (ramp.astype(np.float32) / 7, "R32F")]:
+        frame = renderer.render(vsil.Volume(array), size=(16, 16))
+        assert frame.metadata["volume_texture"] == {"format": expected, "bricks": [1, 1, 1]}
+
+
 # ---- errors ----
 
 def test_bad_input_raises_value_error_with_the_cli_message(tmp_path, renderer):
