@@ -11,7 +11,7 @@
 //       has g = 0 everywhere),
 //   value = the voxel's value where the volume texture is R16F (its texels are then exact in half
 //       floats, volume_texture.h), else 0: a sample then gets its value and its gradient from
-//       one fetch (holdsValues; the shaders' GRADIENTS_HOLD_VALUES).
+//       one fetch (the shaders' GRADIENTS_HOLD_VALUES, GradientTexture::addDefines).
 // Storing g/M rather than a unit direction and |g|/M keeps the same information in the same four
 // channels (half floats keep 11 bits relative down to 2^-14·M) and frees the fourth for the
 // value. It also means the direction and magnitude between voxels are those of the interpolated
@@ -65,7 +65,6 @@ class GradientTexture {
   GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing);
   GLuint brickTexture(std::size_t brick) const { return textures_[brick].id(); }
   double buildMs() const { return buildMs_; }
-  bool holdsValues() const { return holdsValues_; }
   // shaders/gradients.glsl's define for this texture, added to `defines` where it applies.
   void addDefines(std::vector<std::string>& defines) const;
 

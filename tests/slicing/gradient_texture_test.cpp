@@ -2,9 +2,9 @@
 // linear ramp, whose central differences are exact inside and one-sided halves at the border.
 #include "slicing/gradient_texture.h"
 
+#include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <span>
+#include <vector>
 
 #include <gtest/gtest.h>
 
