@@ -33,6 +33,14 @@ void FrameUniforms::upload(const View& view, glm::ivec3 dims, const SlicePlan& p
   frame.orthographic = view.orthographic ? 1 : 0;
   frame.viewportSize = glm::vec2(view.viewport);
   frame.halfExtent = glm::vec2(view.halfExtent);
+  const PixelRays rays = pixelRays(view, plan);
+  frame.rayOriginPerWindowX = rays.originPerWindowX;
+  frame.rayStepEye = rays.stepEye;
+  frame.rayOriginPerWindowY = glm::vec4(rays.originPerWindowY, 0.0f);
+  frame.rayOriginAtWindowOrigin = glm::vec4(rays.originAtWindowOrigin, 0.0f);
+  frame.rayDirectionPerWindowX = glm::vec4(rays.directionPerWindowX, 0.0f);
+  frame.rayDirectionPerWindowY = glm::vec4(rays.directionPerWindowY, 0.0f);
+  frame.rayDirectionAtWindowOrigin = rays.directionAtWindowOrigin;
   VSIL_GL(glBindBuffer(GL_UNIFORM_BUFFER, frameBuffer_.id()));
   VSIL_GL(glBufferData(GL_UNIFORM_BUFFER, sizeof(frame), &frame, GL_STREAM_DRAW));
 

@@ -26,12 +26,23 @@ struct FrameBlock {
   std::int32_t orthographic;
   glm::vec2 viewportSize;
   glm::vec2 halfExtent;
+  // slicer.h PixelRays, each vec3 padded to a vec4 but for the step beside the first
+  glm::vec3 rayOriginPerWindowX;
+  float rayStepEye;
+  glm::vec4 rayOriginPerWindowY;
+  glm::vec4 rayOriginAtWindowOrigin;
+  glm::vec4 rayDirectionPerWindowX;
+  glm::vec4 rayDirectionPerWindowY;
+  glm::vec3 rayDirectionAtWindowOrigin;
 };
 static_assert(offsetof(FrameBlock, eyeFromVoxelGradient) == 128);
 static_assert(offsetof(FrameBlock, volumeDims) == 176);
 static_assert(offsetof(FrameBlock, orthographic) == 188);
 static_assert(offsetof(FrameBlock, viewportSize) == 192);
 static_assert(offsetof(FrameBlock, halfExtent) == 200);
+static_assert(offsetof(FrameBlock, rayOriginPerWindowX) == 208);
+static_assert(offsetof(FrameBlock, rayStepEye) == 220);
+static_assert(offsetof(FrameBlock, rayDirectionAtWindowOrigin) == 288);
 
 // Mirrors `uniform SliceBlock` in shaders/common.glsl.
 struct SliceBlock {

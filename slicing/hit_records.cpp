@@ -59,7 +59,9 @@ void FirstHitRecorder::beginFrame(const FrameContext& frame, SlicingPipeline pip
   }
   slicePass_ = &frame.programs->get(gl::slicePassProgram(
       hitRecordSources(), "shaders/first_hit.frag",
-      material ? std::vector<std::string>{"MATERIAL_THRESHOLD"} : std::vector<std::string>{}));
+      // demip's second sweep samples where its march does (slicer.h PixelRays).
+      material ? std::vector<std::string>{"MATERIAL_THRESHOLD", "RAY_SAMPLING"}
+               : std::vector<std::string>{}));
   slicePass_->use();
   if (material) {
     slicePass_->set("materialEps", material->materialEps);

@@ -31,6 +31,37 @@ SliceVoxelCoords sliceVoxelCoords(const View& view, double eyeDistance) {
   return coords;
 }
 
+PixelRays pixelRays(const View& view, const SlicePlan& plan) {
+  // The sample on the plane at eye distance e: voxel = M (ndc.x h.x s, ndc.y h.y s, -e, 1) with
+  // s = e (perspective) or 1, M = voxelFromEye, e = firstEye + t, ndc = w * 2 / viewport - 1.
+  const double firstEye = plan.slices.empty() ? view.nearEye : plan.slices.front().eyeDistance;
+  const glm::dmat4 m = glm::inverse(view.eyeFromVoxel);
+  const glm::dvec3 alongX = glm::dvec3(m[0]) * view.halfExtent.x;  // per unit of NDC x
+  const glm::dvec3 alongY = glm::dvec3(m[1]) * view.halfExtent.y;
+  const glm::dvec3 forward = -glm::dvec3(m[2]);
+  const glm::dvec3 onFirstPlane = glm::dvec3(m[3]) + forward * firstEye;
+  const glm::dvec2 ndcPerWindow = 2.0 / glm::dvec2(view.viewport);
+  // An affine function of NDC, ndc.x * x + ndc.y * y + a, as one of window coordinates.
+  struct Affine {
+    glm::dvec3 x, y, a;
+  };
+  const auto inWindow = [&](const Affine& f, glm::vec3& perX, glm::vec3& perY, glm::vec3& at) {
+    perX = glm::vec3(f.x * ndcPerWindow.x);
+    perY = glm::vec3(f.y * ndcPerWindow.y);
+    at = glm::vec3(f.a - f.x - f.y);
+  };
+  const double scale = view.orthographic ? 1.0 : firstEye;
+  const Affine origin{alongX * scale, alongY * scale, onFirstPlane};
+  const Affine direction = view.orthographic ? Affine{glm::dvec3(0.0), glm::dvec3(0.0), forward}
+                                             : Affine{alongX, alongY, forward};
+  PixelRays rays;
+  inWindow(origin, rays.originPerWindowX, rays.originPerWindowY, rays.originAtWindowOrigin);
+  inWindow(direction, rays.directionPerWindowX, rays.directionPerWindowY,
+           rays.directionAtWindowOrigin);
+  rays.stepEye = float(plan.stepEye);
+  return rays;
+}
+
 std::vector<glm::dvec3> slicePolygon(const View& view, glm::ivec3 dims, double eyeDistance) {
   return boxSlicePolygon(view, glm::dvec3(-0.5), glm::dvec3(dims) - 0.5, eyeDistance);
 }

@@ -11,6 +11,16 @@ layout(std140, binding = 0) uniform FrameBlock {
   int orthographic;
   vec2 viewportSize;
   vec2 halfExtent;  // View::halfExtent
+  // The MIP family's sampling (slicer.h PixelRays, RAY_SAMPLING below): a pixel's ray in voxel
+  // coordinates from the first slice's plane, affine in window coordinates; slice k's sample
+  // lies float(k) * rayStepEye along it.
+  vec3 rayOriginPerWindowX;
+  float rayStepEye;
+  vec3 rayOriginPerWindowY;
+  vec3 rayOriginAtWindowOrigin;
+  vec3 rayDirectionPerWindowX;
+  vec3 rayDirectionPerWindowY;
+  vec3 rayDirectionAtWindowOrigin;
 };
 
 #ifndef VSIL_COMPUTE_SHADER
@@ -54,6 +64,25 @@ bool ownedByBrick(vec3 voxel) {
   return all(greaterThanEqual(voxel, brickLow)) && all(lessThan(voxel, brickHigh));
 }
 
+// A pixel's ray (slicer.h PixelRays): where the MIP family's samples lie. Their slice passes
+// and marches compute them with these same operations, so both sample the same positions.
+struct PixelRay {
+  vec3 origin;     // on the first slice's plane
+  vec3 direction;  // voxels per unit of eye distance
+};
+
+// The ray through the pixel centre at window coordinates `w` (gl_FragCoord.xy).
+PixelRay pixelRay(vec2 w) {
+  return PixelRay(w.x * rayOriginPerWindowX + w.y * rayOriginPerWindowY + rayOriginAtWindowOrigin,
+                  w.x * rayDirectionPerWindowX + w.y * rayDirectionPerWindowY +
+                      rayDirectionAtWindowOrigin);
+}
+
+// The (quantized) voxel position where a ray crosses slice k of the plan.
+vec3 rayVoxel(PixelRay ray, int k) {
+  return quantizedVoxel(ray.origin + (float(k) * rayStepEye) * ray.direction);
+}
+
 #ifdef VSIL_FRAGMENT_SHADER
 // This pixel's centre in normalized device coordinates.
 vec2 fragmentNdc() { return gl_FragCoord.xy / viewportSize * 2.0 - 1.0; }
@@ -65,11 +94,16 @@ vec3 eyePointAt(float eyeDistance) {
   return vec3(ndc * halfExtent * scale, -eyeDistance);
 }
 
-// The voxel position this pixel's centre samples on this slice (quantized).
+// The voxel position this pixel's centre samples on this slice (quantized): along its ray for
+// the MIP family (RAY_SAMPLING), else from the slice's coefficients.
 vec3 sliceVoxel() {
+#ifdef RAY_SAMPLING
+  return rayVoxel(pixelRay(gl_FragCoord.xy), int(sliceIndex));
+#else
   vec2 ndc = fragmentNdc();
   return quantizedVoxel(ndc.x * sliceVoxelPerNdcX + ndc.y * sliceVoxelPerNdcY +
                         sliceVoxelAtNdcOrigin);
+#endif
 }
 
 #endif
@@ -78,6 +112,9 @@ vec3 sliceVoxel() {
 // Pixel `pixel`'s centre in NDC, the same operations as fragmentNdc() on gl_FragCoord (the
 // pixel + 0.5), so that a compute shader samples exactly where a slice pass does.
 vec2 pixelNdc(ivec2 pixel) { return (vec2(pixel) + 0.5) / viewportSize * 2.0 - 1.0; }
+
+// Pixel `pixel`'s centre in window coordinates: what gl_FragCoord.xy holds there (exact).
+vec2 pixelCentre(ivec2 pixel) { return vec2(pixel) + 0.5; }
 
 // The voxel position a pixel centre at `ndc` samples on a slice whose SliceBlock holds these
 // coefficients (sliceVoxel()'s operations).

@@ -3,7 +3,8 @@
 // one for the whole frame), one workgroup per screen tile of MARCH_TILE_X x MARCH_TILE_Y pixels;
 // each shader lays its invocations over its tile (and an apron, where it needs neighbours) its
 // own way, samples its pixels on slice after slice, front to back, exactly where a slice pass
-// samples them (pixelNdc, sliceVoxelAt, sampleVolume), and keeps their records in registers.
+// samples them (pixelNdc and sliceVoxelAt, or pixelCentre and rayVoxel for the MIP family's
+// RAY_SAMPLING; sampleVolume), and keeps their records in registers.
 // In: this dispatch's slices (SliceRange), where rays enter occupied bricks (entry depth image)
 // and leave them for good (exit depth image; slicing/empty_space.h).
 // In/out: the records, through recordImage: read at the start of a dispatch that continues
@@ -71,18 +72,35 @@ float entryDepthAt(ivec2 pixel) { return texelFetch(entryDepthTexture, pixel, 0)
 float exitDepthAt(ivec2 pixel) { return texelFetch(exitDepthTexture, pixel, 0).r; }
 
 // The first slice from `from` on (up to rangeEndSlice) whose window depth exceeds
-// `windowDepth`: slices come in depth order.
-int firstSliceBeyond(int from, float windowDepth) {
+// `windowDepth` (or reaches it, with `orEqual`): slices come in depth order.
+int firstSliceBeyond(int from, float windowDepth, bool orEqual) {
   int low = from, high = rangeEndSlice;
   while (low < high) {
     int middle = (low + high) / 2;
-    if (sliceWindowDepthAt(middle) > windowDepth) {
+    float depth = sliceWindowDepthAt(middle);
+    if (depth > windowDepth || (orEqual && depth == windowDepth)) {
       high = middle;
     } else {
       low = middle + 1;
     }
   }
   return low;
+}
+int firstSliceBeyond(int from, float windowDepth) {
+  return firstSliceBeyond(from, windowDepth, false);
+}
+
+// The slices [first, end) of this range a pixel's ray samples: beyond where it enters occupied
+// bricks (a slice pass's GREATER test against the entry depth) and before where it leaves them
+// for good (from the exit depth on its samples stay below the technique's threshold:
+// mark_dead.frag's rule). Two searches per pixel instead of two depth tests per sample.
+struct SliceSpan {
+  int first;
+  int end;
+};
+SliceSpan sliceSpan(int from, float entryDepth, float exitDepth) {
+  int first = firstSliceBeyond(from, entryDepth);
+  return SliceSpan(first, max(first, firstSliceBeyond(first, exitDepth, true)));
 }
 
 shared uint tileEntryBits;

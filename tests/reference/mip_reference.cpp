@@ -16,7 +16,7 @@ namespace {
 
 // The samples pixel (x, y) sees, front to back, with their slices. `low` and `high` bound what
 // the shader may sample there instead: its position may round to a neighbouring 1/1024 voxel
-// (SliceSampler::sliceVoxelCandidates).
+// (SliceSampler::rayVoxelCandidates).
 struct RaySample {
   const Slice* slice;
   float value;
@@ -26,11 +26,10 @@ struct RaySample {
 class RaySampler {
  public:
   RaySampler(const Volume& volume, const ReferenceSetup& setup)
-      : setup_(setup), sampler_(volume, setup.view), dims_(volume.dims) {
-    for (const Slice& slice : setup.plan.slices) {
-      coords_.push_back(sliceVoxelCoords(setup.view, slice.eyeDistance));
-    }
-  }
+      : setup_(setup),
+        sampler_(volume, setup.view),
+        rays_(pixelRays(setup.view, setup.plan)),
+        dims_(volume.dims) {}
   // `onBoxFace` turns true when a sample position lies within kFaceEpsilon of the box's faces:
   // whether the rasteriser covers such a pixel with the slice polygon is a matter of rounding,
   // and every sample counts for a maximum (for the iso-surface techniques it would not, as the
@@ -43,7 +42,7 @@ class RaySampler {
     for (std::size_t k = 0; k < setup_.plan.slices.size(); ++k) {
       const Slice& slice = setup_.plan.slices[k];
       if (slice.polygonVoxel.empty()) continue;
-      const VoxelCandidates candidates = sampler_.sliceVoxelCandidates(x, y, coords_[k]);
+      const VoxelCandidates candidates = sampler_.rayVoxelCandidates(x, y, rays_, int(k));
       const glm::vec3 voxel = candidates.positions[0];
       // Distance to the nearer face per axis.
       const glm::vec3 inner = glm::min(voxel + 0.5f, dims_ - 0.5f - voxel);
@@ -68,7 +67,7 @@ class RaySampler {
  private:
   const ReferenceSetup& setup_;
   SliceSampler sampler_;
-  std::vector<SliceVoxelCoords> coords_;
+  PixelRays rays_;  // the MIP family samples along rays (common.glsl RAY_SAMPLING)
   glm::vec3 dims_;
 };
 

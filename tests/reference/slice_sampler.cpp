@@ -94,19 +94,36 @@ VoxelCandidates SliceSampler::sliceVoxelCandidates(int x, int y,
                                                    const SliceVoxelCoords& slice) const {
   const glm::vec2 ndc = fragmentNdc(x, y);
   const glm::vec3 a = ndc.x * slice.perNdcX, b = ndc.y * slice.perNdcY;
-  const glm::vec3 unrounded = a + b + slice.atNdcOrigin;
-  const glm::vec3 rounded = sliceVoxel(x, y, slice);
+  return candidatesNear(a + b + slice.atNdcOrigin,
+                        glm::abs(a) + glm::abs(b) + glm::abs(slice.atNdcOrigin));
+}
+
+VoxelCandidates SliceSampler::rayVoxelCandidates(int x, int y, const PixelRays& rays, int k) const {
+  // gl_FragCoord.xy (pixelCentre in a march): exact.
+  const glm::vec2 w(float(x) + 0.5f, float(view_.viewport.y - 1 - y) + 0.5f);
+  const glm::vec3 ox = w.x * rays.originPerWindowX, oy = w.y * rays.originPerWindowY;
+  const glm::vec3 dx = w.x * rays.directionPerWindowX, dy = w.y * rays.directionPerWindowY;
+  const glm::vec3 origin = ox + oy + rays.originAtWindowOrigin;
+  const glm::vec3 direction = dx + dy + rays.directionAtWindowOrigin;
+  const float t = float(k) * rays.stepEye;
+  return candidatesNear(
+      origin + t * direction,
+      glm::abs(ox) + glm::abs(oy) + glm::abs(rays.originAtWindowOrigin) +
+          std::abs(t) * (glm::abs(dx) + glm::abs(dy) + glm::abs(rays.directionAtWindowOrigin)));
+}
+
+VoxelCandidates SliceSampler::candidatesNear(glm::vec3 unrounded, glm::vec3 magnitudes) {
+  const glm::vec3 rounded = quantizedVoxel(unrounded);
   // Per axis, the steps (units of 1/1024 voxel) the position may round to, sliceVoxel's first:
   // one or two (the slack is far below half a step).
   float steps[3][2];
   int stepCount[3];
   for (int axis = 0; axis < 3; ++axis) {
-    const float magnitude =
-        std::abs(a[axis]) + std::abs(b[axis]) + std::abs(slice.atNdcOrigin[axis]);
+    const float magnitude = magnitudes[axis];
     const float ulp = std::nextafter(magnitude, INFINITY) - magnitude;
     const float t = unrounded[axis] * 1024.0f + 0.5f;
     const float step = rounded[axis] * 1024.0f;  // exact: a multiple of 1/1024
-    // Four units in the last place of the largest term, in steps: two fused roundings and the
+    // Four units in the last place of the terms' magnitude, in steps: fused roundings and the
     // sums' own, with room to spare (and the + 0.5's rounding).
     const float slack =
         4.0f * 1024.0f * ulp + (std::nextafter(std::abs(t), INFINITY) - std::abs(t));

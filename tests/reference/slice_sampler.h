@@ -71,6 +71,9 @@ class SliceSampler {
   // (a fused multiply-add, another order), which tips the rounding to 1/1024 voxel the other
   // way where the unrounded position lies that close to a boundary between two steps.
   VoxelCandidates sliceVoxelCandidates(int x, int y, const SliceVoxelCoords& slice) const;
+  // The same for the MIP family's sampling (common.glsl RAY_SAMPLING: pixelRay, rayVoxel): slice
+  // k's sample on pixel (x, y)'s ray, first the one computed here.
+  VoxelCandidates rayVoxelCandidates(int x, int y, const PixelRays& rays, int k) const;
   bool insideVolume(glm::vec3 voxel) const;
   glm::vec3 gradientVoxel(glm::vec3 voxel) const;
   // −∇f/|∇f| in eye space, 0 where the gradient vanishes (common.glsl outwardNormalEye).
@@ -79,6 +82,9 @@ class SliceSampler {
 
  private:
   glm::vec2 fragmentNdc(int x, int y) const;  // gl_FragCoord's NDC as common.glsl computes it
+  // The positions a sum of float terms may round to: `unrounded` as computed here, `magnitude`
+  // per axis the sum of its terms' magnitudes (the scale of their rounding).
+  static VoxelCandidates candidatesNear(glm::vec3 unrounded, glm::vec3 magnitude);
 
   const Volume& volume_;
   const View& view_;

@@ -17,12 +17,11 @@ void main() {
   if (continuesMarch() && inImage) t = imageLoad(recordImage, pixel);
   float entryDepth = inImage ? entryDepthAt(pixel) : 1.0;
   float exitDepth = inImage && !isFinal(uint(t.r)) ? exitDepthAt(pixel) : 0.0;
-  int first = firstSliceBeyond(tileFirstSlice(entryDepth), entryDepth);
-  vec2 ndc = pixelNdc(pixel);
-  for (int k = first; k < rangeEndSlice; ++k) {
-    SliceParams slice = sliceAt(k);
-    if (slice.windowDepth >= exitDepth) break;
-    vec3 voxel = sliceVoxelOf(slice, ndc);
+  SliceSpan span = sliceSpan(tileFirstSlice(entryDepth), entryDepth, exitDepth);
+  PixelRay ray = pixelRay(pixelCentre(pixel));
+  int candidate = -1;  // the slice of a new candidate in this dispatch (its depth read once)
+  for (int k = span.first; k < span.end; ++k) {
+    vec3 voxel = rayVoxel(ray, k);
     if (!insideVolume(voxel)) continue;
     float value = sampleVolume(voxel);
     t.g = max(t.g, value);
@@ -32,8 +31,9 @@ void main() {
     }
     if (value >= lmipThreshold && value > t.b) {
       t.b = value;
-      t.a = slice.depth;
+      candidate = k;
     }
   }
+  if (candidate >= 0) t.a = sliceDepthAt(candidate);
   if (inImage) imageStore(recordImage, pixel, t);
 }

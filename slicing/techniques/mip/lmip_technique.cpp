@@ -45,7 +45,7 @@ void LmipTechnique::beginFrame(const FrameContext& frame) {
   }
   if (marches(frame)) return;  // the march runs after the (empty) sweep, in endFrame
   slicePass_ = &frame.programs->get(
-      gl::slicePassProgram(hitRecordSources(), "techniques/mip/lmip_slice.frag"));
+      gl::slicePassProgram(hitRecordSources(), "techniques/mip/lmip_slice.frag", {"RAY_SAMPLING"}));
   slicePass_->use();
   slicePass_->set("lmipThreshold", float(frame.options->number("lmip-threshold")));
   gl::Capability noScissor(GL_SCISSOR_TEST, false);

@@ -3,8 +3,8 @@
 // dispatch (shaders/tile_march.glsl): one invocation per pixel of a MARCH_TILE_X x MARCH_TILE_Y
 // tile, sampling exactly where max_sample.frag and first_hit.frag do, on the slices beyond
 // where its ray enters occupied bricks (the slice passes' GREATER test) up to where it leaves
-// them for good (past there every sample lies in bricks that cannot hold a shown maximum:
-// mip_technique.cpp occupancy).
+// them for good (tile_march.glsl sliceSpan; past there every sample lies in bricks that cannot
+// hold a shown maximum: mip_technique.cpp occupancy).
 // DEMIP: a second loop finds the first sample within materialEps of the maximum, from a bound
 // the first loop keeps on where it can be. Every sample before a new running maximum is at most
 // the old one, so when a new maximum v arrives: if the old maximum is below v − eps, no sample
@@ -27,20 +27,18 @@ void main() {
   bool inImage = insideImage(pixel);
   float entryDepth = inImage ? entryDepthAt(pixel) : 1.0;
   float exitDepth = inImage ? exitDepthAt(pixel) : 0.0;
-  // The lanes walk the same slices, from the tile's first; each lane's entry is a test.
-  int tileFirst = tileFirstSlice(entryDepth);
-  vec2 ndc = pixelNdc(pixel);
+  // The lanes search from the tile's first slice (every invocation calls it: barriers).
+  SliceSpan span = sliceSpan(tileFirstSlice(entryDepth), entryDepth, exitDepth);
+  PixelRay ray = pixelRay(pixelCentre(pixel));
   float maximum = noSample;
 #ifdef DEMIP
-  int hitLowerBound = tileFirst;  // no slice before it holds the hit
-  int candidateSlice = tileFirst;
+  int hitLowerBound = span.first;  // no slice before it holds the hit
+  int candidateSlice = span.first;
   float candidateValue = noSample;
 #endif
-  for (int k = tileFirst; k < rangeEndSlice; ++k) {
-    SliceParams slice = sliceAt(k);
-    if (slice.windowDepth >= exitDepth) break;
-    vec3 voxel = sliceVoxelOf(slice, ndc);
-    if (slice.windowDepth > entryDepth && insideVolume(voxel)) {
+  for (int k = span.first; k < span.end; ++k) {
+    vec3 voxel = rayVoxel(ray, k);
+    if (insideVolume(voxel)) {
       float value = sampleVolume(voxel);
 #ifdef DEMIP
       if (value > maximum) {
@@ -62,15 +60,17 @@ void main() {
   vec4 record = vec4(maximum, 0.0, 0.0, 0.0);
 #ifdef DEMIP
   float threshold = maximum - materialEps;
-  for (int k = hitLowerBound; k < rangeEndSlice; ++k) {
-    SliceParams slice = sliceAt(k);
-    if (slice.windowDepth >= exitDepth) break;
-    vec3 voxel = sliceVoxelOf(slice, ndc);
-    if (slice.windowDepth > entryDepth && insideVolume(voxel) &&
-        sampleVolume(voxel) >= threshold) {
-      record = vec4(maximum, slice.depth, slice.eyeDistance, 1.0);
+  int hit = span.end;
+  for (int k = hitLowerBound; k < span.end; ++k) {
+    vec3 voxel = rayVoxel(ray, k);
+    if (insideVolume(voxel) && sampleVolume(voxel) >= threshold) {
+      hit = k;
       break;
     }
+  }
+  if (hit < span.end) {
+    SliceParams slice = sliceAt(hit);
+    record = vec4(maximum, slice.depth, slice.eyeDistance, 1.0);
   }
 #endif
   if (inImage) imageStore(recordImage, pixel, record);

@@ -89,7 +89,8 @@ void MipTechnique::beginFrame(const FrameContext& frame) {
                              marching});
   }
   if (marching) return;  // the march runs after the (empty) sweep, in endFrame
-  maximumPass_ = &frame.programs->get(gl::slicePassProgram({}, "techniques/mip/max_sample.frag"));
+  maximumPass_ = &frame.programs->get(
+      gl::slicePassProgram({}, "techniques/mip/max_sample.frag", {"RAY_SAMPLING"}));
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   const GLfloat noSample[4] = {kNoSample, 0, 0, 0};
   targets_->values.bindForDrawing();
