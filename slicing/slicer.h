@@ -83,6 +83,7 @@ struct SlicePlan {
 // and last plane half a step inside it.
 SlicePlan planSlices(const View& view, glm::ivec3 dims, glm::dvec3 spacing, double samplesPerVoxel);
 
+// The pixels' rays through the plan's slices (its first plane, its step).
 PixelRays pixelRays(const View& view, const SlicePlan& plan);
 
 // Box ∩ plane at eye distance `eyeDistance`, in voxel coordinates; empty if they miss.
