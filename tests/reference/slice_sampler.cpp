@@ -68,10 +68,13 @@ SliceSampler::SliceSampler(const Volume& volume, const View& view)
       halfExtent_(view.halfExtent),
       dims_(volume.dims) {}
 
-glm::vec2 SliceSampler::fragmentNdc(int x, int y) const {
+glm::vec2 SliceSampler::fragCoord(int x, int y) const {
   // gl_FragCoord has its origin at the bottom-left.
-  const glm::vec2 fragCoord(float(x) + 0.5f, float(view_.viewport.y - 1 - y) + 0.5f);
-  return fragCoord / viewportSize_ * 2.0f - 1.0f;
+  return {float(x) + 0.5f, float(view_.viewport.y - 1 - y) + 0.5f};
+}
+
+glm::vec2 SliceSampler::fragmentNdc(int x, int y) const {
+  return fragCoord(x, y) / viewportSize_ * 2.0f - 1.0f;
 }
 
 glm::vec3 SliceSampler::eyePoint(int x, int y, float eyeDistance) const {
@@ -99,8 +102,7 @@ VoxelCandidates SliceSampler::sliceVoxelCandidates(int x, int y,
 }
 
 VoxelCandidates SliceSampler::rayVoxelCandidates(int x, int y, const PixelRays& rays, int k) const {
-  // gl_FragCoord.xy (pixelCentre in a march): exact.
-  const glm::vec2 w(float(x) + 0.5f, float(view_.viewport.y - 1 - y) + 0.5f);
+  const glm::vec2 w = fragCoord(x, y);  // pixelCentre in a march
   const glm::vec3 ox = w.x * rays.originPerWindowX, oy = w.y * rays.originPerWindowY;
   const glm::vec3 dx = w.x * rays.directionPerWindowX, dy = w.y * rays.directionPerWindowY;
   const glm::vec3 origin = ox + oy + rays.originAtWindowOrigin;

@@ -81,6 +81,7 @@ class SliceSampler {
   float facingRatio(glm::vec3 voxel, glm::vec3 eye) const;  // |n·v| as in common.glsl
 
  private:
+  glm::vec2 fragCoord(int x, int y) const;    // gl_FragCoord.xy of pixel (x, y), exact
   glm::vec2 fragmentNdc(int x, int y) const;  // gl_FragCoord's NDC as common.glsl computes it
   // The positions a sum of float terms may round to: `unrounded` as computed here, `magnitude`
   // per axis the sum of its terms' magnitudes (the scale of their rounding).
