@@ -5,13 +5,16 @@
 // where its ray enters occupied bricks (the slice passes' GREATER test) up to where it leaves
 // them for good (tile_march.glsl sliceSpan; past there every sample lies in bricks that cannot
 // hold a shown maximum: mip_technique.cpp occupancy).
-// DEMIP: a second loop finds the first sample within materialEps of the maximum, from a bound
-// the first loop keeps on where it can be. Every sample before a new running maximum is at most
-// the old one, so when a new maximum v arrives: if the old maximum is below v − eps, no sample
-// before v can be the hit (the final threshold is at least v − eps); else if the candidate (the
-// last maximum that rose more than eps above the candidate before it) is below v − eps, neither
-// it nor any sample before it can. The second loop then covers about the last rise of eps
-// before the hit instead of the whole ray up to it.
+// DEMIP: a second loop finds the first sample within materialEps of the maximum M, from a bound
+// the first loop keeps on where it can be. That hit is a record (a sample above every one
+// before it: those lie below M - eps, it does not), so it lies in a run of consecutive records;
+// before a run starts every sample is at most the maximum then. The first loop keeps the starts
+// of the latest three runs and the maximum before each: the latest start whose maximum before
+// it is below M - eps bounds the hit (the hit lies in that run or a later one). A record that
+// rises more than eps above the maximum before it bounds it too (every earlier sample is below
+// M - eps), for rays with more runs near the top. The second loop then walks about the hit's
+// run's rise instead of the ray up to it (bonsai, 512²: 3.4 samples per 8 lanes, against 15.9
+// with the one candidate kept before and 79 in the first loop).
 // Out: the record (maximum, normalized depth d of the hit, its eye distance, 1; no hit: 0, 0,
 // 0): mip_finish.frag reads the maximum from .r and the hit from .g and .b, where
 // hit_records.glsl keeps them; noSample (kNoSample) where no slice sampled the pixel.
@@ -32,27 +35,23 @@ void main() {
   PixelRay ray = pixelRay(pixelCentre(pixel));
   float maximum = noSample;
 #ifdef DEMIP
-  int hitLowerBound = span.first;  // no slice before it holds the hit
-  int candidateSlice = span.first;
-  float candidateValue = noSample;
+  int jumpBound = span.first;              // the last record more than eps above all before it
+  bool previousWasRecord = false;
+  ivec3 runStart = ivec3(span.first);      // of the latest three runs of records, oldest first
+  vec3 maximumBeforeRun = vec3(noSample);  // the maximum of the samples before each
 #endif
   for (int k = span.first; k < span.end; ++k) {
     vec3 voxel = rayVoxel(ray, k);
     if (insideVolume(voxel)) {
       float value = sampleVolume(voxel);
 #ifdef DEMIP
-      if (value > maximum) {
-        bool passesCandidate = value - materialEps > candidateValue;
-        if (value - materialEps > maximum) {
-          hitLowerBound = k;
-        } else if (passesCandidate) {
-          hitLowerBound = max(hitLowerBound, candidateSlice + 1);
-        }
-        if (passesCandidate) {
-          candidateSlice = k;
-          candidateValue = value;
-        }
+      bool isRecord = value > maximum;
+      if (isRecord && !previousWasRecord) {
+        runStart = ivec3(runStart.yz, k);
+        maximumBeforeRun = vec3(maximumBeforeRun.yz, maximum);
       }
+      if (value - materialEps > maximum) jumpBound = k;
+      previousWasRecord = isRecord;
 #endif
       maximum = max(maximum, value);
     }
@@ -60,6 +59,14 @@ void main() {
   vec4 record = vec4(maximum, 0.0, 0.0, 0.0);
 #ifdef DEMIP
   float threshold = maximum - materialEps;
+  int hitLowerBound = jumpBound;  // no slice before it holds the hit
+  if (maximumBeforeRun.z < threshold) {
+    hitLowerBound = max(hitLowerBound, runStart.z);
+  } else if (maximumBeforeRun.y < threshold) {
+    hitLowerBound = max(hitLowerBound, runStart.y);
+  } else if (maximumBeforeRun.x < threshold) {
+    hitLowerBound = max(hitLowerBound, runStart.x);
+  }
   int hit = span.end;
   for (int k = hitLowerBound; k < span.end; ++k) {
     vec3 voxel = rayVoxel(ray, k);
