@@ -76,8 +76,7 @@ void main() {
     }
   }
   if (hit < span.end) {
-    SliceParams slice = sliceAt(hit);
-    record = vec4(maximum, slice.depth, slice.eyeDistance, 1.0);
+    record = vec4(maximum, sliceDepthAt(hit), sliceEyeDistanceAt(hit), 1.0);
   }
 #endif
   if (inImage) imageStore(recordImage, pixel, record);
