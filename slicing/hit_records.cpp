@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "slicing/gl_state.h"
+#include "slicing/slicer.h"
 #include "slicing/texture_units.h"
 #include "slicing/tile_march.h"
 
@@ -59,8 +60,8 @@ void FirstHitRecorder::beginFrame(const FrameContext& frame, SlicingPipeline pip
   }
   slicePass_ = &frame.programs->get(gl::slicePassProgram(
       hitRecordSources(), "shaders/first_hit.frag",
-      // demip's second sweep samples where its march does (slicer.h PixelRays).
-      material ? std::vector<std::string>{"MATERIAL_THRESHOLD", "RAY_SAMPLING"}
+      // demip's second sweep samples where its march does.
+      material ? std::vector<std::string>{"MATERIAL_THRESHOLD", kRaySamplingDefine}
                : std::vector<std::string>{}));
   slicePass_->use();
   if (material) {

@@ -49,6 +49,10 @@ struct PixelRays {
   float stepEye = 0;  // SlicePlan::stepEye
 };
 
+// The #define that makes a slice pass sample along PixelRays (common.glsl sliceVoxel) where
+// its technique's march does.
+inline constexpr const char* kRaySamplingDefine = "RAY_SAMPLING";
+
 // The pieces of a slice polygon, one per brick it crosses (core/brick_layout.h): the plane cut
 // with the volume's box grown by kPieceMargin voxels (pixels there fail the shaders' inside
 // test, so where the outer edges fall never matters), then with each brick's owned region.

@@ -3,6 +3,7 @@
 #include "slicing/gl_state.h"
 #include "slicing/hit_records.h"
 #include "slicing/illustration_options.h"
+#include "slicing/slicer.h"
 #include "slicing/techniques/mip/mip_options.h"
 #include "slicing/techniques/mip/mip_technique.h"
 #include "slicing/texture_units.h"
@@ -44,8 +45,8 @@ void LmipTechnique::beginFrame(const FrameContext& frame) {
                              gl::RenderTarget(size, GL_RGBA32F)});
   }
   if (marches(frame)) return;  // the march runs after the (empty) sweep, in endFrame
-  slicePass_ = &frame.programs->get(
-      gl::slicePassProgram(hitRecordSources(), "techniques/mip/lmip_slice.frag", {"RAY_SAMPLING"}));
+  slicePass_ = &frame.programs->get(gl::slicePassProgram(
+      hitRecordSources(), "techniques/mip/lmip_slice.frag", {kRaySamplingDefine}));
   slicePass_->use();
   slicePass_->set("lmipThreshold", float(frame.options->number("lmip-threshold")));
   gl::Capability noScissor(GL_SCISSOR_TEST, false);

@@ -4,6 +4,7 @@
 
 #include "slicing/gl_state.h"
 #include "slicing/illustration_options.h"
+#include "slicing/slicer.h"
 #include "slicing/techniques/mip/colour_sphere.h"
 #include "slicing/techniques/mip/mip_options.h"
 #include "slicing/techniques/mip/sphere_legend.h"
@@ -90,7 +91,7 @@ void MipTechnique::beginFrame(const FrameContext& frame) {
   }
   if (marching) return;  // the march runs after the (empty) sweep, in endFrame
   maximumPass_ = &frame.programs->get(
-      gl::slicePassProgram({}, "techniques/mip/max_sample.frag", {"RAY_SAMPLING"}));
+      gl::slicePassProgram({}, "techniques/mip/max_sample.frag", {kRaySamplingDefine}));
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   const GLfloat noSample[4] = {kNoSample, 0, 0, 0};
   targets_->values.bindForDrawing();
