@@ -35,12 +35,6 @@ struct Scene {
   float iso;
   double azimuth, elevation;
   bool orthographic;
-  // False where the slice-pass pipelines (fast, paper, and firsthit's) disagree with the
-  // reference at a pixel or two away from the iso value: bonsai and engine (README, Tests,
-  // known issue). There only the marches (the tiles pipeline, mip, demip, lmip), which test the
-  // texture extent as the reference does instead of rasterising slice polygons, are compared,
-  // and they must match.
-  bool slicePassesMatch = true;
   // False for the large scenes: of the choice options that change only the finishing pass (all
   // but --pipeline: demip's --depth-mode and --sphere-frame), only the first value, which the
   // small scenes cover in full; hundreds of slices per pixel make each case seconds here and
@@ -59,8 +53,8 @@ const Scene kScenes[] = {
     {"neghip_dataset", "neghip_64x64x64_uint8.nhdr", 60.0f, -50, 10, true},
     // Larger volumes (the nk3 table's iso values): hundreds of slices, tiles that start and stop
     // far apart.
-    {"bonsai_dataset", "bonsai.vti", 40.0f, 30, 10, false, false, false},
-    {"engine_dataset", "engine.vti", 90.0f, 40, 25, false, false, false},
+    {"bonsai_dataset", "bonsai.vti", 40.0f, 30, 10, false, false},
+    {"engine_dataset", "engine.vti", 90.0f, 40, 25, false, false},
 };
 
 struct Case {
@@ -120,16 +114,6 @@ class GlMatchesReference : public test::GlTest, public ::testing::WithParamInter
 TEST_P(GlMatchesReference, PixelByPixel) {
   const Case& c = GetParam();
   if (c.scene.volume.rfind("gen:", 0) != 0) VSIL_REQUIRE_DATASETS();
-  const auto pipeline = c.variant.find("pipeline");
-  // mip, demip and lmip march whenever the volume is one texture, as every scene's is here
-  // (MipTechnique::marches, LmipTechnique::marches).
-  const bool marched =
-      (pipeline != c.variant.end() && std::get<std::string>(pipeline->second) == "tiles") ||
-      c.technique == "mip" || c.technique == "demip" || c.technique == "lmip";
-  if (!c.scene.slicePassesMatch && !marched) {
-    GTEST_SKIP() << "known issue: the slice passes disagree with the reference at 1-2 pixels "
-                    "away from the iso value on this scene (README, Tests)";
-  }
   const Volume volume = loadScene(c.scene);
   const TechniqueInfo& technique = findTechnique(c.technique);
   const reference::ReferenceTechnique& reference = reference::findReference(c.technique);
