@@ -55,7 +55,10 @@ inline constexpr const char* kRaySamplingDefine = "RAY_SAMPLING";
 
 // The pieces of a slice polygon, one per brick it crosses (core/brick_layout.h): the plane cut
 // with the volume's box grown by kPieceMargin voxels (pixels there fail the shaders' inside
-// test, so where the outer edges fall never matters), then with each brick's owned region.
+// test, so where the outer edges fall never matters: the inside test decides, as in the CPU
+// references; with the polygon cut at the box itself, rasterisation decided pixel centres on
+// its edge, and the bonsai, engine and Marschner–Lobb scenes of gl_vs_reference_test.cpp
+// disagree with the references), then with each brick's owned region.
 // Neighbouring pieces share their cut vertices bit for bit (each computed once per edge, from
 // its end points in a fixed order), so every pixel of the polygon is drawn by exactly one piece.
 struct SlicePiece {

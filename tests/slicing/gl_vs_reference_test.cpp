@@ -49,6 +49,11 @@ const Scene kScenes[] = {
     {"spheres_orthographic", "gen:spheres:64", 0.5f, 90, 0, true},
     {"torus_perspective", "gen:torus:64", 0.5f, 20, 35, false},
     {"torus_edge_on", "gen:torus:64", 0.5f, 0, 80, true},
+    // Iso-surfaces that meet the box's faces, seen obliquely and along an axis: where a pixel
+    // samples at the box's edge, the shaders' inside test must decide, as the reference's does
+    // (slicer.h kPieceMargin: with the slice polygons cut at the box they disagree here).
+    {"marschner_lobb_faces", "gen:marschner-lobb:41", 0.5f, 25, 15, false},
+    {"marschner_lobb_axis", "gen:marschner-lobb:40", 0.3f, 0, 0, false},
     {"nucleon_dataset", "nucleon_41x41x41_uint8.nhdr", 100.0f, 40, 25, false},
     {"neghip_dataset", "neghip_64x64x64_uint8.nhdr", 60.0f, -50, 10, true},
     // Larger volumes (the nk3 table's iso values): hundreds of slices, tiles that start and stop

@@ -2,9 +2,8 @@
 // passes per slice: frames whose slices take several dispatches, images that end inside a tile
 // or are smaller than one, and views where tiles start and stop at different slices. The passes
 // per slice (the fast pipeline) are the yardstick: every pixel's state, depth and shade the
-// same. (Every pipeline against the CPU reference on every scene: gl_vs_reference_test.cpp.)
-// The analytic volumes stay inside the box, so no sample lies on a face of it, where the slice
-// polygons' rasterisation may decide a pixel centre differently from the texture-extent test.
+// same. (Every pipeline against the CPU reference on every scene, surfaces that meet the box's
+// faces included: gl_vs_reference_test.cpp.)
 #include <cmath>
 #include <string>
 
