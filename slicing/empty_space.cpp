@@ -54,7 +54,10 @@ BrickRanges::BrickRanges(const Volume& volume)
                               std::vector<ValueRange>(std::size_t(b.x) * b.y)});
   auto layers = [&](int thread) {
     const int bz0 = b.z * thread / threads, bz1 = b.z * (thread + 1) / threads;
-    auto& [alongX, alongY] = planes[std::size_t(thread)];
+    // Plain references, not a structured binding: clang before 16 cannot capture one in the
+    // lambda below (C++20 allows it), and the fuzz build uses Debian's clang 14.
+    std::vector<ValueRange>& alongX = planes[std::size_t(thread)].alongX;
+    std::vector<ValueRange>& alongY = planes[std::size_t(thread)].alongY;
     volume.visit([&](auto samples) {
       for (int z = voxelRange(bz0, d.z).first; z <= voxelRange(bz1 - 1, d.z).second; ++z) {
         for (int y = 0; y < d.y; ++y) {
