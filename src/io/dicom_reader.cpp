@@ -6,7 +6,10 @@
 // then GDCM decodes each kept slice (raw, RLE, JPEG, JPEG-LS, JPEG 2000: whatever it has
 // codecs for) and the samples go through the sink with Rescale Slope/Intercept applied (CT in
 // Hounsfield units). Several series in a folder: the one with the most slices, unless
-// LoadOptions::series names another; the others are listed in a warning.
+// LoadOptions::series names another; the others are listed in a warning. A multi-frame file
+// (enhanced CT/MR: all slices in one file) is read the same way, its frames standing for the
+// slices: each frame's position from its Plane Position Sequence in the Per-frame Functional
+// Groups, the orientation from the Plane Orientation Sequence (per frame or shared).
 #include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
@@ -16,12 +19,14 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <vector>
 
 #include <gdcmDirectory.h>
 #include <gdcmImage.h>
 #include <gdcmImageReader.h>
+#include <gdcmReader.h>
 #include <gdcmScanner.h>
 #include <gdcmTrace.h>
 #include <gdcmTransferSyntax.h>
@@ -43,6 +48,18 @@ const gdcm::Tag kRows(0x0028, 0x0010);
 const gdcm::Tag kColumns(0x0028, 0x0011);
 const gdcm::Tag kModality(0x0008, 0x0060);
 const gdcm::Tag kSeriesDescription(0x0008, 0x103e);
+const gdcm::Tag kNumberOfFrames(0x0028, 0x0008);
+// Enhanced multi-frame objects: functional groups, their sequences and what they hold.
+const gdcm::Tag kSharedGroups(0x5200, 0x9229);
+const gdcm::Tag kPerFrameGroups(0x5200, 0x9230);
+const gdcm::Tag kPlanePositionSequence(0x0020, 0x9113);
+const gdcm::Tag kPlaneOrientationSequence(0x0020, 0x9116);
+const gdcm::Tag kPixelValueTransformationSequence(0x0028, 0x9145);
+const gdcm::Tag kPixelMeasuresSequence(0x0028, 0x9110);
+const gdcm::Tag kPixelSpacing(0x0028, 0x0030);
+const gdcm::Tag kRescaleIntercept(0x0028, 0x1052);
+const gdcm::Tag kRescaleSlope(0x0028, 0x1053);
+const gdcm::Tag kPixelData(0x7fe0, 0x0010);
 
 // Slices whose spacing differs from the series' by more than this share are a gap.
 constexpr double kSpacingTolerance = 0.01;
@@ -157,6 +174,7 @@ struct Slice {
   std::string file;
   double position = 0;  // along the normal
   glm::dvec3 origin{0.0};
+  int frame = -1;  // its frame (from 0) in a multi-frame file; -1 for a file of one slice
 };
 
 struct Series {
@@ -171,7 +189,7 @@ std::vector<Series> scanSeries(const std::string& where, const std::string& fold
   directory.Load(folder, false);
   const auto& files = directory.GetFilenames();
   for (const gdcm::Tag& tag : {kSeriesUid, kImagePosition, kImageOrientation, kRows, kColumns,
-                               kModality, kSeriesDescription}) {
+                               kModality, kSeriesDescription, kNumberOfFrames}) {
     scanner.AddTag(tag);
   }
   if (files.empty()) {
@@ -242,6 +260,122 @@ std::string fileLabel(const std::string& file) {
   return quote(std::filesystem::path(file).filename().string());
 }
 
+// How messages name a slice: "slice 'IM0002'", or "frame 3 of 'enhanced.dcm'" (from 1).
+std::string sliceLabel(const Slice& slice) {
+  return slice.frame < 0
+             ? "slice " + fileLabel(slice.file)
+             : "frame " + std::to_string(slice.frame + 1) + " of " + fileLabel(slice.file);
+}
+
+// The text of a data element (empty when it is absent or holds none).
+std::string textOf(const gdcm::DataSet& dataSet, const gdcm::Tag& tag) {
+  if (!dataSet.FindDataElement(tag)) return {};
+  const gdcm::ByteValue* value = dataSet.GetDataElement(tag).GetByteValue();
+  return value ? std::string(value->GetPointer(), value->GetLength()) : std::string();
+}
+
+// The text of `tag` in the first item of `sequence` (a functional group's macro), or empty.
+std::string textInSequence(const gdcm::DataSet& dataSet, const gdcm::Tag& sequence,
+                           const gdcm::Tag& tag) {
+  if (!dataSet.FindDataElement(sequence)) return {};
+  const gdcm::SmartPointer<gdcm::SequenceOfItems> items =
+      dataSet.GetDataElement(sequence).GetValueAsSQ();
+  if (!items || items->GetNumberOfItems() < 1) return {};
+  return textOf(items->GetItem(1).GetNestedDataSet(), tag);
+}
+
+// What a multi-frame file says of its frames beyond their positions.
+struct FrameGeometry {
+  std::vector<double> orientation;   // Image Orientation (Patient): 6 numbers
+  std::vector<double> pixelSpacing;  // Pixel Spacing (rows, columns); empty: GDCM's
+  std::vector<double> rescale;       // slope, intercept where the frames carry them; else empty
+};
+
+// A multi-frame file's frames as slices (positions from each frame's Plane Position Sequence in
+// the Per-frame Functional Groups) and what they share. Every other attribute is taken from the
+// frame's functional groups, else the Shared Functional Groups, else the top level, and must be
+// the same for every frame: vsil applies one orientation, pixel spacing and rescale.
+FrameGeometry multiFrameSlices(const std::string& path, const std::string& file, int frames,
+                               std::vector<Slice>& slices) {
+  gdcm::Reader reader;
+  reader.SetFileName(file.c_str());
+  const std::set<gdcm::Tag> skip;
+  if (!withinGdcm(path, [&] { return reader.ReadUpToTag(kPixelData, skip); })) {
+    throwInputError(path, "GDCM cannot read " + fileLabel(file));
+  }
+  const gdcm::DataSet& top = reader.GetFile().GetDataSet();
+  const auto sequenceOf = [&](const gdcm::Tag& tag) {
+    return top.FindDataElement(tag) ? top.GetDataElement(tag).GetValueAsSQ()
+                                    : gdcm::SmartPointer<gdcm::SequenceOfItems>();
+  };
+  const gdcm::SmartPointer<gdcm::SequenceOfItems> shared = sequenceOf(kSharedGroups);
+  const gdcm::SmartPointer<gdcm::SequenceOfItems> perFrame = sequenceOf(kPerFrameGroups);
+  if (!perFrame || perFrame->GetNumberOfItems() != std::size_t(frames)) {
+    throwInputError(path, fileLabel(file) + " holds " + std::to_string(frames) +
+                              " frames but no Per-frame Functional Groups Sequence (5200,9230) "
+                              "with an item per frame: their positions are unknown");
+  }
+  const gdcm::DataSet* sharedGroups =
+      shared && shared->GetNumberOfItems() >= 1 ? &shared->GetItem(1).GetNestedDataSet() : nullptr;
+  // `count` numbers of `tag` in the macro `sequence`: the frame's, else the shared, else the
+  // top level's `tag`; empty when none holds them.
+  const auto numbers = [&](const gdcm::DataSet& groups, const gdcm::Tag& sequence,
+                           const gdcm::Tag& tag, std::size_t count) {
+    std::string text = textInSequence(groups, sequence, tag);
+    if (text.empty() && sharedGroups) text = textInSequence(*sharedGroups, sequence, tag);
+    if (text.empty()) text = textOf(top, tag);
+    return parseNumbers(text.c_str(), count);
+  };
+  FrameGeometry geometry;
+  for (int k = 0; k < frames; ++k) {
+    const gdcm::DataSet& groups = perFrame->GetItem(std::size_t(k) + 1).GetNestedDataSet();
+    const Slice frame{file, 0, glm::dvec3(0.0), k};
+    const std::vector<double> ipp =
+        parseNumbers(textInSequence(groups, kPlanePositionSequence, kImagePosition).c_str(), 3);
+    if (ipp.empty()) {
+      throwInputError(path, sliceLabel(frame) +
+                                " lacks a valid Image Position (Patient) (0020,0032) in its "
+                                "Plane Position Sequence (0020,9113)");
+    }
+    const std::vector<double> iop =
+        numbers(groups, kPlaneOrientationSequence, kImageOrientation, 6);
+    if (iop.empty()) {
+      throwInputError(path,
+                      sliceLabel(frame) + " lacks a valid Image Orientation (Patient) (0020,0037)");
+    }
+    const std::vector<double> spacing = numbers(groups, kPixelMeasuresSequence, kPixelSpacing, 2);
+    const std::vector<double> slope =
+        numbers(groups, kPixelValueTransformationSequence, kRescaleSlope, 1);
+    const std::vector<double> intercept =
+        numbers(groups, kPixelValueTransformationSequence, kRescaleIntercept, 1);
+    const std::vector<double> rescale = slope.empty() || intercept.empty()
+                                            ? std::vector<double>{}
+                                            : std::vector<double>{slope[0], intercept[0]};
+    if (k == 0) {
+      geometry = {iop, spacing, rescale};
+      slices.push_back({file, 0, glm::dvec3(ipp[0], ipp[1], ipp[2]), k});
+      continue;
+    }
+    const auto differs = [](const std::vector<double>& a, const std::vector<double>& b) {
+      if (a.size() != b.size()) return true;
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        if (std::abs(a[i] - b[i]) > 1e-4 * std::max(1.0, std::abs(b[i]))) return true;
+      }
+      return false;
+    };
+    const char* what = differs(iop, geometry.orientation)        ? "Image Orientation (Patient)"
+                       : differs(spacing, geometry.pixelSpacing) ? "Pixel Spacing"
+                       : differs(rescale, geometry.rescale)      ? "Rescale Slope/Intercept"
+                                                                 : nullptr;
+    if (what) {
+      throwInputError(path, sliceLabel(frame) + " has another " + what +
+                                " than frame 1: vsil reads frames that share it");
+    }
+    slices.push_back({file, 0, glm::dvec3(ipp[0], ipp[1], ipp[2]), k});
+  }
+  return geometry;
+}
+
 char axisLetter(const glm::dvec3& direction) {
   // DICOM's patient frame (LPS): +x toward the patient's Left, +y Posterior, +z Superior.
   const glm::dvec3 a = glm::abs(direction);
@@ -306,7 +440,29 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
 
   // Geometry from the headers: one orientation, positions along its normal, even spacing.
   const char* firstFile = chosen->files.front().c_str();
-  const std::vector<double> iop = parseNumbers(scanner.GetValue(firstFile, kImageOrientation), 6);
+  const std::vector<double> numberOfFrames =
+      parseNumbers(scanner.GetValue(firstFile, kNumberOfFrames), 1);
+  if (!numberOfFrames.empty() && (numberOfFrames[0] < 1 || numberOfFrames[0] > 65535 ||
+                                  numberOfFrames[0] != std::floor(numberOfFrames[0]))) {
+    throwInputError(path, fileLabel(chosen->files.front()) + " has Number of Frames (0028,0008) " +
+                              formatNumber(numberOfFrames[0]) + ": not a count of 1 to 65535");
+  }
+  const int frames = numberOfFrames.empty() ? 1 : int(numberOfFrames[0]);
+  std::vector<Slice> slices;
+  std::vector<double> iop;
+  FrameGeometry frameGeometry;  // multi-frame files only
+  if (frames > 1) {
+    if (chosen->files.size() > 1) {
+      throwInputError(path, "series " + chosen->uid + " has " +
+                                std::to_string(chosen->files.size()) + " files, " +
+                                fileLabel(chosen->files.front()) + " of " + std::to_string(frames) +
+                                " frames: a series of multi-frame files is not supported");
+    }
+    frameGeometry = multiFrameSlices(path, chosen->files.front(), frames, slices);
+    iop = frameGeometry.orientation;
+  } else {
+    iop = parseNumbers(scanner.GetValue(firstFile, kImageOrientation), 6);
+  }
   if (iop.empty()) {
     throwInputError(path, "slice " + fileLabel(chosen->files.front()) +
                               " lacks a valid Image Orientation (Patient) (0020,0037)");
@@ -320,8 +476,8 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
   const glm::dvec3 normal = glm::normalize(glm::cross(rowDir, columnDir));
   const std::string rows = trimmed(scanner.GetValue(firstFile, kRows));
   const std::string columns = trimmed(scanner.GetValue(firstFile, kColumns));
-  std::vector<Slice> slices;
-  for (const std::string& file : chosen->files) {
+  for (Slice& frame : slices) frame.position = glm::dot(frame.origin, normal);
+  for (const std::string& file : frames > 1 ? std::vector<std::string>() : chosen->files) {
     const char* name = file.c_str();
     const std::vector<double> ipp = parseNumbers(scanner.GetValue(name, kImagePosition), 3);
     if (ipp.empty()) {
@@ -360,18 +516,24 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
     spacingZ = gaps[gaps.size() / 2];
     for (std::size_t i = 1; i < slices.size(); ++i) {
       const double gap = slices[i].position - slices[i - 1].position;
+      const Slice &before = slices[i - 1], &after = slices[i];
       if (gap <= spacingZ * kSpacingTolerance) {
-        throwInputError(path, "slices " + fileLabel(slices[i - 1].file) + " and " +
-                                  fileLabel(slices[i].file) + " lie at the same position " +
-                                  formatNumber(slices[i].position) + " along the normal");
+        throwInputError(
+            path,
+            (frames > 1 ? "frames " + std::to_string(before.frame + 1) + " and " +
+                              std::to_string(after.frame + 1) + " of " + fileLabel(before.file)
+                        : "slices " + fileLabel(before.file) + " and " + fileLabel(after.file)) +
+                " lie at the same position " + formatNumber(after.position) + " along the normal");
       }
       if (std::abs(gap - spacingZ) > spacingZ * kSpacingTolerance) {
-        throwInputError(path, "slices are unevenly spaced: " + formatNumber(gap) +
-                                  " between positions " + formatNumber(slices[i - 1].position) +
-                                  " and " + formatNumber(slices[i].position) + " (" +
-                                  fileLabel(slices[i - 1].file) + ", " + fileLabel(slices[i].file) +
-                                  "), " + formatNumber(spacingZ) +
-                                  " between most: a missing slice?");
+        throwInputError(
+            path, (frames > 1 ? "frames" : "slices") + std::string(" are unevenly spaced: ") +
+                      formatNumber(gap) + " between positions " + formatNumber(before.position) +
+                      " and " + formatNumber(after.position) + " (" +
+                      (frames > 1 ? sliceLabel(before) + ", " + sliceLabel(after)
+                                  : fileLabel(before.file) + ", " + fileLabel(after.file)) +
+                      "), " + formatNumber(spacingZ) + " between most: a missing " +
+                      (frames > 1 ? "frame?" : "slice?"));
       }
     }
     // Exact for evenly spaced slices, averaging the positions' rounding.
@@ -386,24 +548,33 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
   }
   const gdcm::Image& firstImage = first.GetImage();
   const std::string firstWhere = path + ": slice " + fileLabel(slices.front().file);
-  if (firstImage.GetNumberOfDimensions() == 3 && firstImage.GetDimension(2) > 1) {
-    throwInputError(path, "slice " + fileLabel(slices.front().file) + " holds " +
-                              std::to_string(firstImage.GetDimension(2)) +
-                              " frames: multi-frame DICOM is not supported");
+  const int framesDecoded =
+      firstImage.GetNumberOfDimensions() == 3 ? int(firstImage.GetDimension(2)) : 1;
+  if (framesDecoded != frames) {
+    throwInputError(path, fileLabel(slices.front().file) + " holds " +
+                              std::to_string(framesDecoded) + " frames where its Number of " +
+                              "Frames (0028,0008) says " + std::to_string(frames));
   }
   const StoredType type = storedTypeOfPixels(firstWhere, firstImage.GetPixelFormat());
   const glm::ivec3 dims =
       parseDims(path, "Columns, Rows, slices",
                 std::to_string(firstImage.GetColumns()) + " " +
                     std::to_string(firstImage.GetRows()) + " " + std::to_string(slices.size()));
+  // A multi-frame file's own functional groups where they say (GDCM reads only some of them).
   Rescale rescale{firstImage.GetSlope(), firstImage.GetIntercept()};
+  if (!frameGeometry.rescale.empty()) {
+    rescale = {frameGeometry.rescale[0], frameGeometry.rescale[1]};
+  }
   if (!std::isfinite(rescale.slope) || !std::isfinite(rescale.intercept) || rescale.slope == 0) {
     throwInputError(path, "slice " + fileLabel(slices.front().file) + " has Rescale Slope " +
                               formatNumber(rescale.slope) + " and Intercept " +
                               formatNumber(rescale.intercept));
   }
   planVolume(path, dims, keptSampleType(type, rescale), options.limits, options.region);
-  const glm::dvec3 spacing(firstImage.GetSpacing(0), firstImage.GetSpacing(1), spacingZ);
+  const glm::dvec3 spacing =
+      frameGeometry.pixelSpacing.empty()
+          ? glm::dvec3(firstImage.GetSpacing(0), firstImage.GetSpacing(1), spacingZ)
+          : glm::dvec3(frameGeometry.pixelSpacing[1], frameGeometry.pixelSpacing[0], spacingZ);
   if (!std::isfinite(spacing.x) || !std::isfinite(spacing.y) || spacing.x <= 0 || spacing.y <= 0) {
     throwInputError(path, "slice " + fileLabel(slices.front().file) + " has Pixel Spacing " +
                               formatNumber(spacing.y) + "\\" + formatNumber(spacing.x) +
@@ -412,8 +583,9 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
 
   Volume volume = startVolume(path, dims, type, spacing, options, rescale);
   const std::string modality = trimmed(scanner.GetValue(firstFile, kModality));
-  volume.format = "DICOM series (" + (modality.empty() ? std::string() : modality + ", ") +
-                  std::to_string(slices.size()) + " slices, " +
+  volume.format = std::string(frames > 1 ? "DICOM multi-frame (" : "DICOM series (") +
+                  (modality.empty() ? std::string() : modality + ", ") +
+                  std::to_string(slices.size()) + (frames > 1 ? " frames, " : " slices, ") +
                   transferSyntaxName(firstImage.GetTransferSyntax()) + ")";
   volume.name = folderGiven ? given.filename().string() : given.parent_path().filename().string();
   if (volume.name.empty()) volume.name = "dicom";
@@ -433,6 +605,33 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
   const std::uint64_t sliceBytes = sliceSamples * storedSize(type);
   std::vector<char> buffer;
   std::uint64_t done = 0;
+  if (frames > 1) {
+    // One file, decoded whole (GDCM decodes a multi-frame image at once); its frames are put
+    // in position order.
+    const std::string where = fileLabel(slices.front().file);
+    if (firstImage.GetBufferLength() != sliceBytes * std::uint64_t(frames)) {
+      throwInputError(path, where + " decodes to " + std::to_string(firstImage.GetBufferLength()) +
+                                " bytes, " + std::to_string(sliceBytes * std::uint64_t(frames)) +
+                                " expected");
+    }
+    if (gdcmWarnings.incompletePixelData()) {
+      throwInputError(path, where + ": the file ends inside its pixel data (truncated)");
+    }
+    buffer.resize(std::size_t(sliceBytes) * std::size_t(frames));
+    if (!withinGdcm(path, [&] { return firstImage.GetBuffer(buffer.data()); })) {
+      throwInputError(path, "GDCM cannot decode the pixel data of " + where + " (" +
+                                transferSyntaxName(firstImage.GetTransferSyntax()) + ")");
+    }
+    for (int z = subset.lo.z; z < subset.hi.z; z += subset.stride) {
+      const auto* frame = reinterpret_cast<const std::uint8_t*>(buffer.data()) +
+                          std::size_t(slices[std::size_t(z)].frame) * std::size_t(sliceBytes);
+      sink.put(std::uint64_t(z) * sliceSamples, std::span(frame, std::size_t(sliceBytes)));
+      done += sliceBytes;
+      if (options.progress) options.progress(done, sliceBytes * std::uint64_t(volume.dims.z));
+    }
+    sink.finish();
+    return volume;
+  }
   for (int z = subset.lo.z; z < subset.hi.z; z += subset.stride) {
     const Slice& slice = slices[std::size_t(z)];
     const std::string where = "slice " + fileLabel(slice.file);

@@ -190,6 +190,51 @@ dicom_series('dicom_mixed_sizes', rows=[3, 3, 5], columns=[4, 4, 4])
 dicom_series('dicom_huge', rows=65535, columns=65535, pixels=bytes(8))
 dicom_series('dicom_rgb', rgb=True)
 dicom_series('dicom_no_normal', orientation=(1.0, 0.0, 0.0, 1.0, 0.0, 0.0))
+# Multi-frame (enhanced CT) files: frames without positions (no Per-frame Functional Groups),
+# frames with different rescales, a frame missing between the others.
+def dicom_multiframe(folder, frames=3, positions=None, slopes=None, per_frame=True):
+    from pydicom.dataset import Dataset, FileMetaDataset
+    from pydicom.sequence import Sequence
+    from pydicom.uid import ExplicitVRLittleEndian, generate_uid
+    path = os.path.join(here, folder)
+    os.makedirs(path, exist_ok=True)
+    meta = FileMetaDataset()
+    meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.2.1'  # Enhanced CT Image Storage
+    meta.MediaStorageSOPInstanceUID = generate_uid(entropy_srcs=['bad', folder])
+    meta.TransferSyntaxUID = ExplicitVRLittleEndian
+    ds = Dataset()
+    ds.file_meta = meta
+    ds.is_little_endian, ds.is_implicit_VR = True, False
+    ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
+    ds.Modality, ds.SeriesInstanceUID = 'CT', generate_uid(entropy_srcs=['bad series', folder])
+    ds.NumberOfFrames, ds.Rows, ds.Columns = frames, 3, 4
+    ds.SamplesPerPixel, ds.PhotometricInterpretation = 1, 'MONOCHROME2'
+    ds.BitsAllocated = ds.BitsStored = 16
+    ds.HighBit, ds.PixelRepresentation = 15, 0
+    shared = Dataset()
+    orientation = Dataset()
+    orientation.ImageOrientationPatient = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+    shared.PlaneOrientationSequence = Sequence([orientation])
+    ds.SharedFunctionalGroupsSequence = Sequence([shared])
+    if per_frame:
+        items = []
+        for k in range(frames):
+            item, position = Dataset(), Dataset()
+            position.ImagePositionPatient = [0.0, 0.0, float(positions[k] if positions else 2 * k)]
+            item.PlanePositionSequence = Sequence([position])
+            if slopes:
+                transformation = Dataset()
+                transformation.RescaleSlope, transformation.RescaleIntercept = slopes[k], 0.0
+                item.PixelValueTransformationSequence = Sequence([transformation])
+            items.append(item)
+        ds.PerFrameFunctionalGroupsSequence = Sequence(items)
+    ds.PixelData = bytes(2 * 3 * 4 * frames)
+    ds.save_as(os.path.join(path, 'frames.dcm'), write_like_original=False)
+
+
+dicom_multiframe('dicom_frames_no_positions', per_frame=False)
+dicom_multiframe('dicom_frames_rescales', slopes=[1.0, 2.0, 1.0])
+dicom_multiframe('dicom_frames_missing', frames=4, positions=[0, 2, 4, 8])
 # Found by libFuzzer (target dicom): a slice of tests/io/dicom's ct_series with three bytes
 # changed trips an assert() inside GDCM's File Meta Information reader, which aborts.
 slice_bytes = bytearray(open(os.path.join(here, '..', 'io', 'dicom', 'ct_series', 'IM0000'), 'rb').read())

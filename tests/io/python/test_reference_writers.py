@@ -139,3 +139,78 @@ def test_a_dicom_series_written_by_pydicom_reads_in_position_order(tmp_path):
     assert report["file"]["rescale"] == {"slope": 2.0, "intercept": -1024.0}
     placement = np.array(report["file"]["orientations"][0]["world_from_index"])
     np.testing.assert_allclose(placement[:3, 3], (5.0, -7.0, 40.0), atol=1e-9)
+
+
+def write_enhanced_ct(path, stored, spacing, orientation, order, rescale, per_frame_rescale):
+    """One Enhanced CT file: frames written in `order` (not by position), positions in the
+    Per-frame Functional Groups, orientation and pixel spacing shared; the rescale shared or
+    repeated in every frame's groups."""
+    pytest.importorskip("pydicom", reason="pydicom (python3-pydicom) is not installed")
+    from pydicom.dataset import Dataset, FileMetaDataset
+    from pydicom.sequence import Sequence
+    from pydicom.uid import ExplicitVRLittleEndian, generate_uid
+    meta = FileMetaDataset()
+    meta.MediaStorageSOPClassUID = "1.2.840.10008.5.1.4.1.1.2.1"  # Enhanced CT Image Storage
+    meta.MediaStorageSOPInstanceUID = generate_uid()
+    meta.TransferSyntaxUID = ExplicitVRLittleEndian
+    ds = Dataset()
+    ds.file_meta = meta
+    ds.is_little_endian, ds.is_implicit_VR = True, False
+    ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
+    ds.Modality, ds.SeriesInstanceUID = "CT", generate_uid()
+    ds.NumberOfFrames, ds.Rows, ds.Columns = stored.shape
+    ds.SamplesPerPixel, ds.PhotometricInterpretation = 1, "MONOCHROME2"
+    ds.BitsAllocated = ds.BitsStored = 16
+    ds.HighBit, ds.PixelRepresentation = 15, 1
+
+    def macro(**values):
+        item = Dataset()
+        for name, value in values.items():
+            setattr(item, name, value)
+        return Sequence([item])
+
+    def transformation():
+        return macro(RescaleSlope=rescale[0], RescaleIntercept=rescale[1], RescaleType="HU")
+
+    shared = Dataset()
+    shared.PlaneOrientationSequence = macro(ImageOrientationPatient=[float(v) for v in orientation])
+    shared.PixelMeasuresSequence = macro(PixelSpacing=[0.8, 0.6], SliceThickness=spacing)
+    if not per_frame_rescale:
+        shared.PixelValueTransformationSequence = transformation()
+    ds.SharedFunctionalGroupsSequence = Sequence([shared])
+    normal = np.cross(np.array(orientation[:3]), np.array(orientation[3:]))
+    frames = []
+    for k in order:
+        frame = Dataset()
+        frame.PlanePositionSequence = macro(ImagePositionPatient=[
+            float(v) for v in np.array([5.0, -7.0, 40.0]) + k * spacing * normal])
+        if per_frame_rescale:
+            frame.PixelValueTransformationSequence = transformation()
+        frames.append(frame)
+    ds.PerFrameFunctionalGroupsSequence = Sequence(frames)
+    ds.PixelData = np.stack([stored[k] for k in order]).astype("<i2").tobytes()
+    ds.save_as(str(path), write_like_original=False)
+
+
+@pytest.mark.parametrize("per_frame_rescale", [False, True])
+def test_an_enhanced_ct_file_written_by_pydicom_reads_in_position_order(tmp_path,
+                                                                        per_frame_rescale):
+    rng = np.random.default_rng(12)
+    stored = rng.integers(-2000, 3000, size=(7, 5, 6), dtype=np.int16)  # frames, rows, columns
+    angle = np.radians(20)
+    orientation = (1, 0, 0, 0, np.cos(angle), -np.sin(angle))
+    order = rng.permutation(stored.shape[0])
+    path = tmp_path / "enhanced.dcm"
+    write_enhanced_ct(path, stored, 1.25, orientation, order, (0.5, -100.0), per_frame_rescale)
+    volume = vsil.load(str(path))
+    np.testing.assert_array_equal(np.asarray(volume.data), stored * 0.5 - 100.0)
+    np.testing.assert_allclose(volume.spacing, (0.6, 0.8, 1.25), rtol=1e-9)
+    cropped = vsil.load(str(path), crop=":,:,2:6", stride=2)
+    np.testing.assert_array_equal(np.asarray(cropped.data), stored[2:6:2, ::2, ::2] * 0.5 - 100.0)
+    report = info_json(path)
+    assert report["file"]["format"].startswith("DICOM multi-frame (CT, 7 frames")
+    assert report["file"]["rescale"] == {"slope": 0.5, "intercept": -100.0}
+    placement = np.array(report["file"]["orientations"][0]["world_from_index"])
+    np.testing.assert_allclose(placement[:3, 3], (5.0, -7.0, 40.0), atol=1e-9)
+    normal = np.cross(np.array(orientation[:3]), np.array(orientation[3:]))
+    np.testing.assert_allclose(placement[:3, 2], 1.25 * normal, atol=1e-9)
