@@ -159,6 +159,38 @@ TEST(DicomReader, RefusesWhatItCannotReadRight) {
   test::expectInputError([&] { loadVolume(cut.string()); }, cut.string() + ": ", {"IM0002"});
 }
 
+// GDCM allocates what a data element declares before reading it: a file whose element claims
+// more than the file holds is left out of its folder's scan (a warning names it and the
+// element) and refused when named, before GDCM sees it.
+TEST(DicomReader, AnElementLongerThanItsFileKeepsGdcmAway) {
+  const fs::path folder = test::scratchDir() / "overlong";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  for (const auto& entry : fs::directory_iterator(kDicomFixtures / "ct_series")) {
+    fs::copy_file(entry.path(), folder / entry.path().filename());
+  }
+  std::ifstream in(kDicomFixtures / "ct_series" / "IM0000", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Image Position (Patient): explicit VR "DS" with a 2-byte length, made 0xf0f0 (61680).
+  const std::size_t position = bytes.find(std::string{'\x20', '\0', '\x32', '\0', 'D', 'S'});
+  ASSERT_NE(position, std::string::npos);
+  bytes[position + 6] = bytes[position + 7] = char(0xf0);
+  const fs::path bad = folder / "bad.dcm";
+  std::ofstream(bad, std::ios::binary) << bytes;
+
+  const Volume volume = loadVolume(folder.string());
+  EXPECT_EQ(volume.dims, glm::ivec3(4, 3, 5)) << "the good slices, read as before";
+  ASSERT_EQ(volume.warnings.size(), 1u);
+  EXPECT_NE(volume.warnings[0].find("left out 'bad.dcm': its data element (0020,0032) at byte " +
+                                    std::to_string(position) + " declares 61680 bytes"),
+            std::string::npos)
+      << volume.warnings[0];
+  test::expectInputError([&] { loadVolume(bad.string()); },
+                         bad.string() + ": its data element (0020,0032) at byte " +
+                             std::to_string(position) + " declares 61680 bytes",
+                         {"are left in the file (a malformed or truncated DICOM file)"});
+}
+
 TEST(DicomReader, LimitsAreCheckedBeforeAnySliceIsDecoded) {
   LoadOptions options;
   options.limits.maxBytes = 100;  // the 4x3x5 float32 series needs 240 bytes of samples
