@@ -93,26 +93,35 @@ def test_a_nifti_crop_equals_nibabel_slicing(tmp_path):
     np.testing.assert_array_equal(got, data[1:8:2, 2::2, 0:5:2])
 
 
-def write_dicom_series(folder, stored, spacing, slope, intercept, orientation, rng):
-    """One slice per file; names shuffled and Instance Numbers against the slice order."""
-    pydicom = pytest.importorskip("pydicom", reason="pydicom (python3-pydicom) is not installed")
+def new_dicom_dataset(sop_class):
+    """An empty CT data set of `sop_class`, its File Meta in explicit VR little endian."""
+    pytest.importorskip("pydicom", reason="pydicom (python3-pydicom) is not installed")
     from pydicom.dataset import Dataset, FileMetaDataset
     from pydicom.uid import ExplicitVRLittleEndian, generate_uid
+    meta = FileMetaDataset()
+    meta.MediaStorageSOPClassUID = sop_class
+    meta.MediaStorageSOPInstanceUID = generate_uid()
+    meta.TransferSyntaxUID = ExplicitVRLittleEndian
+    ds = Dataset()
+    ds.file_meta = meta
+    ds.is_little_endian, ds.is_implicit_VR = True, False
+    ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
+    ds.Modality = "CT"
+    return ds
+
+
+def write_dicom_series(folder, stored, spacing, slope, intercept, orientation, rng):
+    """One slice per file; names shuffled and Instance Numbers against the slice order."""
+    pytest.importorskip("pydicom", reason="pydicom (python3-pydicom) is not installed")
+    from pydicom.uid import generate_uid
     folder.mkdir()
     row, col = np.array(orientation[:3]), np.array(orientation[3:])
     normal = np.cross(row, col)
     series, count = generate_uid(), stored.shape[0]
     names = rng.permutation(count)
     for k in range(count):
-        meta = FileMetaDataset()
-        meta.MediaStorageSOPClassUID = "1.2.840.10008.5.1.4.1.1.2"
-        meta.MediaStorageSOPInstanceUID = generate_uid()
-        meta.TransferSyntaxUID = ExplicitVRLittleEndian
-        ds = Dataset()
-        ds.file_meta = meta
-        ds.is_little_endian, ds.is_implicit_VR = True, False
-        ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
-        ds.Modality, ds.SeriesInstanceUID, ds.InstanceNumber = "CT", series, count - k
+        ds = new_dicom_dataset("1.2.840.10008.5.1.4.1.1.2")  # CT Image Storage
+        ds.SeriesInstanceUID, ds.InstanceNumber = series, count - k
         ds.ImageOrientationPatient = [float(v) for v in orientation]
         ds.ImagePositionPatient = [float(v) for v in np.array([5.0, -7.0, 40.0]) + k * spacing * normal]
         ds.PixelSpacing = [0.8, 0.6]
@@ -145,19 +154,11 @@ def write_enhanced_ct(path, stored, spacing, orientation, order, rescale, per_fr
     """One Enhanced CT file: frames written in `order` (not by position), positions in the
     Per-frame Functional Groups, orientation and pixel spacing shared; the rescale shared or
     repeated in every frame's groups."""
-    pytest.importorskip("pydicom", reason="pydicom (python3-pydicom) is not installed")
-    from pydicom.dataset import Dataset, FileMetaDataset
+    ds = new_dicom_dataset("1.2.840.10008.5.1.4.1.1.2.1")  # Enhanced CT Image Storage
+    from pydicom.dataset import Dataset
     from pydicom.sequence import Sequence
-    from pydicom.uid import ExplicitVRLittleEndian, generate_uid
-    meta = FileMetaDataset()
-    meta.MediaStorageSOPClassUID = "1.2.840.10008.5.1.4.1.1.2.1"  # Enhanced CT Image Storage
-    meta.MediaStorageSOPInstanceUID = generate_uid()
-    meta.TransferSyntaxUID = ExplicitVRLittleEndian
-    ds = Dataset()
-    ds.file_meta = meta
-    ds.is_little_endian, ds.is_implicit_VR = True, False
-    ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
-    ds.Modality, ds.SeriesInstanceUID = "CT", generate_uid()
+    from pydicom.uid import generate_uid
+    ds.SeriesInstanceUID = generate_uid()
     ds.NumberOfFrames, ds.Rows, ds.Columns = stored.shape
     ds.SamplesPerPixel, ds.PhotometricInterpretation = 1, "MONOCHROME2"
     ds.BitsAllocated = ds.BitsStored = 16
