@@ -181,8 +181,9 @@ auto withinGdcm(const std::string& where, Call&& call) {
 // declared length runs past the file's end (empty text when none does). It reads an element as
 // GDCM does: the File Meta group in explicit VR little endian, then the transfer syntax's
 // encoding, an element without a valid VR as implicit. Deflated data sets are not walked.
-// Checked against pydicom's 74 test files (real-world encodings, GDCM's and DCMTK's among
-// them): it names only the one that is truncated (rtplan_truncated.dcm).
+// Checked against pydicom's 68 test files (real-world encodings, GDCM's and DCMTK's among
+// them; tests/io/python/test_pydicom_test_files.py): it names only the one that is truncated
+// before its pixel data (rtplan_truncated.dcm).
 struct ElementProblem {
   std::string text;
   bool inPixelData = false;  // the file ends inside its Pixel Data (7fe0,0010)
