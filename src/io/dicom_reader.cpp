@@ -233,12 +233,12 @@ ElementProblem overlongElement(const std::string& file) {
       bigEndian = ts == "1.2.840.10008.1.2.2";
     }
     const std::uint32_t group = u16(header), element = u16(header + 2);
-    char tag[16];
-    std::snprintf(tag, sizeof tag, "(%04x,%04x)", group, element);
     const auto beyondEnd = [&](std::uint64_t length, std::uint64_t valueAt) {
       if (group == 0x7fe0 || inFragments) {
         return ElementProblem{"the file ends inside its pixel data (truncated)", true};
       }
+      char tag[16];
+      std::snprintf(tag, sizeof tag, "(%04x,%04x)", group, element);
       return ElementProblem{"its data element " + std::string(tag) + " at byte " +
                                 std::to_string(at) + " declares " + std::to_string(length) +
                                 " bytes, " + std::to_string(size - valueAt) +
@@ -302,10 +302,13 @@ struct Series {
 // The DICOM files of `folder` (not its subfolders) grouped by series, largest first.
 // `given`: the file name the caller named (empty for a folder). A file whose header would make
 // GDCM allocate beyond it (overlongElement) is left out of the scan, as GDCM would leave it
-// once it failed to read it, with a warning; the file named is refused instead.
+// once it failed to read it, with a warning; the file named is refused instead. Files that end
+// inside their pixel data are scanned and go into `cutInPixelData`: a slice of the series read
+// is refused before GDCM decodes it (refuseTruncatedPixelData).
 std::vector<Series> scanSeries(const std::string& where, const std::string& folder,
                                const std::string& given, gdcm::Scanner& scanner,
-                               std::vector<std::string>& warnings) {
+                               std::vector<std::string>& warnings,
+                               std::set<std::string>& cutInPixelData) {
   gdcm::Directory directory;
   directory.Load(folder, false);
   const auto& listed = directory.GetFilenames();
@@ -322,7 +325,8 @@ std::vector<Series> scanSeries(const std::string& where, const std::string& fold
   std::string leftOut;             // the first file left out, and why
   for (const std::string& file : listed) {
     const ElementProblem problem = overlongElement(file);
-    if (problem.text.empty() || problem.inPixelData) {  // the decode refuses the latter
+    if (problem.inPixelData) cutInPixelData.insert(file);
+    if (problem.text.empty() || problem.inPixelData) {
       files.push_back(file);
       continue;
     }
@@ -402,13 +406,13 @@ std::string sliceLabel(const Slice& slice) {
              : "frame " + std::to_string(slice.frame + 1) + " of " + fileLabel(slice.file);
 }
 
-// Before GDCM reads a slice's pixel data: refuses the slice when its file ends inside them,
-// so GDCM allocates no more than the file holds (overlongElement).
-void refuseTruncatedPixelData(const std::string& path, const Slice& slice) {
-  const ElementProblem problem = overlongElement(slice.file);
-  if (problem.inPixelData) {
-    throwInputError(
-        path, (slice.frame < 0 ? "slice " : "") + fileLabel(slice.file) + ": " + problem.text);
+// Before GDCM reads a slice's pixel data: refuses the slice when its file ends inside them
+// (scanSeries found it), so GDCM allocates no more than the file holds.
+void refuseTruncatedPixelData(const std::string& path, const Slice& slice,
+                              const std::set<std::string>& cutInPixelData) {
+  if (cutInPixelData.count(slice.file)) {
+    throwInputError(path, (slice.frame < 0 ? "slice " : "") + fileLabel(slice.file) +
+                              ": the file ends inside its pixel data (truncated)");
   }
 }
 
@@ -496,11 +500,7 @@ FrameGeometry multiFrameSlices(const std::string& path, const std::string& file,
     const std::vector<double> rescale = slope.empty() || intercept.empty()
                                             ? std::vector<double>{}
                                             : std::vector<double>{slope[0], intercept[0]};
-    if (k == 0) {
-      geometry = {iop, spacing, rescale};
-      slices.push_back({file, 0, glm::dvec3(ipp[0], ipp[1], ipp[2]), k});
-      continue;
-    }
+    if (k == 0) geometry = {iop, spacing, rescale};
     const auto differs = [](const std::vector<double>& a, const std::vector<double>& b) {
       if (a.size() != b.size()) return true;
       for (std::size_t i = 0; i < a.size(); ++i) {
@@ -542,8 +542,10 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
   GdcmWarnings gdcmWarnings;
   gdcm::Scanner scanner;
   std::vector<std::string> warnings;
-  const std::vector<Series> all = scanSeries(
-      path, folder, folderGiven ? std::string() : given.filename().string(), scanner, warnings);
+  std::set<std::string> cutInPixelData;
+  const std::vector<Series> all =
+      scanSeries(path, folder, folderGiven ? std::string() : given.filename().string(), scanner,
+                 warnings, cutInPixelData);
   // The series: --series, else the given file's, else the largest.
   std::string wanted = options.series;
   if (wanted.empty() && !folderGiven) {
@@ -688,7 +690,7 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
 
   // The first slice's full header: pixel format, spacing, rescale, transfer syntax.
   gdcm::ImageReader first;
-  refuseTruncatedPixelData(path, slices.front());
+  refuseTruncatedPixelData(path, slices.front(), cutInPixelData);
   first.SetFileName(slices.front().file.c_str());
   if (!withinGdcm(path, [&] { return first.Read(); })) {
     throwInputError(path, "GDCM cannot read slice " + fileLabel(slices.front().file));
@@ -751,24 +753,26 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
   const std::uint64_t sliceSamples = std::uint64_t(dims.x) * std::uint64_t(dims.y);
   const std::uint64_t sliceBytes = sliceSamples * storedSize(type);
   std::vector<char> buffer;
-  std::uint64_t done = 0;
-  if (frames > 1) {
-    // One file, decoded whole (GDCM decodes a multi-frame image at once); its frames are put
-    // in position order.
-    const std::string where = fileLabel(slices.front().file);
-    if (firstImage.GetBufferLength() != sliceBytes * std::uint64_t(frames)) {
-      throwInputError(path, where + " decodes to " + std::to_string(firstImage.GetBufferLength()) +
-                                " bytes, " + std::to_string(sliceBytes * std::uint64_t(frames)) +
-                                " expected");
+  // `image`'s pixels into `buffer`, which must come to `bytes` (`where` names it in errors).
+  const auto decode = [&](const gdcm::Image& image, const std::string& where, std::uint64_t bytes) {
+    if (image.GetBufferLength() != bytes) {
+      throwInputError(path, where + " decodes to " + std::to_string(image.GetBufferLength()) +
+                                " bytes, " + std::to_string(bytes) + " expected");
     }
     if (gdcmWarnings.incompletePixelData()) {
       throwInputError(path, where + ": the file ends inside its pixel data (truncated)");
     }
-    buffer.resize(std::size_t(sliceBytes) * std::size_t(frames));
-    if (!withinGdcm(path, [&] { return firstImage.GetBuffer(buffer.data()); })) {
+    buffer.resize(std::size_t(bytes));
+    if (!withinGdcm(path, [&] { return image.GetBuffer(buffer.data()); })) {
       throwInputError(path, "GDCM cannot decode the pixel data of " + where + " (" +
-                                transferSyntaxName(firstImage.GetTransferSyntax()) + ")");
+                                transferSyntaxName(image.GetTransferSyntax()) + ")");
     }
+  };
+  std::uint64_t done = 0;
+  if (frames > 1) {
+    // One file, decoded whole (GDCM decodes a multi-frame image at once); its frames are put
+    // in position order.
+    decode(firstImage, fileLabel(slices.front().file), sliceBytes * std::uint64_t(frames));
     for (int z = subset.lo.z; z < subset.hi.z; z += subset.stride) {
       const auto* frame = reinterpret_cast<const std::uint8_t*>(buffer.data()) +
                           std::size_t(slices[std::size_t(z)].frame) * std::size_t(sliceBytes);
@@ -783,7 +787,7 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
     const Slice& slice = slices[std::size_t(z)];
     const std::string where = "slice " + fileLabel(slice.file);
     gdcm::ImageReader reader;
-    refuseTruncatedPixelData(path, slice);
+    refuseTruncatedPixelData(path, slice, cutInPixelData);
     reader.SetFileName(slice.file.c_str());
     gdcmWarnings.incompletePixelData();  // forget what came before this slice
     if (!withinGdcm(path, [&] { return reader.Read(); })) {
@@ -797,18 +801,7 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
                                 " differs from the first slice in size, pixel format or "
                                 "Rescale Slope/Intercept");
     }
-    if (image.GetBufferLength() != sliceBytes) {
-      throwInputError(path, where + " decodes to " + std::to_string(image.GetBufferLength()) +
-                                " bytes, " + std::to_string(sliceBytes) + " expected");
-    }
-    if (gdcmWarnings.incompletePixelData()) {
-      throwInputError(path, where + ": the file ends inside its pixel data (truncated)");
-    }
-    buffer.resize(std::size_t(sliceBytes));
-    if (!withinGdcm(path, [&] { return image.GetBuffer(buffer.data()); })) {
-      throwInputError(path, "GDCM cannot decode the pixel data of " + where + " (" +
-                                transferSyntaxName(image.GetTransferSyntax()) + ")");
-    }
+    decode(image, where, sliceBytes);
     sink.put(std::uint64_t(z) * sliceSamples,
              std::span(reinterpret_cast<const std::uint8_t*>(buffer.data()), buffer.size()));
     done += sliceBytes;
