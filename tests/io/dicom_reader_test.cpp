@@ -51,6 +51,17 @@ std::vector<DicomFixture> dicomFixtures() {
 
 class DicomFixtureRead : public ::testing::TestWithParam<DicomFixture> {};
 
+// A fresh copy of the ct_series fixture in the scratch folder `name`, to damage.
+fs::path copyOfCtSeries(const std::string& name) {
+  const fs::path folder = test::scratchDir() / name;
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  for (const auto& entry : fs::directory_iterator(kDicomFixtures / "ct_series")) {
+    fs::copy_file(entry.path(), folder / entry.path().filename());
+  }
+  return folder;
+}
+
 TEST_P(DicomFixtureRead, ReadsTheSeriesInSlicePositionOrder) {
   const DicomFixture& f = GetParam();
   LoadOptions options;
@@ -149,12 +160,7 @@ TEST(DicomReader, RefusesWhatItCannotReadRight) {
   test::expectInputError([&] { loadVolume(two, options); },
                          two + ": has no series '1.2.3' (series: ", {});
   // A slice cut short: GDCM cannot read it, and the message names it.
-  const fs::path cut = test::scratchDir() / "cut";
-  fs::create_directories(cut);
-  for (const auto& entry : fs::directory_iterator(kDicomFixtures / "ct_series")) {
-    fs::copy_file(entry.path(), cut / entry.path().filename(),
-                  fs::copy_options::overwrite_existing);
-  }
+  const fs::path cut = copyOfCtSeries("cut");
   fs::resize_file(cut / "IM0002", fs::file_size(cut / "IM0002") - 10);
   test::expectInputError([&] { loadVolume(cut.string()); }, cut.string() + ": ", {"IM0002"});
 }
@@ -163,12 +169,7 @@ TEST(DicomReader, RefusesWhatItCannotReadRight) {
 // more than the file holds is left out of its folder's scan (a warning names it and the
 // element) and refused when named, before GDCM sees it.
 TEST(DicomReader, AnElementLongerThanItsFileKeepsGdcmAway) {
-  const fs::path folder = test::scratchDir() / "overlong";
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  for (const auto& entry : fs::directory_iterator(kDicomFixtures / "ct_series")) {
-    fs::copy_file(entry.path(), folder / entry.path().filename());
-  }
+  const fs::path folder = copyOfCtSeries("overlong");
   std::ifstream in(kDicomFixtures / "ct_series" / "IM0000", std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   // Image Position (Patient): explicit VR "DS" with a 2-byte length, made 0xf0f0 (61680).
