@@ -88,7 +88,7 @@ void ToneFill::draw(const FrameContext& frame, const gl::RenderTarget& record) {
   target_->bindForDrawing();
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, record.texture());
-  drawScreen(frame);
+  drawScreenPerBrick(frame);  // the hit's brick shades it (tone_fill.frag)
 }
 
 void ToneFill::readBack(FrameBuffers& frame) const {
