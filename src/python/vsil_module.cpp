@@ -28,6 +28,7 @@
 #include "cli/cli_render_options.h"
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/version.h"
 #include "core/volume.h"
 #include "io/sample_sink.h"
 #include "io/volume_loader.h"
@@ -412,10 +413,13 @@ py::dict measureWidth(const py::array& image, std::optional<py::array> depth, in
 }  // namespace
 }  // namespace vsil::python
 
-PYBIND11_MODULE(vsil, m) {
+// The extension vsil._vsil; the package vsil (vsil/__init__.py) is what users import.
+PYBIND11_MODULE(_vsil, m) {
   using namespace vsil;
   using namespace vsil::python;
   m.doc() = "vsil: volume illustration (exact silhouettes, Ebert-Rheingans, DEMIP) offscreen";
+  // The top-level project() version (core/version.h), as the package metadata has it (setup.py).
+  m.attr("__version__") = kVsilVersion;
 
   py::register_exception_translator([](std::exception_ptr error) {
     try {

@@ -31,6 +31,18 @@ def decode_depth(path):
     return np.where(raw == 0, np.nan, (raw - 1) / 65534)
 
 
+# ---- the package ----
+
+def test_the_package_is_the_one_asked_for_and_has_the_project_version():
+    # scripts/test-python-package.sh: the copy pip installed into that venv, not the build tree.
+    installed = os.environ.get("VSIL_TEST_INSTALLED")
+    if installed:
+        assert os.path.realpath(vsil.__file__).startswith(os.path.realpath(installed) + os.sep)
+    cmake = open(os.path.join(os.path.dirname(__file__), "..", "..", "CMakeLists.txt")).read()
+    assert re.search(r"project\(vsil VERSION ([0-9.]+)", cmake).group(1) == vsil.__version__
+    assert vsil.__version__ in run_cli("--version").stdout
+
+
 # ---- the CLI's bytes ----
 
 @pytest.mark.parametrize(
@@ -273,3 +285,4 @@ def test_depth_law_from_render_to_measurement(renderer):
     one_pixel = (frame.state == 3).astype(np.uint8)
     rebroadened = vsil.broaden(one_pixel, width_near=7, width_far=2, depth=frame.depth)
     assert np.array_equal(rebroadened > 0, lines > 0)
+
