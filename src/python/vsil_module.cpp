@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -235,9 +236,39 @@ py::array arrayFromMat(const cv::Mat& mat, int channels) {
   return array;
 }
 
-py::object jsonToPython(const nlohmann::json& json) {
+template <typename Json>
+py::object jsonToPython(const Json& json) {
   return py::module_::import("json").attr("loads")(json.dump());
 }
+
+// ---- GL turns ----
+
+// GL state is process-wide (the function pointers of slicing/gl.h; a context current on one
+// thread only), so every GL call of the module, from any thread and any Renderer, happens under
+// this one lock: renders from several threads wait their turn (llvmpipe uses every core for
+// each frame anyway). A turn ends by releasing its context, so that the next turn may make any
+// context current on any thread.
+std::mutex& glMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+// One turn: releases the GIL first, then waits for the lock. Never the other way round: a thread
+// holding the lock may need the GIL (the last reference to a numpy array a volume borrowed), so
+// a thread holding the GIL must not wait for the lock.
+class GlTurn {
+ public:
+  explicit GlTurn(RenderJob* job) : job_(job), lock_(glMutex()) {}
+  ~GlTurn() {
+    if (job_) job_->context().releaseCurrent();
+  }
+  void setJob(RenderJob* job) { job_ = job; }  // a job made during the turn
+
+ private:
+  py::gil_scoped_release release_;  // destroyed last: the GIL comes back after the unlock
+  RenderJob* job_;
+  std::unique_lock<std::mutex> lock_;
+};
 
 class PythonRenderer {
  public:
@@ -247,14 +278,37 @@ class PythonRenderer {
     cli::addGlOptions(app, options);
     parseKeywords(app, kwargs, "vsil.Renderer");
     const gl::ContextOptions context = cli::toContextOptions(options);
+    GlTurn turn(nullptr);
     job_ = std::make_unique<RenderJob>(context);
+    turn.setJob(job_.get());
   }
+
+  ~PythonRenderer() { close(); }
+
+  // Ends the context and frees the volume's textures now; later calls raise ValueError.
+  void close() {
+    if (!job_) return;
+    GlTurn turn(nullptr);  // the job's destructor makes its context current to delete objects
+    job_.reset();
+    uploaded_.reset();
+  }
+
+  bool closed() const { return !job_; }
+
+  // What `--meta-out` writes under "gl": backend, platform, renderer, version, ...
+  py::object glInfo() const { return jsonToPython(gl::contextInfoJson(job().context().info())); }
 
   // Uploads `volume` now (render does it when the volume changes; call this after changing a
   // volume's samples in place), in bricks of the last render's max_texture_mib.
-  void upload(const PyVolume& volume) { uploadInBricks(volume, uploadedTextureBytes_); }
+  void upload(const PyVolume& volume) {
+    RenderJob& job = this->job();
+    const std::shared_ptr<Volume> samples = volume.volume;
+    GlTurn turn(&job);
+    uploadInBricks(job, samples, uploadedTextureBytes_);
+  }
 
   Frame render(const py::object& input, const py::kwargs& kwargs) {
+    RenderJob& job = this->job();
     // Flags that choose what render does not own here: the context is the Renderer's, and a
     // Volume is read already.
     const bool isPath = py::isinstance<py::str>(input);
@@ -277,25 +331,26 @@ class PythonRenderer {
     const RenderRequest request = cli::toRenderRequest(flags);
     const LoadOptions loadOptions = cli::toLoadOptions(flags.volume);
     RenderJob::checkRequest(request, loadOptions.limits);
-
-    if (isPath) {
-      // Read on every call (the file may have changed); a sweep loads once with vsil.load.
-      const std::string spec = input.cast<std::string>();
-      py::gil_scoped_release release;
-      job_->load(spec, RenderJob::loadOptionsFor(request, loadOptions));
-      uploaded_.reset();
-    } else {
-      const PyVolume& volume = input.cast<const PyVolume&>();
-      const std::uint64_t textureBytes = loadOptions.limits.maxTextureBytes;
-      if (volume.volume != uploaded_ || textureBytes != uploadedTextureBytes_) {
-        uploadInBricks(volume, textureBytes);
-      }
-    }
+    const std::string spec = isPath ? input.cast<std::string>() : std::string();
+    const std::shared_ptr<Volume> volume =
+        isPath ? nullptr : input.cast<const PyVolume&>().volume;
 
     RenderOutput output;
     {
-      py::gil_scoped_release release;
-      output = job_->render(request, loadOptions.limits);
+      // Upload (or load) and render in one turn: another thread's turn in between could
+      // replace the volume this Renderer holds.
+      GlTurn turn(&job);
+      if (isPath) {
+        // Read on every call (the file may have changed); a sweep loads once with vsil.load.
+        job.load(spec, RenderJob::loadOptionsFor(request, loadOptions));
+        uploaded_.reset();
+      } else {
+        const std::uint64_t textureBytes = loadOptions.limits.maxTextureBytes;
+        if (volume != uploaded_ || textureBytes != uploadedTextureBytes_) {
+          uploadInBricks(job, volume, textureBytes);
+        }
+      }
+      output = job.render(request, loadOptions.limits);
     }
     cv::Mat rgba;
     cv::cvtColor(output.image, rgba,
@@ -312,17 +367,25 @@ class PythonRenderer {
   }
 
  private:
-  void uploadInBricks(const PyVolume& volume, std::uint64_t maxTextureBytes) {
-    requireFiniteSamples(*volume.volume);
-    py::gil_scoped_release release;
-    job_->setVolume(Volume::sharing(volume.volume), volume.volume->source, maxTextureBytes);
-    uploaded_ = volume.volume;
+  RenderJob& job() const {
+    if (!job_) throw InputError("vsil.Renderer: this renderer is closed");
+    return *job_;
+  }
+
+  // During a turn (no GIL: the samples are read as raw memory).
+  void uploadInBricks(RenderJob& job, const std::shared_ptr<Volume>& volume,
+                      std::uint64_t maxTextureBytes) {
+    requireFiniteSamples(*volume);
+    job.setVolume(Volume::sharing(volume), volume->source, maxTextureBytes);
+    uploaded_ = volume;
     uploadedTextureBytes_ = maxTextureBytes;
   }
 
   std::unique_ptr<RenderJob> job_;
-  std::shared_ptr<Volume> uploaded_;  // the volume the texture holds, when given as a Volume
-  std::uint64_t uploadedTextureBytes_ = limits::kMaxTextureBytes;  // its bricks' limit
+  // The volume the texture holds, when given as a Volume, and its bricks' limit; read and
+  // written during turns only.
+  std::shared_ptr<Volume> uploaded_;
+  std::uint64_t uploadedTextureBytes_ = limits::kMaxTextureBytes;
 };
 
 // ---- postfx on arrays ----
@@ -488,6 +551,13 @@ PYBIND11_MODULE(_vsil, m) {
   py::class_<PythonRenderer>(m, "Renderer",
                              "One GL context; keywords gl, gl_device as `vsil render`")
       .def(py::init<const py::kwargs&>())
+      .def("close", &PythonRenderer::close,
+           "Ends the GL context and frees the textures now (also at the end of a with block)")
+      .def_property_readonly("closed", &PythonRenderer::closed)
+      .def("__enter__", [](const py::object& self) { return self; })
+      .def("__exit__", [](PythonRenderer& renderer, const py::args&) { renderer.close(); })
+      .def_property_readonly("gl", &PythonRenderer::glInfo,
+                             "The GL context: backend, platform, renderer, version, ...")
       .def("render", &PythonRenderer::render, py::arg("volume"),
            "Renders a Volume (or a path or gen: spec); keywords: every flag of `vsil render` "
            "by its name with _ for - (iso=40, width_near=4, view=(30, 20), size=(640, 480))")

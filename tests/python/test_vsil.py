@@ -286,3 +286,71 @@ def test_depth_law_from_render_to_measurement(renderer):
     rebroadened = vsil.broaden(one_pixel, width_near=7, width_far=2, depth=frame.depth)
     assert np.array_equal(rebroadened > 0, lines > 0)
 
+
+# ---- threads ----
+
+def _backends():
+    """The back ends this machine gives a context on (VSIL_TEST_ALL_GL_BACKENDS=1: both must)."""
+    found = []
+    for backend in ("osmesa", "egl"):
+        try:
+            with vsil.Renderer(gl=backend):
+                found.append(backend)
+        except RuntimeError as error:
+            if os.environ.get("VSIL_TEST_ALL_GL_BACKENDS") == "1":
+                raise AssertionError(f"gl={backend}: {error}")
+    return found
+
+
+def test_renders_from_many_threads_take_turns_on_both_back_ends():
+    """8 threads x 20 renders over one Renderer per back end and one per thread: every frame the
+    one a single thread renders (GL state is process-wide: without the module's lock this
+    crashed)."""
+    import threading
+
+    backends = _backends()
+    assert backends, "no GL back end"
+    volume = vsil.generate("spheres", 32)
+    options = [{"iso": iso, "size": (48, 40), "view": (15 * k, 10)}
+               for k, iso in enumerate((0.3, 0.5, 0.7, 0.4, 0.6))]
+    renderers = {backend: vsil.Renderer(gl=backend) for backend in backends}
+    expected = [renderers[backends[0]].render(volume, **o).image for o in options]
+    failures = []
+
+    def work(index):
+        try:
+            own = vsil.Renderer(gl=backends[index % len(backends)])
+            for i in range(20):
+                k = (index + i) % len(options)
+                # Shared renderers, this thread's own one, and a path read in the turn.
+                renderer = own if i % 3 == 0 else renderers[backends[i % len(backends)]]
+                source = "gen:spheres:32" if i % 4 == 1 else volume
+                image = renderer.render(source, **options[k]).image
+                if not np.array_equal(image, expected[k]):
+                    failures.append((index, i, renderer.gl["backend"]))
+            own.close()
+        except Exception as error:  # noqa: BLE001 - reported below with its thread
+            failures.append((index, repr(error)))
+
+    threads = [threading.Thread(target=work, args=(index,)) for index in range(8)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert failures == []
+    for renderer in renderers.values():
+        renderer.close()
+
+
+def test_a_renderer_keeps_its_back_end_and_says_so():
+    for backend in _backends():
+        with vsil.Renderer(gl=backend) as renderer:
+            assert renderer.gl["backend"] == backend
+            frame = renderer.render("gen:sphere:16", size=(16, 16))
+            assert frame.metadata["gl"]["backend"] == backend
+            # The back end is the Renderer's: switching is making another one.
+            with pytest.raises(ValueError, match=r"vsil.Renderer\(gl=...\)"):
+                renderer.render("gen:sphere:16", gl="osmesa" if backend == "egl" else "egl")
+        assert renderer.closed
+        with pytest.raises(ValueError, match="closed"):
+            renderer.render("gen:sphere:16")
