@@ -30,6 +30,7 @@
 
 #include "cli/cli_gl_options.h"
 #include "cli/cli_render_options.h"
+#include "cli/volume_summary.h"
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/version.h"
@@ -45,6 +46,11 @@ namespace py = pybind11;
 
 namespace vsil::python {
 namespace {
+
+template <typename Json>
+py::object jsonToPython(const Json& json) {
+  return py::module_::import("json").attr("loads")(json.dump());
+}
 
 // ---- volumes ----
 
@@ -451,6 +457,41 @@ PyVolume load(const std::string& spec, const py::kwargs& kwargs) {
   return {std::make_shared<Volume>(std::move(loaded))};
 }
 
+// What `vsil info VOLUME --json` prints (cli/volume_summary.h), for a path or gen: spec read
+// with the volume keywords, or for a Volume.
+py::object info(const py::object& input, const py::kwargs& kwargs) {
+  if (py::isinstance<PyVolume>(input)) {
+    if (kwargs.size() > 0) {
+      throw PythonTypeError("vsil.info: the volume keywords apply when a file is read");
+    }
+    const std::shared_ptr<Volume> volume = input.cast<const PyVolume&>().volume;
+    nlohmann::ordered_json json;
+    {
+      py::gil_scoped_release release;
+      json = cli::summaryJson(*volume, cli::summarize(*volume));
+    }
+    return jsonToPython(json);
+  }
+  if (!py::isinstance<py::str>(input)) {
+    throw PythonTypeError("vsil.info: expected a vsil.Volume, a path or a gen: spec, not " +
+                          typeNameOf(input));
+  }
+  const std::string spec = input.cast<std::string>();
+  const LoadOptions options =
+      cli::summaryLoadOptions(loadOptionsFromKeywords(kwargs, "vsil.info"));
+  Volume loaded;
+  nlohmann::ordered_json json;
+  {
+    py::gil_scoped_release release;
+    loaded = loadOrNotFound([&] { return loadVolume(spec, options); }, spec);
+    json = cli::summaryJson(loaded, cli::summarize(loaded));
+  }
+  for (const std::string& warning : loaded.warnings) {
+    if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) != 0) throw py::error_already_set();
+  }
+  return jsonToPython(json);
+}
+
 // ---- rendering ----
 
 struct Frame {
@@ -469,11 +510,6 @@ py::array arrayFromMat(const cv::Mat& mat, int channels) {
   const cv::Mat contiguous = mat.isContinuous() ? mat : mat.clone();
   std::memcpy(array.mutable_data(), contiguous.data, contiguous.total() * contiguous.elemSize());
   return array;
-}
-
-template <typename Json>
-py::object jsonToPython(const Json& json) {
-  return py::module_::import("json").attr("loads")(json.dump());
 }
 
 // ---- GL turns ----
@@ -785,6 +821,9 @@ PYBIND11_MODULE(_vsil, m) {
   m.def("load", &load, py::arg("path"),
         "Reads a volume file or generates a gen: volume; keywords: the volume flags of "
         "`vsil render` (dims, type, spacing, endian, crop, stride, max_memory)");
+  m.def("info", &info, py::arg("volume"),
+        "What `vsil info VOLUME --json` prints, as a dict: a file or gen: spec read with the "
+        "volume keywords, or a Volume");
   m.def(
       "generate",
       [](const std::string& name, int size) {

@@ -479,3 +479,21 @@ def test_reprs_and_png_for_notebooks(renderer):
     closed = vsil.Renderer()
     closed.close()
     assert repr(closed) == "<vsil.Renderer closed>"
+
+
+def test_info_is_what_the_command_prints(tmp_path):
+    import json
+
+    for spec in ["gen:spheres:24", "gen:marschner-lobb:20"]:
+        cli = json.loads(run_cli("info", spec, "--json").stdout)
+        assert vsil.info(spec) == cli
+        assert vsil.info(vsil.load(spec)) == cli
+    array = (np.arange(4 * 5 * 6) % 7).astype(np.uint16).reshape(4, 5, 6)
+    array.tofile(tmp_path / "v.raw")
+    cli = json.loads(run_cli("info", str(tmp_path / "v.raw"), "--dims", "6x5x4", "--type",
+                             "uint16", "--crop", "1:5,:,:", "--json").stdout)
+    assert vsil.info(tmp_path / "v.raw", dims=(6, 5, 4), type="uint16", crop="1:5,:,:") == cli
+    assert cli["dims"] == [4, 5, 4] and cli["max"] == 6
+    with pytest.raises(FileNotFoundError):
+        vsil.info(tmp_path / "missing.vti")
+    assert "crop" in inspect.signature(vsil.info).parameters

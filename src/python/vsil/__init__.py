@@ -17,7 +17,7 @@ import os
 from . import _vsil
 from ._vsil import Frame, Volume, __version__, broaden, measure_width
 
-__all__ = ["Frame", "Renderer", "Volume", "__version__", "broaden", "generate", "load",
+__all__ = ["Frame", "Renderer", "Volume", "__version__", "broaden", "generate", "info", "load",
            "measure_width"]
 
 # The keyword kinds' types, by the names the stub defines (__init__.pyi: Number, Text, Texts).
@@ -104,6 +104,18 @@ _signed(load, [inspect.Parameter("path", inspect.Parameter.POSITIONAL_OR_KEYWORD
         "Reads a volume file (or generates a gen:NAME[:N] volume) as `vsil render` reads INPUT.\n"
         "FileNotFoundError for a path that is not there, ValueError for a bad file.\n"
         + _keyword_help("load"))
+
+
+def info(volume, **options):
+    return _vsil.info(_fspath(volume), **options)
+
+
+_signed(info, [inspect.Parameter("volume", inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                                 annotation="Volume | str | os.PathLike[str]")]
+        + _parameters("load"),
+        "What `vsil info VOLUME --json` prints, as a dict (dims, type, spacing, min, max, mean,\n"
+        "stddev, default_iso, percentiles, histogram, ...): for a file or gen: spec read with\n"
+        "the volume keywords (as load), or for a Volume.\n" + _keyword_help("load"))
 
 
 def generate(name, size=128):
