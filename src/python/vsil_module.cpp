@@ -860,7 +860,8 @@ PYBIND11_MODULE(_vsil, m) {
           },
           "The image as PNG bytes (how Jupyter shows a Frame)");
 
-  py::class_<PythonRenderer>(m, "Renderer",
+  // The base of vsil.Renderer (vsil/__init__.py adds signatures and os.PathLike inputs).
+  py::class_<PythonRenderer>(m, "_Renderer",
                              "One GL context; keywords gl, gl_device as `vsil render`")
       .def(py::init<const py::kwargs&>())
       .def("close", &PythonRenderer::close,
@@ -886,7 +887,7 @@ PYBIND11_MODULE(_vsil, m) {
   m.def("_keywords", &keywordTable, py::arg("function"),
         "The keywords of render, load or Renderer, from the CLI's option tables: key, flag, "
         "kind, help, group, default, choices, number_count");
-  for (const char* name : {"Volume", "Frame", "Renderer"}) m.attr(name).attr("__module__") = "vsil";
+  for (const char* name : {"Volume", "Frame"}) m.attr(name).attr("__module__") = "vsil";
 
   m.def("broaden", &broaden, py::arg("lines"), py::kw_only(), py::arg("width") = py::none(),
         py::arg("width_near") = py::none(), py::arg("width_far") = py::none(),

@@ -64,7 +64,7 @@ def _signed(function, parameters, doc):
     return function
 
 
-class Renderer(_vsil.Renderer):
+class Renderer(_vsil._Renderer):
     """One GL context (OSMesa or EGL, as `vsil render --gl`), reused by every render; any thread
     may use it (GL work takes turns under one lock). A context manager: `with vsil.Renderer() as
     r:` ends the context at the end of the block (also r.close())."""
