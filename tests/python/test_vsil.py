@@ -1,7 +1,9 @@
 """The Python module against the command line, and on its own: round trips to the CLI's bytes,
 zero-copy wrapping, exceptions, a parameter sweep in one process, postfx on arrays.
 
-Run by ctest (tests/CMakeLists.txt) with PYTHONPATH=build/python and VSIL_BINARY set."""
+Run by ctest (tests/CMakeLists.txt) with PYTHONPATH=build/python and VSIL_BINARY set, and by
+scripts/test-python-package.sh against the package pip installed into a venv
+(VSIL_TEST_INSTALLED names it)."""
 
 import errno
 import inspect
