@@ -57,7 +57,11 @@ class CMakeBuild(build_ext):
             configure.append("-DCMAKE_CXX_COMPILER_LAUNCHER=ccache")
         configure += shlex.split(os.environ.get("CMAKE_ARGS", ""))
         # Every CPU this process may use: the build is most of an install's time.
-        jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(len(os.sched_getaffinity(0)))
+        cpus = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+        jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(cpus or 1)
+        if not shutil.which("cmake"):
+            sys.exit("setup.py: vsil builds with CMake >= 3.25, which is not on the PATH: "
+                     "apt-get install cmake (scripts/bootstrap.sh installs every dependency)")
         subprocess.run(configure, check=True)
         subprocess.run(["cmake", "--build", str(build_dir), "--target", "vsil_python", "-j", jobs],
                        check=True)
