@@ -134,8 +134,11 @@ endif()
 # at test time (tests/python).
 if(VSIL_PYTHON)
   # Debian's interpreter, for which python3-numpy and pybind11-dev are built, before any other
-  # python3 on the PATH (pyenv, a virtualenv); -DPython3_EXECUTABLE=... chooses another.
-  if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+  # python3 on the PATH (pyenv); in an active virtual environment ($VIRTUAL_ENV) its own
+  # interpreter (FindPython looks there first), so that `cmake --install` puts the package in
+  # the venv's site-packages, not the system's. -DPython3_EXECUTABLE=... chooses another (setup.py
+  # passes the interpreter running pip).
+  if(NOT DEFINED Python3_EXECUTABLE AND NOT DEFINED ENV{VIRTUAL_ENV} AND EXISTS /usr/bin/python3)
     set(Python3_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "the Python the module is built for")
   endif()
   find_package(Python3 QUIET COMPONENTS Interpreter Development.Module)

@@ -26,6 +26,7 @@ packages=(
   libgtest-dev libbenchmark-dev  # tests and micro-benchmarks
   python3-dev pybind11-dev       # the Python module (src/python)
   python3-numpy python3-pytest python3-pil  # its tests (tests/python; Pillow reads the CLI's PNGs)
+  python3-venv python3-setuptools python3-wheel  # pip install . without a package index (pyproject.toml)
   python3-nibabel python3-pydicom  # reference writers for the NIfTI and DICOM round trips
   ${VSIL_EXTRA_PACKAGES:-}
 )

@@ -403,6 +403,11 @@ void GlContext::makeCurrent() {
   impl_->install();
 }
 
+void GlContext::releaseCurrent() noexcept {
+  impl_->backend->releaseCurrent();
+  impl_->uninstall();
+}
+
 const ContextInfo& GlContext::info() const {
   return impl_->info;
 }

@@ -64,6 +64,10 @@ class GlContext {
   GlContext& operator=(const GlContext&) = delete;
 
   void makeCurrent();
+  // Unbinds the context from the calling thread (and its GL functions from slicing/gl.h), so
+  // that another thread can make it current next: what a caller that renders from several
+  // threads does at the end of each turn (the Python module). makeCurrent binds it again.
+  void releaseCurrent() noexcept;
   const ContextInfo& info() const;
   std::string renderer() const;  // info().renderer
   std::string version() const;   // info().version

@@ -11,8 +11,10 @@
 // ~650 entry points of 4.5 with a Python step at build time. This list is the ~85 functions vsil
 // calls, each looked up and checked, so a driver that lacks one is named, not a crash later.
 //
-// The installed pointers are process-wide, not per thread: vsil makes GL calls on one thread,
-// the one its contexts are made current on.
+// The installed pointers are process-wide, not per thread: vsil makes GL calls on one thread
+// at a time, the one its context is current on. A caller with several threads (the Python
+// module) takes turns under one lock and releases the context at the end of each turn
+// (GlContext::releaseCurrent).
 #include <string>
 #include <vector>
 

@@ -51,6 +51,9 @@ class BackendContext {
  public:
   virtual ~BackendContext() = default;
   virtual void makeCurrent() = 0;  // throws Unavailable
+  // Leaves the calling thread with no current context, so that another thread may make this one
+  // current (EGL refuses a context current on another thread). Never throws.
+  virtual void releaseCurrent() noexcept = 0;
   virtual GetProcAddress getProcAddress() const = 0;
 };
 

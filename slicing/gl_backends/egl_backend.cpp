@@ -220,6 +220,13 @@ class EglContext : public BackendContext {
     }
   }
 
+  void releaseCurrent() noexcept override {
+    const EglLibrary& library = eglLibrary();
+    if (library.getCurrentContext() == context_) {
+      library.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    }
+  }
+
   GetProcAddress getProcAddress() const override { return eglLibrary().getProcAddress; }
 
  private:

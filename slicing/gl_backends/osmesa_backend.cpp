@@ -62,6 +62,9 @@ class OsmesaContext : public BackendContext {
       throw Unavailable("OSMesaMakeCurrent failed");
     }
   }
+  void releaseCurrent() noexcept override {
+    osmesaLibrary().makeCurrent(nullptr, nullptr, 0, 0, 0);  // all null: unbind (Mesa's osmesa.c)
+  }
   GetProcAddress getProcAddress() const override { return osmesaLibrary().getProcAddress; }
 
  private:

@@ -9,10 +9,13 @@
 //
 // Keyword arguments become the command line's flags (width_near=4 -> --width-near 4) and are
 // parsed by the CLI's own table (cli/cli_render_options.h), so the two cannot drift apart.
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -22,23 +25,32 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "cli/cli_gl_options.h"
 #include "cli/cli_render_options.h"
+#include "cli/volume_summary.h"
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/version.h"
 #include "core/volume.h"
 #include "io/sample_sink.h"
 #include "io/volume_loader.h"
 #include "job/render_job.h"
 #include "postfx/broaden.h"
 #include "postfx/line_width.h"
+#include "slicing/technique_table.h"
 
 namespace py = pybind11;
 
 namespace vsil::python {
 namespace {
+
+template <typename Json>
+py::object jsonToPython(const Json& json) {
+  return py::module_::import("json").attr("loads")(json.dump());
+}
 
 // ---- volumes ----
 
@@ -145,43 +157,225 @@ py::array dataOf(const py::object& self) {
 
 // ---- keyword arguments as flags ----
 
-// One flag and its value as the command line writes it: width_near=4 -> "--width-near", "4";
-// True -> the bare flag; False and None -> nothing; size=(640, 480) -> "640x480"; other
-// sequences -> "a,b,c".
-void appendFlag(std::vector<std::string>& args, const std::string& key, const py::handle& value) {
-  std::string flag = "--" + key;
-  for (char& c : flag) c = c == '_' ? '-' : c;
-  if (value.is_none()) return;
-  if (py::isinstance<py::bool_>(value)) {
-    if (value.cast<bool>()) args.push_back(flag);
-    return;
-  }
-  args.push_back(flag);
-  if (py::isinstance<py::str>(value)) {
-    args.push_back(value.cast<std::string>());
-  } else if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
-    std::string joined;
-    for (const py::handle item : value) {
-      joined += (joined.empty() ? "" : key == "size" ? "x" : ",") + std::string(py::str(item));
+// A Python-level error that is not a ValueError (the translator below raises it as is).
+struct PythonTypeError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+// A volume file that is not there: FileNotFoundError(ENOENT, the CLI's message, path).
+struct VolumeNotFound : std::runtime_error {
+  VolumeNotFound(const std::string& message, std::string path)
+      : std::runtime_error(message), path(std::move(path)) {}
+  std::string path;
+};
+
+// One keyword as Python sees it, derived from the CLI option it becomes: the technique table's
+// declaration where the option is a technique option (its kind, default, choices), else what
+// the option's registration says (flag or value, captured default, CLI11's type name).
+struct Keyword {
+  std::string key;   // width_near
+  std::string flag;  // --width-near
+  std::string kind;  // switch, number, integer, choice, text, list
+  std::string help;
+  std::string group;
+  py::object defaultValue = py::none();  // None: none, or derived (the help says how)
+  std::vector<std::string> choices;
+  int numberCount = 0;  // text holding this many numbers ("AZ,EL": 2); 0 otherwise
+};
+
+const OptionSpec* techniqueSpec(const std::string& name) {
+  static const std::map<std::string, const OptionSpec*> specs = [] {
+    std::map<std::string, const OptionSpec*> all;
+    for (const auto& info : techniqueTable()) {
+      for (const auto& spec : info.options) all.emplace(spec.name, &spec);
     }
-    args.push_back(joined);
-  } else {
-    args.push_back(py::str(value));  // numbers: Python's shortest round-trip text
-  }
+    return all;
+  }();
+  const auto it = specs.find(name);
+  return it == specs.end() ? nullptr : it->second;
 }
 
-// Parses `kwargs` with `app`'s options; a keyword with no flag of that name is a ValueError
-// naming it.
+// "512x512" -> (512, 512), "30,20" -> (30, 20), "1" -> 1.0, other text as it is.
+py::object defaultFromText(const std::string& text, std::string_view kind) {
+  if (text.empty()) return py::none();
+  std::string list = text;
+  const auto x = list.find('x');
+  if (x != std::string::npos && list.find('x', x + 1) == std::string::npos) list[x] = ',';
+  if (const auto numbers = parseNumberList(list)) {
+    if (numbers->size() == 1 && kind == "integer") return py::int_(std::lround(numbers->front()));
+    if (numbers->size() == 1 && (kind == "number" || kind == "integer")) {
+      return py::float_(numbers->front());
+    }
+    if (numbers->size() > 1) {
+      py::tuple tuple(numbers->size());
+      for (std::size_t i = 0; i < numbers->size(); ++i) {
+        const double n = (*numbers)[i];
+        tuple[i] = n == std::floor(n) && std::abs(n) < 1e15 ? py::object(py::int_(std::llround(n)))
+                                                             : py::object(py::float_(n));
+      }
+      return tuple;
+    }
+  }
+  return py::str(text);
+}
+
+Keyword describeKeyword(const CLI::Option& option) {
+  Keyword keyword;
+  keyword.flag = "--" + option.get_single_name();
+  keyword.key = option.get_single_name();
+  for (char& c : keyword.key) c = c == '-' ? '_' : c;
+  keyword.help = option.get_description();
+  keyword.group = option.get_group();
+  if (const OptionSpec* spec = techniqueSpec(option.get_single_name())) {
+    static const char* const kinds[] = {"number", "integer", "choice", "text", "switch", "list"};
+    keyword.kind = kinds[int(spec->kind)];
+    keyword.choices = spec->choices;
+    keyword.numberCount = spec->numberCount;
+    if (spec->defaultValue && spec->kind != OptionKind::List) {
+      std::visit(
+          [&](const auto& value) {
+            using T = std::decay_t<decltype(value)>;
+            if constexpr (std::is_same_v<T, bool>) {
+              keyword.defaultValue = py::bool_(value);
+            } else if constexpr (std::is_same_v<T, double>) {
+              keyword.defaultValue = spec->kind == OptionKind::Integer
+                                         ? py::object(py::int_(std::lround(value)))
+                                         : py::object(py::float_(value));
+            } else if constexpr (std::is_same_v<T, std::string>) {
+              keyword.defaultValue =
+                  spec->numberCount > 0 ? defaultFromText(value, "text") : py::str(value);
+            }
+          },
+          *spec->defaultValue);
+    }
+    return keyword;
+  }
+  if (option.get_single_name() == "technique") {  // a name from the technique table
+    keyword.kind = "choice";
+    keyword.choices = techniqueNames();
+    keyword.defaultValue = py::str(option.get_default_str());
+    return keyword;
+  }
+  if (option.get_expected_min() == 0 || option.get_type_size() == 0) {
+    keyword.kind = "switch";
+    keyword.defaultValue = py::bool_(false);
+    return keyword;
+  }
+  // CLI11's type names: FLOAT, INT, INT:NONNEGATIVE, TEXT, TEXT:{a,b,c}.
+  const std::string type = option.get_type_name();
+  keyword.kind = type.rfind("FLOAT", 0) == 0 ? "number" : type.rfind("INT", 0) == 0 ? "integer"
+                                                                                    : "text";
+  if (const auto open = type.find(":{"); open != std::string::npos) {
+    keyword.kind = "choice";
+    std::string list = type.substr(open + 2, type.size() - open - 3);
+    for (std::size_t at = 0; at <= list.size();) {
+      const std::size_t comma = std::min(list.find(',', at), list.size());
+      keyword.choices.push_back(list.substr(at, comma - at));
+      at = comma + 1;
+    }
+  }
+  keyword.defaultValue = defaultFromText(option.get_default_str(), keyword.kind);
+  return keyword;
+}
+
+// The keywords of `app` in registration order, less those in `except` (by key).
+std::vector<Keyword> keywordsOf(const CLI::App& app, const std::vector<std::string>& except = {}) {
+  std::vector<Keyword> keywords;
+  for (const CLI::Option* option : app.get_options()) {
+    if (option->get_lnames().empty() || option->get_single_name() == "help") continue;
+    Keyword keyword = describeKeyword(*option);
+    if (std::find(except.begin(), except.end(), keyword.key) != except.end()) continue;
+    keywords.push_back(std::move(keyword));
+  }
+  return keywords;
+}
+
+std::string typeNameOf(const py::handle& value) {
+  return py::str(py::type::handle_of(value).attr("__name__"));
+}
+
+bool isNumber(const py::handle& value) {
+  return !py::isinstance<py::bool_>(value) && !py::isinstance<py::str>(value) &&
+         (PyLong_Check(value.ptr()) || PyFloat_Check(value.ptr()) ||
+          PyIndex_Check(value.ptr()) || py::hasattr(value, "__float__"));
+}
+
+// One value as the command line writes it: str as it is, os.PathLike by os.fspath, a number by
+// Python's shortest round-trip text, a sequence of numbers or texts joined ("30,20"; "640x480"
+// for size, "8x7x6" for dims). Anything else is a TypeError naming the keyword.
+std::string valueText(const Keyword& keyword, const py::handle& value, const std::string& function) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "__fspath__")) {
+    return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+  }
+  if (isNumber(value)) return py::str(value);
+  if (keyword.kind != "number" && keyword.kind != "integer" &&
+      (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value))) {
+    std::string joined;
+    bool first = true;
+    for (const py::handle item : value) {
+      if (!isNumber(item) && !py::isinstance<py::str>(item)) {
+        throw PythonTypeError(function + ": " + keyword.key + " takes numbers or texts, not " +
+                              typeNameOf(item) + " items");
+      }
+      // --size WxH and --dims XxYxZ are the flags written with x; every other list with commas.
+      const bool byX = keyword.key == "size" || keyword.key == "dims";
+      joined += (first ? "" : byX ? "x" : ",") + std::string(py::str(item));
+      first = false;
+    }
+    return joined;
+  }
+  const std::string expected = keyword.kind == "number"    ? "a number"
+                               : keyword.kind == "integer" ? "an integer"
+                                                           : "a str, a number or a tuple";
+  throw PythonTypeError(function + ": " + keyword.key + " takes " + expected + ", not " +
+                        typeNameOf(value));
+}
+
+// The keyword's flag and value(s) for the command line: True -> the bare flag of a switch; None
+// -> nothing (the default); a list option given a list of texts or tuples -> the flag once per
+// item (light=[(30, 70), (-40, 10)]).
+void appendFlag(std::vector<std::string>& args, const Keyword& keyword, const py::handle& value,
+                const std::string& function) {
+  if (value.is_none()) return;
+  if (keyword.kind == "switch") {
+    if (!py::isinstance<py::bool_>(value)) {
+      throw PythonTypeError(function + ": " + keyword.key + " takes True or False, not " +
+                            typeNameOf(value));
+    }
+    if (value.cast<bool>()) args.push_back(keyword.flag);
+    return;
+  }
+  if (py::isinstance<py::bool_>(value)) {
+    throw PythonTypeError(function + ": " + keyword.key + " takes a value, not a bool");
+  }
+  if (keyword.kind == "list" && (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value))) {
+    bool ofItems = false;
+    for (const py::handle item : value) ofItems = ofItems || !isNumber(item);
+    if (ofItems) {
+      for (const py::handle item : value) {
+        args.push_back(keyword.flag);
+        args.push_back(valueText(keyword, item, function));
+      }
+      return;
+    }
+  }
+  args.push_back(keyword.flag);
+  args.push_back(valueText(keyword, value, function));
+}
+
+// Parses `kwargs` with `app`'s options; a keyword with no flag of that name is a TypeError
+// naming it, as Python's own for an unexpected keyword argument.
 void parseKeywords(CLI::App& app, const py::kwargs& kwargs, const std::string& function) {
   std::vector<std::string> args;
   for (const auto& [key, value] : kwargs) {
     const std::string name = key.cast<std::string>();
     std::string flag = "--" + name;
     for (char& c : flag) c = c == '_' ? '-' : c;
-    if (name.empty() || name == "help" || !app.get_option_no_throw(flag)) {
-      throw InputError(function + ": unknown keyword '" + name + "'");
-    }
-    appendFlag(args, name, value);
+    const CLI::Option* option = name.empty() || name == "help" || name.find('-') != std::string::npos
+                                    ? nullptr
+                                    : app.get_option_no_throw(flag);
+    if (!option) throw PythonTypeError(function + ": unknown keyword '" + name + "'");
+    appendFlag(args, describeKeyword(*option), value, function);
   }
   std::reverse(args.begin(), args.end());  // CLI11 parses a vector from its back
   try {
@@ -189,6 +383,40 @@ void parseKeywords(CLI::App& app, const py::kwargs& kwargs, const std::string& f
   } catch (const CLI::ParseError& e) {
     throw InputError(function + ": " + e.what());
   }
+}
+
+// The keyword tables as Python reads them (vsil/__init__.py: signatures and help; make_stub.py:
+// the stub): one dict per keyword, in the CLI's order.
+py::list keywordTable(const std::string& function) {
+  CLI::App app;
+  std::vector<std::string> except;
+  cli::RenderFlags render;
+  cli::VolumeOptions volume;
+  cli::GlOptions gl;
+  if (function == "render") {
+    cli::addRenderOptions(app, render);
+    except = {"gl", "gl_device"};
+  } else if (function == "load") {
+    cli::addVolumeOptions(app, volume);
+  } else if (function == "Renderer") {
+    cli::addGlOptions(app, gl);
+  } else {
+    throw InputError("vsil._keywords: no table '" + function + "' (render, load, Renderer)");
+  }
+  py::list table;
+  for (const Keyword& keyword : keywordsOf(app, except)) {
+    py::dict row;
+    row["key"] = keyword.key;
+    row["flag"] = keyword.flag;
+    row["kind"] = keyword.kind;
+    row["help"] = keyword.help;
+    row["group"] = keyword.group;
+    row["default"] = keyword.defaultValue;
+    row["choices"] = keyword.choices;
+    row["number_count"] = keyword.numberCount;
+    table.append(row);
+  }
+  return table;
 }
 
 // The keywords every volume-loading call takes: the volume flags of the CLI (dims, type,
@@ -201,17 +429,67 @@ LoadOptions loadOptionsFromKeywords(const py::kwargs& kwargs, const std::string&
   return cli::toLoadOptions(options);
 }
 
+// Runs `load`; an InputError for a volume path that does not exist becomes VolumeNotFound (the
+// same message: FileNotFoundError in Python).
+template <typename Load>
+auto loadOrNotFound(Load&& load, const std::string& spec) {
+  try {
+    return load();
+  } catch (const InputError& e) {
+    std::error_code error;
+    if (spec.rfind("gen:", 0) != 0 && !std::filesystem::exists(spec, error)) {
+      throw VolumeNotFound(e.what(), spec);
+    }
+    throw;
+  }
+}
+
 PyVolume load(const std::string& spec, const py::kwargs& kwargs) {
   const LoadOptions options = loadOptionsFromKeywords(kwargs, "vsil.load");
   Volume loaded;
   {
     py::gil_scoped_release release;
-    loaded = loadVolume(spec, options);
+    loaded = loadOrNotFound([&] { return loadVolume(spec, options); }, spec);
   }
   for (const std::string& warning : loaded.warnings) {
     if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) != 0) throw py::error_already_set();
   }
   return {std::make_shared<Volume>(std::move(loaded))};
+}
+
+// What `vsil info VOLUME --json` prints (cli/volume_summary.h), for a path or gen: spec read
+// with the volume keywords, or for a Volume.
+py::object info(const py::object& input, const py::kwargs& kwargs) {
+  if (py::isinstance<PyVolume>(input)) {
+    if (kwargs.size() > 0) {
+      throw PythonTypeError("vsil.info: the volume keywords apply when a file is read");
+    }
+    const std::shared_ptr<Volume> volume = input.cast<const PyVolume&>().volume;
+    nlohmann::ordered_json json;
+    {
+      py::gil_scoped_release release;
+      json = cli::summaryJson(*volume, cli::summarize(*volume));
+    }
+    return jsonToPython(json);
+  }
+  if (!py::isinstance<py::str>(input)) {
+    throw PythonTypeError("vsil.info: expected a vsil.Volume, a path or a gen: spec, not " +
+                          typeNameOf(input));
+  }
+  const std::string spec = input.cast<std::string>();
+  const LoadOptions options =
+      cli::summaryLoadOptions(loadOptionsFromKeywords(kwargs, "vsil.info"));
+  Volume loaded;
+  nlohmann::ordered_json json;
+  {
+    py::gil_scoped_release release;
+    loaded = loadOrNotFound([&] { return loadVolume(spec, options); }, spec);
+    json = cli::summaryJson(loaded, cli::summarize(loaded));
+  }
+  for (const std::string& warning : loaded.warnings) {
+    if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) != 0) throw py::error_already_set();
+  }
+  return jsonToPython(json);
 }
 
 // ---- rendering ----
@@ -234,9 +512,34 @@ py::array arrayFromMat(const cv::Mat& mat, int channels) {
   return array;
 }
 
-py::object jsonToPython(const nlohmann::json& json) {
-  return py::module_::import("json").attr("loads")(json.dump());
+// ---- GL turns ----
+
+// GL state is process-wide (the function pointers of slicing/gl.h; a context current on one
+// thread only), so every GL call of the module, from any thread and any Renderer, happens under
+// this one lock: renders from several threads wait their turn (llvmpipe uses every core for
+// each frame anyway). A turn ends by releasing its context, so that the next turn may make any
+// context current on any thread.
+std::mutex& glMutex() {
+  static std::mutex mutex;
+  return mutex;
 }
+
+// One turn: releases the GIL first, then waits for the lock. Never the other way round: a thread
+// holding the lock may need the GIL (the last reference to a numpy array a volume borrowed), so
+// a thread holding the GIL must not wait for the lock.
+class GlTurn {
+ public:
+  explicit GlTurn(RenderJob* job) : job_(job), lock_(glMutex()) {}
+  ~GlTurn() {
+    if (job_) job_->context().releaseCurrent();
+  }
+  void setJob(RenderJob* job) { job_ = job; }  // a job made during the turn
+
+ private:
+  py::gil_scoped_release release_;  // destroyed last: the GIL comes back after the unlock
+  RenderJob* job_;
+  std::unique_lock<std::mutex> lock_;
+};
 
 class PythonRenderer {
  public:
@@ -246,14 +549,37 @@ class PythonRenderer {
     cli::addGlOptions(app, options);
     parseKeywords(app, kwargs, "vsil.Renderer");
     const gl::ContextOptions context = cli::toContextOptions(options);
+    GlTurn turn(nullptr);
     job_ = std::make_unique<RenderJob>(context);
+    turn.setJob(job_.get());
   }
+
+  ~PythonRenderer() { close(); }
+
+  // Ends the context and frees the volume's textures now; later calls raise ValueError.
+  void close() {
+    if (!job_) return;
+    GlTurn turn(nullptr);  // the job's destructor makes its context current to delete objects
+    job_.reset();
+    uploaded_.reset();
+  }
+
+  bool closed() const { return !job_; }
+
+  // What `--meta-out` writes under "gl": backend, platform, renderer, version, ...
+  py::object glInfo() const { return jsonToPython(gl::contextInfoJson(job().context().info())); }
 
   // Uploads `volume` now (render does it when the volume changes; call this after changing a
   // volume's samples in place), in bricks of the last render's max_texture_mib.
-  void upload(const PyVolume& volume) { uploadInBricks(volume, uploadedTextureBytes_); }
+  void upload(const PyVolume& volume) {
+    RenderJob& job = this->job();
+    const std::shared_ptr<Volume> samples = volume.volume;
+    GlTurn turn(&job);
+    uploadInBricks(job, samples, uploadedTextureBytes_);
+  }
 
   Frame render(const py::object& input, const py::kwargs& kwargs) {
+    RenderJob& job = this->job();
     // Flags that choose what render does not own here: the context is the Renderer's, and a
     // Volume is read already.
     const bool isPath = py::isinstance<py::str>(input);
@@ -276,25 +602,34 @@ class PythonRenderer {
     const RenderRequest request = cli::toRenderRequest(flags);
     const LoadOptions loadOptions = cli::toLoadOptions(flags.volume);
     RenderJob::checkRequest(request, loadOptions.limits);
-
-    if (isPath) {
-      // Read on every call (the file may have changed); a sweep loads once with vsil.load.
-      const std::string spec = input.cast<std::string>();
-      py::gil_scoped_release release;
-      job_->load(spec, RenderJob::loadOptionsFor(request, loadOptions));
-      uploaded_.reset();
-    } else {
-      const PyVolume& volume = input.cast<const PyVolume&>();
-      const std::uint64_t textureBytes = loadOptions.limits.maxTextureBytes;
-      if (volume.volume != uploaded_ || textureBytes != uploadedTextureBytes_) {
-        uploadInBricks(volume, textureBytes);
-      }
+    const std::string spec = isPath ? input.cast<std::string>() : std::string();
+    if (!isPath && !py::isinstance<PyVolume>(input)) {
+      throw PythonTypeError("vsil.Renderer.render: volume must be a vsil.Volume, a path or a "
+                            "gen: spec, not " + typeNameOf(input));
     }
+    const std::shared_ptr<Volume> volume =
+        isPath ? nullptr : input.cast<const PyVolume&>().volume;
 
     RenderOutput output;
     {
-      py::gil_scoped_release release;
-      output = job_->render(request, loadOptions.limits);
+      // Upload (or load) and render in one turn: another thread's turn in between could
+      // replace the volume this Renderer holds.
+      GlTurn turn(&job);
+      if (isPath) {
+        // Read on every call (the file may have changed); a sweep loads once with vsil.load.
+        loadOrNotFound(
+            [&]() -> const Volume& {
+              return job.load(spec, RenderJob::loadOptionsFor(request, loadOptions));
+            },
+            spec);
+        uploaded_.reset();
+      } else {
+        const std::uint64_t textureBytes = loadOptions.limits.maxTextureBytes;
+        if (volume != uploaded_ || textureBytes != uploadedTextureBytes_) {
+          uploadInBricks(job, volume, textureBytes);
+        }
+      }
+      output = job.render(request, loadOptions.limits);
     }
     cv::Mat rgba;
     cv::cvtColor(output.image, rgba,
@@ -311,17 +646,25 @@ class PythonRenderer {
   }
 
  private:
-  void uploadInBricks(const PyVolume& volume, std::uint64_t maxTextureBytes) {
-    requireFiniteSamples(*volume.volume);
-    py::gil_scoped_release release;
-    job_->setVolume(Volume::sharing(volume.volume), volume.volume->source, maxTextureBytes);
-    uploaded_ = volume.volume;
+  RenderJob& job() const {
+    if (!job_) throw InputError("vsil.Renderer: this renderer is closed");
+    return *job_;
+  }
+
+  // During a turn (no GIL: the samples are read as raw memory).
+  void uploadInBricks(RenderJob& job, const std::shared_ptr<Volume>& volume,
+                      std::uint64_t maxTextureBytes) {
+    requireFiniteSamples(*volume);
+    job.setVolume(Volume::sharing(volume), volume->source, maxTextureBytes);
+    uploaded_ = volume;
     uploadedTextureBytes_ = maxTextureBytes;
   }
 
   std::unique_ptr<RenderJob> job_;
-  std::shared_ptr<Volume> uploaded_;  // the volume the texture holds, when given as a Volume
-  std::uint64_t uploadedTextureBytes_ = limits::kMaxTextureBytes;  // its bricks' limit
+  // The volume the texture holds, when given as a Volume, and its bricks' limit; read and
+  // written during turns only.
+  std::shared_ptr<Volume> uploaded_;
+  std::uint64_t uploadedTextureBytes_ = limits::kMaxTextureBytes;
 };
 
 // ---- postfx on arrays ----
@@ -412,14 +755,25 @@ py::dict measureWidth(const py::array& image, std::optional<py::array> depth, in
 }  // namespace
 }  // namespace vsil::python
 
-PYBIND11_MODULE(vsil, m) {
+// The extension vsil._vsil; the package vsil (vsil/__init__.py) is what users import.
+PYBIND11_MODULE(_vsil, m) {
   using namespace vsil;
   using namespace vsil::python;
   m.doc() = "vsil: volume illustration (exact silhouettes, Ebert-Rheingans, DEMIP) offscreen";
+  // The top-level project() version (core/version.h), as the package metadata has it (setup.py).
+  m.attr("__version__") = kVsilVersion;
 
   py::register_exception_translator([](std::exception_ptr error) {
     try {
       if (error) std::rethrow_exception(error);
+    } catch (const PythonTypeError& e) {
+      PyErr_SetString(PyExc_TypeError, e.what());
+    } catch (const VolumeNotFound& e) {
+      // FileNotFoundError(errno, strerror, filename): e.filename is the path, str(e) holds the
+      // CLI's one-line message.
+      const py::object error = py::reinterpret_borrow<py::object>(PyExc_FileNotFoundError)(
+          ENOENT, e.what(), e.path);
+      PyErr_SetObject(PyExc_FileNotFoundError, error.ptr());
     } catch (const InputError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const UnavailableError& e) {
@@ -467,6 +821,9 @@ PYBIND11_MODULE(vsil, m) {
   m.def("load", &load, py::arg("path"),
         "Reads a volume file or generates a gen: volume; keywords: the volume flags of "
         "`vsil render` (dims, type, spacing, endian, crop, stride, max_memory)");
+  m.def("info", &info, py::arg("volume"),
+        "What `vsil info VOLUME --json` prints, as a dict: a file or gen: spec read with the "
+        "volume keywords, or a Volume");
   m.def(
       "generate",
       [](const std::string& name, int size) {
@@ -479,16 +836,58 @@ PYBIND11_MODULE(vsil, m) {
       .def_readonly("state", &Frame::state, "H x W uint8 pixel states")
       .def_readonly("depth", &Frame::depth, "H x W float32 normalized depth, NaN where none")
       .def_readonly("metadata", &Frame::metadata, "what `vsil render --meta-out` writes")
-      .def_readonly("warnings", &Frame::warnings);
+      .def_readonly("warnings", &Frame::warnings)
+      .def("__repr__",
+           [](const Frame& frame) {
+             const py::object technique = frame.metadata["parameters"]["technique"];
+             return "<vsil.Frame " + std::to_string(frame.image.shape(1)) + "x" +
+                    std::to_string(frame.image.shape(0)) + " " +
+                    std::string(py::str(technique)) + ">";
+           })
+      .def(
+          "_repr_png_",
+          [](const Frame& frame) {
+            // The image as PNG, for notebooks (IPython's display protocol).
+            const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast> rgba(
+                frame.image);
+            const cv::Mat view(int(rgba.shape(0)), int(rgba.shape(1)), CV_8UC4,
+                               const_cast<std::uint8_t*>(rgba.data()));
+            cv::Mat bgra;
+            cv::cvtColor(view, bgra, cv::COLOR_RGBA2BGRA);
+            std::vector<std::uint8_t> png;
+            cv::imencode(".png", bgra, png);
+            return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
+          },
+          "The image as PNG bytes (how Jupyter shows a Frame)");
 
-  py::class_<PythonRenderer>(m, "Renderer",
+  // The base of vsil.Renderer (vsil/__init__.py adds signatures and os.PathLike inputs).
+  py::class_<PythonRenderer>(m, "_Renderer",
                              "One GL context; keywords gl, gl_device as `vsil render`")
       .def(py::init<const py::kwargs&>())
+      .def("close", &PythonRenderer::close,
+           "Ends the GL context and frees the textures now (also at the end of a with block)")
+      .def_property_readonly("closed", &PythonRenderer::closed)
+      .def("__repr__",
+           [](const PythonRenderer& renderer) {
+             if (renderer.closed()) return std::string("<vsil.Renderer closed>");
+             const py::dict gl = renderer.glInfo();
+             return "<vsil.Renderer " + std::string(py::str(gl["backend"])) + ", " +
+                    std::string(py::str(gl["renderer"])) + ">";
+           })
+      .def("__enter__", [](const py::object& self) { return self; })
+      .def("__exit__", [](PythonRenderer& renderer, const py::args&) { renderer.close(); })
+      .def_property_readonly("gl", &PythonRenderer::glInfo,
+                             "The GL context: backend, platform, renderer, version, ...")
       .def("render", &PythonRenderer::render, py::arg("volume"),
            "Renders a Volume (or a path or gen: spec); keywords: every flag of `vsil render` "
            "by its name with _ for - (iso=40, width_near=4, view=(30, 20), size=(640, 480))")
       .def("upload", &PythonRenderer::upload, py::arg("volume"),
            "Uploads the volume again (after its samples changed in place)");
+
+  m.def("_keywords", &keywordTable, py::arg("function"),
+        "The keywords of render, load or Renderer, from the CLI's option tables: key, flag, "
+        "kind, help, group, default, choices, number_count");
+  for (const char* name : {"Volume", "Frame"}) m.attr(name).attr("__module__") = "vsil";
 
   m.def("broaden", &broaden, py::arg("lines"), py::kw_only(), py::arg("width") = py::none(),
         py::arg("width_near") = py::none(), py::arg("width_far") = py::none(),

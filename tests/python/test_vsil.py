@@ -1,9 +1,15 @@
 """The Python module against the command line, and on its own: round trips to the CLI's bytes,
 zero-copy wrapping, exceptions, a parameter sweep in one process, postfx on arrays.
 
-Run by ctest (tests/CMakeLists.txt) with PYTHONPATH=build/python and VSIL_BINARY set."""
+Run by ctest (tests/CMakeLists.txt) with PYTHONPATH=build/python and VSIL_BINARY set, and by
+scripts/test-python-package.sh against the package pip installed into a venv
+(VSIL_TEST_INSTALLED names it)."""
 
+import errno
+import inspect
+import io
 import os
+import pathlib
 import re
 import subprocess
 
@@ -29,6 +35,18 @@ def decode_depth(path):
     """render --depth-out: 0 = none, else 1 + round(d * 65534) (core/depth_image.h)."""
     raw = np.asarray(Image.open(path)).astype(np.float64)
     return np.where(raw == 0, np.nan, (raw - 1) / 65534)
+
+
+# ---- the package ----
+
+def test_the_package_is_the_one_asked_for_and_has_the_project_version():
+    # scripts/test-python-package.sh: the copy pip installed into that venv, not the build tree.
+    installed = os.environ.get("VSIL_TEST_INSTALLED")
+    if installed:
+        assert os.path.realpath(vsil.__file__).startswith(os.path.realpath(installed) + os.sep)
+    cmake = open(os.path.join(os.path.dirname(__file__), "..", "..", "CMakeLists.txt")).read()
+    assert re.search(r"project\(vsil VERSION ([0-9.]+)", cmake).group(1) == vsil.__version__
+    assert vsil.__version__ in run_cli("--version").stdout
 
 
 # ---- the CLI's bytes ----
@@ -98,12 +116,12 @@ def test_every_render_flag_has_its_keyword():
     renderer = vsil.Renderer()
     for flag in sorted(flags):
         keyword = flag.replace("-", "_")
-        # A value no flag accepts and a volume that cannot load: either way a ValueError, but
-        # never an unknown keyword.
-        with pytest.raises(ValueError) as error:
+        # A value no flag accepts and a volume that cannot load: a ValueError (a TypeError for
+        # a switch, which takes True or False), but never an unknown keyword.
+        with pytest.raises((ValueError, TypeError)) as error:
             renderer.render("gen:no-such-generator:8", **{keyword: "-1e999,q"})
         assert "unknown keyword" not in str(error.value), flag
-    with pytest.raises(ValueError, match="unknown keyword 'no_such_option'"):
+    with pytest.raises(TypeError, match="unknown keyword 'no_such_option'"):
         renderer.render("gen:sphere:8", no_such_option=1)
     # Flags render does not own in the module say where they belong instead of being ignored.
     with pytest.raises(ValueError, match=r"vsil.Renderer\(gl=...\)"):
@@ -180,15 +198,21 @@ def test_the_metadata_says_how_the_volume_was_held(renderer):
 # ---- errors ----
 
 def test_bad_input_raises_value_error_with_the_cli_message(tmp_path, renderer):
+    # A missing volume: FileNotFoundError (an OSError with errno and filename) holding the CLI's
+    # one-line message, from load and from render with a path alike.
     missing = str(tmp_path / "missing.nrrd")
-    with pytest.raises(ValueError, match="missing.nrrd"):
-        vsil.load(missing)
     cli = subprocess.run([VSIL, "render", missing, "--out", str(tmp_path / "x.png")],
                          capture_output=True, text=True)
     assert cli.returncode == 2
-    with pytest.raises(ValueError) as error:
-        vsil.load(missing)
-    assert cli.stderr.strip() == "vsil: " + str(error.value)
+    for call in (lambda: vsil.load(missing), lambda: renderer.render(missing, size=(8, 8))):
+        with pytest.raises(FileNotFoundError) as error:
+            call()
+        assert error.value.errno == errno.ENOENT and error.value.filename == missing
+        assert cli.stderr.strip() == "vsil: " + error.value.strerror
+    # A file that is there but bad stays a ValueError.
+    (tmp_path / "bad.nrrd").write_text("not a volume")
+    with pytest.raises(ValueError, match="bad.nrrd"):
+        vsil.load(tmp_path / "bad.nrrd")
 
     with pytest.raises(ValueError, match="--size"):
         renderer.render("gen:sphere:16", size="0x0")
@@ -273,3 +297,205 @@ def test_depth_law_from_render_to_measurement(renderer):
     one_pixel = (frame.state == 3).astype(np.uint8)
     rebroadened = vsil.broaden(one_pixel, width_near=7, width_far=2, depth=frame.depth)
     assert np.array_equal(rebroadened > 0, lines > 0)
+
+
+# ---- threads ----
+
+def _backends():
+    """The back ends this machine gives a context on (VSIL_TEST_ALL_GL_BACKENDS=1: both must)."""
+    found = []
+    for backend in ("osmesa", "egl"):
+        try:
+            with vsil.Renderer(gl=backend):
+                found.append(backend)
+        except RuntimeError as error:
+            if os.environ.get("VSIL_TEST_ALL_GL_BACKENDS") == "1":
+                raise AssertionError(f"gl={backend}: {error}")
+    return found
+
+
+def test_renders_from_many_threads_take_turns_on_both_back_ends():
+    """8 threads x 20 renders over one Renderer per back end and one per thread: every frame the
+    one a single thread renders (GL state is process-wide: without the module's lock this
+    crashed)."""
+    import threading
+
+    backends = _backends()
+    assert backends, "no GL back end"
+    volume = vsil.generate("spheres", 32)
+    options = [{"iso": iso, "size": (48, 40), "view": (15 * k, 10)}
+               for k, iso in enumerate((0.3, 0.5, 0.7, 0.4, 0.6))]
+    renderers = {backend: vsil.Renderer(gl=backend) for backend in backends}
+    expected = [renderers[backends[0]].render(volume, **o).image for o in options]
+    failures = []
+
+    def work(index):
+        try:
+            own = vsil.Renderer(gl=backends[index % len(backends)])
+            for i in range(20):
+                k = (index + i) % len(options)
+                # Shared renderers, this thread's own one, and a path read in the turn.
+                renderer = own if i % 3 == 0 else renderers[backends[i % len(backends)]]
+                source = "gen:spheres:32" if i % 4 == 1 else volume
+                image = renderer.render(source, **options[k]).image
+                if not np.array_equal(image, expected[k]):
+                    failures.append((index, i, renderer.gl["backend"]))
+            own.close()
+        except Exception as error:  # noqa: BLE001 - reported below with its thread
+            failures.append((index, repr(error)))
+
+    threads = [threading.Thread(target=work, args=(index,)) for index in range(8)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert failures == []
+    for renderer in renderers.values():
+        renderer.close()
+
+
+def test_a_renderer_keeps_its_back_end_and_says_so():
+    for backend in _backends():
+        with vsil.Renderer(gl=backend) as renderer:
+            assert renderer.gl["backend"] == backend
+            frame = renderer.render("gen:sphere:16", size=(16, 16))
+            assert frame.metadata["gl"]["backend"] == backend
+            # The back end is the Renderer's: switching is making another one.
+            with pytest.raises(ValueError, match=r"vsil.Renderer\(gl=...\)"):
+                renderer.render("gen:sphere:16", gl="osmesa" if backend == "egl" else "egl")
+        assert renderer.closed
+        with pytest.raises(ValueError, match="closed"):
+            renderer.render("gen:sphere:16")
+
+
+# ---- the API as Python users expect it ----
+
+def _technique_users(keyword):
+    """The techniques a technique option's help names: "[silhouette, rightangle] ..."."""
+    match = re.match(r"\[([a-z, ]+)\]", keyword["help"])
+    return match.group(1).split(", ") if match else None
+
+
+def test_the_signature_lists_every_keyword_with_a_default_that_renders_as_none_given(renderer):
+    table = vsil._vsil._keywords("render")
+    signature = inspect.signature(vsil.Renderer.render)
+    keywords = {name: p for name, p in signature.parameters.items()
+                if p.kind is inspect.Parameter.KEYWORD_ONLY}
+    assert list(keywords) == [k["key"] for k in table]
+    assert {"iso", "width_near", "technique", "size", "crop", "ra_exponent"} <= set(keywords)
+    assert keywords["ra_exponent"].default == 8.0 and keywords["size"].default == (512, 512)
+    assert keywords["technique"].default == "silhouette" and keywords["iso"].default is None
+    assert "Literal['fast', 'paper', 'tiles']" in str(keywords["pipeline"].annotation)
+    import pydoc  # what help() prints
+    text = pydoc.render_doc(vsil.Renderer.render, renderer=pydoc.plaintext)
+    assert "ra_exponent: 'Number' = 8.0" in text and "ra_exponent=8.0: [rightangle]" in text
+    assert [p.name for p in inspect.signature(vsil.Renderer).parameters.values()] == [
+        "gl", "gl_device"]
+    assert "crop" in inspect.signature(vsil.load).parameters
+
+    # Each default, given explicitly, renders what giving nothing renders: per technique, its own
+    # options and the shared ones (the volume's come from the file, so not here).
+    volume = vsil.generate("spheres", 32)
+    shared = {k["key"]: k["default"] for k in table
+              if k["default"] is not None and _technique_users(k) is None
+              and k["group"] != "Raw volume layout (headerless files)"}
+    for technique in table[0]["choices"]:
+        given = dict(shared, technique=technique, size=(40, 32))
+        # Less semantic's flatness: the table declares 0, but not giving it lets the rules
+        # decide per sample (semantic_scene.cpp reads options.given("flatness")): the table's
+        # default says what flatness=0 does, not what leaving it out does.
+        given.update({k["key"]: k["default"] for k in table if k["default"] is not None
+                      and technique in (_technique_users(k) or []) and k["key"] != "flatness"})
+        plain = renderer.render(volume, technique=technique, size=(40, 32))
+        explicit = renderer.render(volume, **given)
+        assert np.array_equal(plain.image, explicit.image), (technique, given)
+
+
+def test_the_stub_is_shipped_and_lists_the_keywords():
+    import ast
+
+    stub = pathlib.Path(vsil.__file__).with_name("__init__.pyi")
+    assert pathlib.Path(vsil.__file__).with_name("py.typed").exists()
+    tree = ast.parse(stub.read_text())
+    classes = {node.name: node for node in tree.body if isinstance(node, ast.ClassDef)}
+    assert {"Volume", "Frame", "Renderer"} <= set(classes)
+    render = next(node for node in classes["Renderer"].body
+                  if isinstance(node, ast.FunctionDef) and node.name == "render")
+    assert [a.arg for a in render.args.kwonlyargs] == [k["key"] for k in vsil._vsil._keywords("render")]
+    assert ast.unparse(render.returns) == "Frame"
+    functions = {node.name for node in tree.body if isinstance(node, ast.FunctionDef)}
+    assert {"load", "generate", "broaden", "measure_width"} <= functions
+
+
+def test_wrong_types_are_type_errors_naming_the_keyword(renderer):
+    for keywords, message in [({"iso": [1, 2]}, "iso takes a number, not list"),
+                              ({"ortho": 1}, "ortho takes True or False, not int"),
+                              ({"size": object()}, "size takes"),
+                              ({"zoom": True}, "zoom takes a value, not a bool"),
+                              ({"no_such": 1}, "unknown keyword 'no_such'")]:
+        with pytest.raises(TypeError, match=re.escape(message)):
+            renderer.render("gen:sphere:8", **keywords)
+    with pytest.raises(TypeError, match="must be a vsil.Volume, a path or a gen: spec, not int"):
+        renderer.render(42)
+    with pytest.raises(TypeError, match="stride takes"):
+        vsil.load("gen:sphere:8", stride=[2])
+    # numpy numbers are numbers, and a value out of range stays a ValueError.
+    a = renderer.render("gen:sphere:16", iso=np.float32(0.5), size=(np.int64(24), 20))
+    b = renderer.render("gen:sphere:16", iso=0.5, size=(24, 20))
+    assert np.array_equal(a.image, b.image)
+    with pytest.raises(ValueError, match="--zoom"):
+        renderer.render("gen:sphere:8", zoom=-1)
+
+
+def test_a_light_list_is_the_flag_given_once_per_item(tmp_path, renderer):
+    lights = [(30, 70), (-40, 10)]
+    options = {"technique": "illustrate", "effects": "tone", "size": (64, 48)}
+    frame = renderer.render("gen:spheres:32", light=lights, **options)
+    run_cli("render", "gen:spheres:32", "--technique", "illustrate", "--effects", "tone",
+            "--size", "64x48", "--light", "30,70", "--light", "-40,10",
+            "--out", str(tmp_path / "cli.png"))
+    assert np.array_equal(frame.image, np.asarray(Image.open(tmp_path / "cli.png").convert("RGBA")))
+    one = renderer.render("gen:spheres:32", light=lights[:1], **options)
+    assert not np.array_equal(one.image, frame.image)
+
+
+def test_paths_may_be_path_like(tmp_path, renderer):
+    array = np.zeros((6, 7, 8), np.uint8)
+    array[2:4, 2:5, 3:6] = 200
+    array.tofile(tmp_path / "v.raw")
+    path = tmp_path / "v.raw"  # a pathlib.Path: os.PathLike
+    volume = vsil.load(path, dims="8x7x6", type="uint8")
+    assert np.array_equal(volume.data, array)
+    by_path = renderer.render(path, dims=(8, 7, 6), type="uint8", iso=100, size=(32, 32))
+    assert np.array_equal(by_path.image, renderer.render(volume, iso=100, size=(32, 32)).image)
+
+
+def test_reprs_and_png_for_notebooks(renderer):
+    assert re.fullmatch(r"<vsil.Renderer (osmesa|egl), .+>", repr(renderer))
+    frame = renderer.render("gen:sphere:16", size=(48, 40))
+    assert repr(frame) == "<vsil.Frame 48x40 silhouette>"
+    assert repr(vsil.generate("sphere", 16)) == "<vsil.Volume sphere 16x16x16 float32>"
+    png = frame._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    assert np.array_equal(np.asarray(Image.open(io.BytesIO(png)).convert("RGBA")), frame.image)
+    closed = vsil.Renderer()
+    closed.close()
+    assert repr(closed) == "<vsil.Renderer closed>"
+
+
+def test_info_is_what_the_command_prints(tmp_path):
+    import json
+
+    for spec in ["gen:spheres:24", "gen:marschner-lobb:20"]:
+        cli = json.loads(run_cli("info", spec, "--json").stdout)
+        assert vsil.info(spec) == cli
+        assert vsil.info(vsil.load(spec)) == cli
+    array = (np.arange(4 * 5 * 6) % 7).astype(np.uint16).reshape(4, 5, 6)
+    array.tofile(tmp_path / "v.raw")
+    cli = json.loads(run_cli("info", str(tmp_path / "v.raw"), "--dims", "6x5x4", "--type",
+                             "uint16", "--crop", "1:5,:,:", "--json").stdout)
+    assert vsil.info(tmp_path / "v.raw", dims=(6, 5, 4), type="uint16", crop="1:5,:,:") == cli
+    assert cli["dims"] == [4, 5, 4] and cli["max"] == 6
+    with pytest.raises(FileNotFoundError):
+        vsil.info(tmp_path / "missing.vti")
+    assert "crop" in inspect.signature(vsil.info).parameters

@@ -1,0 +1,123 @@
+"""vsil: volume illustration (exact silhouettes, Ebert-Rheingans, fuzzy-rule semantics,
+depth-enhanced MIP) rendered offscreen with OpenGL, in one process, on numpy arrays.
+
+    import vsil
+    volume = vsil.load("bonsai.vti")            # or vsil.Volume(ndarray), vsil.generate(...)
+    with vsil.Renderer() as renderer:           # one GL context, reused by every render
+        frame = renderer.render(volume, iso=40, width_near=4, width_far=1)
+    frame.image, frame.state, frame.depth, frame.metadata
+
+The keywords of Renderer, Renderer.render and load are the flags of `vsil render` with _ for -;
+their signatures, help and the stub (__init__.pyi) are made from the CLI's option tables
+(vsil._vsil._keywords), so they list what the command line takes, with its defaults.
+"""
+import inspect
+import os
+
+from . import _vsil
+from ._vsil import Frame, Volume, __version__, broaden, measure_width
+
+__all__ = ["Frame", "Renderer", "Volume", "__version__", "broaden", "generate", "info", "load",
+           "measure_width"]
+
+# The keyword kinds' types, by the names the stub defines (__init__.pyi: Number, Text, Texts).
+_ANNOTATIONS = {"switch": "bool", "number": "Number", "integer": "int", "text": "Text",
+                "list": "Texts"}
+
+
+def _annotation(keyword):
+    """The keyword's type as the stub writes it (a string: nothing is imported for it)."""
+    if keyword["kind"] == "choice":
+        annotation = "Literal[" + ", ".join(repr(c) for c in keyword["choices"]) + "]"
+    else:
+        annotation = _ANNOTATIONS[keyword["kind"]]
+    return annotation if keyword["default"] is not None else annotation + " | None"
+
+
+def _parameters(function):
+    return [inspect.Parameter(k["key"], inspect.Parameter.KEYWORD_ONLY, default=k["default"],
+                              annotation=_annotation(k))
+            for k in _vsil._keywords(function)]
+
+
+def _keyword_help(function):
+    """One line per keyword: name = default, then the CLI's help for the flag."""
+    lines = []
+    group = None
+    for k in _vsil._keywords(function):
+        if k["group"] != group:
+            group = k["group"]
+            lines += ["", f"{group}:"]
+        choices = " | ".join(k["choices"])
+        choices = f" ({choices})" if choices and choices not in k["help"] else ""
+        lines.append(f"    {k['key']}={k['default']!r}{choices}: {k['help']}")
+    return "\n".join(lines)
+
+
+def _fspath(value):
+    return os.fspath(value) if isinstance(value, os.PathLike) else value
+
+
+def _signed(function, parameters, doc):
+    function.__signature__ = inspect.Signature(parameters)
+    function.__doc__ = doc
+    return function
+
+
+class Renderer(_vsil._Renderer):
+    """One GL context (OSMesa or EGL, as `vsil render --gl`), reused by every render; any thread
+    may use it (GL work takes turns under one lock). A context manager: `with vsil.Renderer() as
+    r:` ends the context at the end of the block (also r.close())."""
+
+    def __init__(self, **options):
+        super().__init__(**options)
+
+    def render(self, volume, **options):
+        return super().render(_fspath(volume), **options)
+
+    def upload(self, volume):
+        """Uploads the volume again (after its samples changed in place)."""
+        return super().upload(volume)
+
+
+_SELF = inspect.Parameter("self", inspect.Parameter.POSITIONAL_OR_KEYWORD)
+_signed(Renderer.__init__, [_SELF] + _parameters("Renderer"),
+        "gl: the back end (default $VSIL_GL, else auto); gl_device: the EGL device.\n"
+        + _keyword_help("Renderer"))
+_signed(Renderer.render,
+        [_SELF, inspect.Parameter("volume", inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                                  annotation="Volume | str | os.PathLike[str]")]
+        + _parameters("render"),
+        "Renders a Volume (or a path or gen: spec, read at each call with the volume keywords)\n"
+        "into a Frame: the pixels `vsil render` writes with the same flags, byte for byte.\n"
+        "A keyword left at None takes the command line's default (the help says which);\n"
+        "sequences join as the flags write them: size=(640, 480), view=(30, 20).\n"
+        + _keyword_help("render"))
+
+
+def load(path, **options):
+    return _vsil.load(_fspath(path), **options)
+
+
+_signed(load, [inspect.Parameter("path", inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                                 annotation="str | os.PathLike[str]")] + _parameters("load"),
+        "Reads a volume file (or generates a gen:NAME[:N] volume) as `vsil render` reads INPUT.\n"
+        "FileNotFoundError for a path that is not there, ValueError for a bad file.\n"
+        + _keyword_help("load"))
+
+
+def info(volume, **options):
+    return _vsil.info(_fspath(volume), **options)
+
+
+_signed(info, [inspect.Parameter("volume", inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                                 annotation="Volume | str | os.PathLike[str]")]
+        + _parameters("load"),
+        "What `vsil info VOLUME --json` prints, as a dict (dims, type, spacing, min, max, mean,\n"
+        "stddev, default_iso, percentiles, histogram, ...): for a file or gen: spec read with\n"
+        "the volume keywords (as load), or for a Volume.\n" + _keyword_help("load"))
+
+
+def generate(name, size=128):
+    """A procedural volume, as INPUT gen:NAME:SIZE."""
+    return _vsil.generate(name, size)
