@@ -17,6 +17,7 @@
 #include "cli/cli_volume_options.h"
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/transfer_function.h"
 #include "io/volume_loader.h"
 
 namespace vsil::cli {
@@ -110,13 +111,17 @@ nlohmann::ordered_json toJson(const Volume& volume, const Summary& s) {
   json["max"] = s.range.max;
   json["mean"] = s.mean;
   json["stddev"] = s.stddev;
-  json["default_iso"] = defaultIso(volume);
+  const DerivedDefaults derived = derivedDefaults(volume);
+  json["default_iso"] = derived.iso;
+  json["default_window"] = {derived.iso, derived.windowHigh};
+  json["suggested_tf"] = suggestedTransferFunction(derived);
   json["percentiles"] = percentiles;
   json["histogram"] = {{"min", s.range.min}, {"max", s.range.max}, {"counts", s.histogram}};
   return json;
 }
 
 std::string toText(const Volume& volume, const Summary& s) {
+  const DerivedDefaults derived = derivedDefaults(volume);
   std::ostringstream out;
   out << "source    " << volume.source << "\n";
   if (!volume.format.empty()) out << "format    " << volume.format << "\n";
@@ -147,7 +152,11 @@ std::string toText(const Volume& volume, const Summary& s) {
       << "\n"
       << "range     " << s.range.min << " .. " << s.range.max << "\n"
       << "mean      " << s.mean << "  (stddev " << s.stddev << ")\n"
-      << "iso       " << defaultIso(volume) << "  (the default of --iso: Otsu's threshold)\n"
+      << "iso       " << derived.iso << "  (the default of --iso: Otsu's threshold)\n"
+      << "window    " << derived.iso << " .. " << derived.windowHigh
+      << "  (the default --window of mip, lmip, demip)\n"
+      << "suggested: --tf " << suggestedTransferFunction(derived)
+      << (inHounsfieldUnits(derived) ? "  (values in HU)" : "  (values not in HU)") << "\n"
       << "percentiles";
   for (std::size_t i = 0; i < std::size(kPercentiles); ++i) {
     out << "  p" << kPercentiles[i] << " " << s.percentiles[i];
