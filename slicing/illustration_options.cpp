@@ -78,12 +78,11 @@ OptionSpec styleOption() {
 
 OptionSpec transferFunctionOption() {
   return OptionSpec::text(
-             "tf",
-             "transfer function: a preset (" + joinedNames(transferFunctionPresetNames()) +
-                 "; README 'Transfer-function presets') or a FILE.json list of {\"value\" "
-                 "(data units), \"color\", \"opacity\"} points, linearly interpolated "
-                 "(illustrate: instead of the power opacity k_os*v^k_oe over --color; mip, "
-                 "lmip, demip: instead of --window's grey ramp)")
+             "tf", "transfer function: a preset (" + joinedNames(transferFunctionPresetNames()) +
+                       "; README 'Transfer-function presets') or a FILE.json list of {\"value\" "
+                       "(data units), \"color\", \"opacity\"} points, linearly interpolated "
+                       "(illustrate: instead of the power opacity k_os*v^k_oe over --color; mip, "
+                       "lmip, demip: instead of --window's grey ramp)")
       .validatedBy([](const OptionValue& value) {
         if (!textOf(value).empty()) checkTransferFunctionOption(textOf(value));
       });

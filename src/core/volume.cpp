@@ -213,8 +213,8 @@ float otsuThreshold(const LevelHistogram& h) {
 // maximum where none lies above it.
 float quantileAbove(const LevelHistogram& h, float low, double fraction) {
   if (!(h.span > 0)) return h.range.max;
-  const int first = std::clamp(int(std::floor((double(low) - h.range.min) * kLevels / h.span)) + 1,
-                               0, kLevels);
+  const int first =
+      std::clamp(int(std::floor((double(low) - h.range.min) * kLevels / h.span)) + 1, 0, kLevels);
   std::size_t above = 0;
   for (int level = first; level < kLevels; ++level) above += h.counts[level];
   if (above == 0) return h.range.max;

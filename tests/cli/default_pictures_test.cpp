@@ -28,11 +28,12 @@ constexpr const char* kSize = " --size 128x128";
 cv::Mat1b objectMask(const std::string& input, int grow) {
   const auto dir = test::scratchDir();
   const std::string out = (dir / "s.png").string(), state = (dir / "state.png").string();
-  const auto run = test::runVsil("render " + input + " --technique silhouette" + kSize +
-                                 " --out " + out + " --state-out " + state);
+  const auto run = test::runVsil("render " + input + " --technique silhouette" + kSize + " --out " +
+                                 out + " --state-out " + state);
   EXPECT_EQ(run.exitCode, 0) << run.err;
   cv::Mat1b mask = readImage(state) > 0;
-  cv::dilate(mask, mask, cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * grow + 1, 2 * grow + 1}));
+  cv::dilate(mask, mask,
+             cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * grow + 1, 2 * grow + 1}));
   return mask;
 }
 
@@ -212,6 +213,15 @@ TEST(DefaultPictures, InfoSuggestsAPreset) {
   run = test::runVsil("info " + nrrd.string() + " --json");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_EQ(nlohmann::json::parse(run.out)["suggested_tf"], "ct-bone");
+  // ct-bone renders on it (the HU values as they are; the mapping itself: core tests).
+  const std::string meta = (dir / "meta.json").string();
+  run = test::runVsil("render " + nrrd.string() +
+                      " --technique mip --tf ct-bone --size 32x32 --out " +
+                      (dir / "ct.png").string() + " --meta-out " + meta);
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto pixels = nlohmann::json::parse(test::readFileBytes(meta))["pixels"];
+  EXPECT_GT(pixels["covered"].get<int>(), 100);
+  EXPECT_LT(pixels["covered"].get<int>(), 32 * 32);
   run = test::runVsil("info gen:sphere:16 --json");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_EQ(nlohmann::json::parse(run.out)["suggested_tf"], "ramp");

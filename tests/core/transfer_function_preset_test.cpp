@@ -17,8 +17,8 @@ namespace vsil {
 namespace {
 
 // 8-bit CT like engine or bonsai: air at 0, the object above Otsu's threshold.
-constexpr DerivedDefaults kEightBit{.iso = 78.0, .valueRangeWidth = 255.0, .valueMin = 0.0,
-                                    .windowHigh = 230.0};
+constexpr DerivedDefaults kEightBit{
+    .iso = 78.0, .valueRangeWidth = 255.0, .valueMin = 0.0, .windowHigh = 230.0};
 // A CT in HU (a DICOM series with its rescale).
 constexpr DerivedDefaults kHounsfield{
     .iso = -420.0, .valueRangeWidth = 4095.0, .valueMin = -1024.0, .windowHigh = 1800.0};
@@ -80,10 +80,9 @@ TEST(TransferFunctionPresets, RampSpansOtsusThresholdToTheWindowsTop) {
 }
 
 TEST(TransferFunctionPresets, AnUnknownNameIsOneLineListingThePresets) {
-  for (const auto& check : {std::function<void()>([] { checkTransferFunctionOption("bone"); }),
-                            std::function<void()>([] {
-                              transferFunctionOption("bone", kEightBit);
-                            })}) {
+  for (const auto& check :
+       {std::function<void()>([] { checkTransferFunctionOption("bone"); }),
+        std::function<void()>([] { transferFunctionOption("bone", kEightBit); })}) {
     try {
       check();
       ADD_FAILURE() << "no error";
