@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "core/transfer_function.h"
 
 namespace vsil {
 
@@ -10,6 +11,12 @@ namespace {
 
 const std::string& textOf(const OptionValue& value) {
   return std::get<std::string>(value);
+}
+
+std::string joinedNames(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
 }
 
 bool declares(const std::vector<OptionSpec>& declared, const std::string& name) {
@@ -70,11 +77,15 @@ OptionSpec styleOption() {
 }
 
 OptionSpec transferFunctionOption() {
-  return OptionSpec::text("tf",
-                          "transfer function file: a JSON list of {\"value\" (data units), "
-                          "\"color\", \"opacity\"} points, linearly interpolated (illustrate: "
-                          "instead of the power opacity k_os*v^k_oe over --color; mip, lmip, "
-                          "demip: instead of --window's grey ramp)");
+  return OptionSpec::text(
+             "tf", "transfer function: a preset (" + joinedNames(transferFunctionPresetNames()) +
+                       "; README 'Transfer-function presets') or a FILE.json list of {\"value\" "
+                       "(data units), \"color\", \"opacity\"} points, linearly interpolated "
+                       "(illustrate: instead of the power opacity k_os*v^k_oe over --color; mip, "
+                       "lmip, demip: instead of --window's grey ramp)")
+      .validatedBy([](const OptionValue& value) {
+        if (!textOf(value).empty()) checkTransferFunctionOption(textOf(value));
+      });
 }
 
 OptionSpec colorOption() {
@@ -107,7 +118,7 @@ IllustrationStyle styleFromOptions(const std::vector<OptionSpec>& declared,
     }
   }
   if (given("tf") && !options.text("tf").empty()) {
-    style.transferFunction = loadTransferFunction(options.text("tf"));
+    style.transferFunction = transferFunctionOption(options.text("tf"), options.derived());
   }
   if (given("color") && !options.text("color").empty()) {
     style.color = parseColor(options.text("color"), "--color");
@@ -129,8 +140,10 @@ Illustration illustrationFromOptions(const std::vector<OptionSpec>& declared,
   const bool styled =
       declares(declared, "style") && options.given("style") && !options.text("style").empty();
   const IllustrationStyle base = styled ? loadStyle(options.text("style")) : defaults;
-  return resolveIllustration(base, styleFromOptions(declared, options),
-                             styled ? options.text("style") : "");
+  Illustration illustration = resolveIllustration(base, styleFromOptions(declared, options),
+                                                  styled ? options.text("style") : "");
+  illustration.powerOpacityFrom = float(options.derived().iso);
+  return illustration;
 }
 
 }  // namespace vsil

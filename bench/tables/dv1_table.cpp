@@ -62,7 +62,7 @@ const std::vector<Dv1Column>& dv1Columns() {
       {"demip", "DEMIP", "demip", {}},
       {"demip_sphere", "DEMIP+sphere", "demip", {{"sphere-weight", kSphereWeight}}},
       // The paper's DVR column: the plain lit composite, front to back (illustrate, no effects,
-      // its power opacity over the value range).
+      // its power opacity above Otsu's threshold).
       {"dvr", "DVR", "illustrate", {{"effects", std::string("none")}}},
   };
   return columns;
@@ -263,9 +263,10 @@ TableResult runDv1Table(const BenchOptions& options, Progress& progress) {
       method, sizeof method,
       "method: %d warm-up + %d timed frames per column, MIP/DEMIP/DEMIP+sphere/DVR "
       "taking turns, orbit from azimuth %.0f° in steps of %.1f° at elevation %.0f°, 1 slice per "
-      "voxel, window = the value range, DEMIP defaults (d_w 0.15, eps 5 %% of the "
-      "range, exact depth), sphere weight %.1f (red-blue), DVR = illustrate with no "
-      "effects; frame time = Renderer::render (every sweep + glFinish + readback of the "
+      "voxel, the default window (Otsu's threshold to the 99.5th percentile above it), DEMIP "
+      "defaults (d_w 0.15, eps 5 %% of the range, exact depth), sphere weight %.1f "
+      "(red-blue), DVR = illustrate with no effects (power opacity above Otsu's threshold); "
+      "frame time = Renderer::render (every sweep + glFinish + readback of the "
       "colour, no depth; the gradient texture DVR shades with is built once per volume, on "
       "its first frame, a warm-up frame with --warmup >= 1), fps = 1000 / median; cpu "
       "DEMIP/MIP: the same ratio in the process's CPU time per frame, steadier on a shared "

@@ -18,12 +18,14 @@
 #include "cli/commands.h"
 #include "cli/volume_summary.h"
 #include "core/error.h"
+#include "core/transfer_function.h"
 #include "io/volume_loader.h"
 
 namespace vsil::cli {
 namespace {
 
 std::string toText(const Volume& volume, const Summary& s) {
+  const DerivedDefaults derived = derivedDefaults(volume);
   std::ostringstream out;
   out << "source    " << volume.source << "\n";
   if (!volume.format.empty()) out << "format    " << volume.format << "\n";
@@ -54,7 +56,11 @@ std::string toText(const Volume& volume, const Summary& s) {
       << "\n"
       << "range     " << s.range.min << " .. " << s.range.max << "\n"
       << "mean      " << s.mean << "  (stddev " << s.stddev << ")\n"
-      << "iso       " << defaultIso(volume) << "  (the default of --iso: Otsu's threshold)\n"
+      << "iso       " << derived.iso << "  (the default of --iso: Otsu's threshold)\n"
+      << "window    " << derived.iso << " .. " << derived.windowHigh
+      << "  (the default --window of mip, lmip, demip)\n"
+      << "suggested: --tf " << suggestedTransferFunction(derived)
+      << (inHounsfieldUnits(derived) ? "  (values in HU)" : "  (values not in HU)") << "\n"
       << "percentiles";
   for (std::size_t i = 0; i < std::size(kPercentiles); ++i) {
     out << "  p" << kPercentiles[i] << " " << s.percentiles[i];

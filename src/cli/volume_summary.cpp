@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "cli/cli_volume_options.h"
+#include "core/transfer_function.h"
 
 namespace vsil::cli {
 
@@ -89,7 +90,10 @@ nlohmann::ordered_json summaryJson(const Volume& volume, const Summary& s) {
   json["max"] = s.range.max;
   json["mean"] = s.mean;
   json["stddev"] = s.stddev;
-  json["default_iso"] = defaultIso(volume);
+  const DerivedDefaults derived = derivedDefaults(volume);
+  json["default_iso"] = derived.iso;
+  json["default_window"] = {derived.iso, derived.windowHigh};
+  json["suggested_tf"] = suggestedTransferFunction(derived);
   json["percentiles"] = percentiles;
   json["histogram"] = {{"min", s.range.min}, {"max", s.range.max}, {"counts", s.histogram}};
   return json;

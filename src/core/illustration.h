@@ -136,6 +136,12 @@ struct Illustration {
   std::optional<Rgba> background;  // the style's, if it sets one (--background wins)
   std::vector<Light> lights{Light{}};
   std::string style;  // the preset or file it started from ("" for none)
+  // Without a transfer function, where the power opacity starts: v = (value − this) / (max −
+  // this) clamped to [0, 1], so values at or below it are transparent. Otsu's threshold of the
+  // volume (DerivedDefaults::iso, the default --iso), so that CT air and noise do not become a
+  // fog box (illustration_options.cpp illustrationFromOptions); the paper leaves the transfer
+  // function to the user.
+  float powerOpacityFrom = 0.0f;
 
   double operator[](std::string_view name) const;
   // For --meta-out: effects, every parameter, colours, lights, the transfer function.

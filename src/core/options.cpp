@@ -278,7 +278,7 @@ void checkOptions(const std::vector<OptionSpec>& specs, const OptionValues& valu
 
 OptionReader::OptionReader(const std::vector<OptionSpec>& specs, const OptionValues& values,
                            DerivedDefaults derived)
-    : specs_(specs) {
+    : specs_(specs), derived_(derived) {
   for (const auto& spec : specs) {
     const auto given = values.find(spec.name);
     if (given != values.end()) {

@@ -101,6 +101,10 @@ void checkOptions(const std::vector<OptionSpec>& specs, const OptionValues& valu
 struct DerivedDefaults {
   double iso = 0.5;              // the volume's default iso value (core/volume.h defaultIso)
   double valueRangeWidth = 1.0;  // max − min of the volume's samples
+  double valueMin = 0.0;         // min of the volume's samples
+  // The high end of the default grey window of the MIP family, whose low end is `iso`
+  // (core/volume.h derivedDefaults).
+  double windowHigh = 1.0;
 };
 
 // A technique's options resolved: the given values, else the declared or derived defaults.
@@ -115,6 +119,9 @@ class OptionReader {
   const std::string& text(std::string_view name) const;  // Choice or Text
   const std::vector<std::string>& list(std::string_view name) const;
   bool given(std::string_view name) const;
+  // The facts the derived defaults came from (for defaults no single option holds: the MIP
+  // family's window).
+  const DerivedDefaults& derived() const { return derived_; }
   // Every declared option with the value used, by key(); for the metadata.
   nlohmann::json toJson() const;
 
@@ -124,6 +131,7 @@ class OptionReader {
   std::vector<OptionSpec> specs_;
   OptionValues resolved_;
   std::vector<std::string> given_;
+  DerivedDefaults derived_;
 };
 
 }  // namespace vsil

@@ -11,6 +11,10 @@
 
 namespace vsil {
 
+// Generated from src/core/tf_presets/*.json (src/CMakeLists.txt).
+std::string_view embeddedTransferFunctionSource(std::string_view path);
+std::vector<std::string_view> embeddedTransferFunctionPaths();
+
 glm::dvec4 TransferFunction::at(double value) const {
   if (points.empty()) return glm::dvec4(0.0);
   const auto rgbaOf = [](const TransferPoint& p) { return glm::dvec4(p.color, p.opacity); };
@@ -94,6 +98,78 @@ TransferFunction parseTransferFunctionText(std::string_view text, const std::str
 
 TransferFunction loadTransferFunction(const std::string& path) {
   return parseTransferFunction(readJsonFile(path), path);
+}
+
+bool inHounsfieldUnits(const DerivedDefaults& volume) {
+  return volume.valueMin < -500.0;
+}
+
+std::vector<std::string> transferFunctionPresetNames() {
+  std::vector<std::string> names;
+  for (std::string_view path : embeddedTransferFunctionPaths()) {
+    if (path.ends_with(".json")) names.emplace_back(path.substr(0, path.size() - 5));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+bool isTransferFunctionFile(std::string_view text) {
+  return text.ends_with(".json") || text.find('/') != std::string_view::npos;
+}
+
+namespace {
+
+void checkPresetName(const std::string& name) {
+  const auto names = transferFunctionPresetNames();
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    throwInputError("--tf", "unknown preset " + jsonSnippet(nlohmann::json(name)) +
+                                " (presets: " + list + "; or a .json file)");
+  }
+}
+
+}  // namespace
+
+TransferFunction transferFunctionPreset(const std::string& name, const DerivedDefaults& volume) {
+  checkPresetName(name);
+  const std::string source = "preset " + name;
+  const nlohmann::json json = parseJsonText(embeddedTransferFunctionSource(name + ".json"), source);
+  TransferFunction tf = parseTransferFunction(json.at("points"), source);
+  const std::string units = json.at("units").get<std::string>();
+  // value = a + b·(preset value)
+  const double low = volume.iso, high = volume.windowHigh;
+  double a = 0.0, b = 1.0;
+  if (units == "window") {
+    a = low, b = high - low;
+  } else if (units == "hu") {
+    if (!inHounsfieldUnits(volume)) {
+      b = (high - low) / (kHounsfieldAtWindowTop - kHounsfieldAtOtsu);
+      a = low - kHounsfieldAtOtsu * b;
+    }
+  } else {
+    throw std::logic_error(source + ": units must be \"hu\" or \"window\"");
+  }
+  for (TransferPoint& point : tf.points) point.value = a + b * point.value;
+  return tf;
+}
+
+TransferFunction transferFunctionOption(const std::string& nameOrFile,
+                                        const DerivedDefaults& volume) {
+  if (isTransferFunctionFile(nameOrFile)) return loadTransferFunction(nameOrFile);
+  return transferFunctionPreset(nameOrFile, volume);
+}
+
+void checkTransferFunctionOption(const std::string& nameOrFile) {
+  if (isTransferFunctionFile(nameOrFile)) {
+    loadTransferFunction(nameOrFile);  // InputError naming the file
+  } else {
+    checkPresetName(nameOrFile);
+  }
+}
+
+std::string suggestedTransferFunction(const DerivedDefaults& volume) {
+  return inHounsfieldUnits(volume) ? "ct-bone" : "ramp";
 }
 
 }  // namespace vsil

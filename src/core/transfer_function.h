@@ -21,6 +21,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json_fwd.hpp>
 
+#include "core/options.h"
 #include "core/volume.h"
 
 namespace vsil {
@@ -55,5 +56,35 @@ TransferFunction parseTransferFunction(const nlohmann::json& json, const std::st
 TransferFunction parseTransferFunctionText(std::string_view text, const std::string& source);
 // Reads and parses a file (at most 1 MiB).
 TransferFunction loadTransferFunction(const std::string& path);
+
+// Presets by name (`--tf ct-bone`), in the spirit of 3D Slicer's volume-rendering presets, one
+// JSON file each in src/core/tf_presets/ embedded at build time:
+//   {"description": "...", "units": "hu" | "window", "points": [the list above]}
+// Their values become data values for a volume (its derived defaults, core/options.h):
+//  - "hu": Hounsfield units. Data in HU (the value range reaches below −500: a CT with its
+//    rescale) take them as they are. Other data (8-bit CT such as engine or bonsai, whose
+//    values are no HU) map HU affinely onto the default window, −500 HU (between air and fat,
+//    where a CT's threshold between air and body lies) at Otsu's threshold and +3000 HU (dense
+//    bone, metal) at the window's top (core/volume.h derivedDefaults), so the preset's materials
+//    keep their order and lie above the air and noise.
+//  - "window": 0 at Otsu's threshold, 1 at the top of the default window (mr-default, ramp).
+inline constexpr double kHounsfieldAtOtsu = -500.0;
+inline constexpr double kHounsfieldAtWindowTop = 3000.0;
+// Whether a volume's values read as Hounsfield units.
+bool inHounsfieldUnits(const DerivedDefaults& volume);
+std::vector<std::string> transferFunctionPresetNames();  // sorted
+// Whether `text` names a file (ends in .json or holds a '/') rather than a preset.
+bool isTransferFunctionFile(std::string_view text);
+// A preset's data values for `volume`; InputError "--tf: unknown preset 'x' (presets: ...; or a
+// .json file)" for a name that is none.
+TransferFunction transferFunctionPreset(const std::string& name, const DerivedDefaults& volume);
+// What --tf NAME|FILE gives for `volume`: the preset, or the file read.
+TransferFunction transferFunctionOption(const std::string& nameOrFile,
+                                        const DerivedDefaults& volume);
+// Checks --tf before any volume is read: the file parses, or the preset exists.
+void checkTransferFunctionOption(const std::string& nameOrFile);
+// The preset `vsil info` suggests for a volume: ct-bone for data in HU, ramp otherwise (an MR
+// cannot be told from its values: mr-default is the user's choice).
+std::string suggestedTransferFunction(const DerivedDefaults& volume);
 
 }  // namespace vsil

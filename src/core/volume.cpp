@@ -161,40 +161,85 @@ VolumeSubset planVolume(const std::string& where, glm::ivec3 fileDims, SampleTyp
   return subset;
 }
 
-float defaultIso(const Volume& volume) {
-  const ValueRange range = valueRange(volume);
-  const double span = double(range.max) - double(range.min);
-  if (!(span > 0)) return range.min;
-  // The samples quantized to 256 levels of the value range: every one up to 2^24, else a
-  // regular subsample of about that many (a second at 1024³ would be too long to wait for).
-  constexpr int kLevels = 256;
+namespace {
+
+constexpr int kLevels = 256;
+
+// The samples quantized to 256 levels of the value range: every one up to 2^24, else a regular
+// subsample of about that many (a second at 1024³ would be too long to wait for).
+struct LevelHistogram {
+  ValueRange range;
+  double span = 0;  // range.max − range.min; the levels are span / 256 wide
+  cv::Mat1b levels;
+  std::array<std::size_t, kLevels> counts{};
+  std::size_t total = 0;
+  float valueAt(double level) const { return float(double(range.min) + level * span / kLevels); }
+};
+
+LevelHistogram levelHistogram(const Volume& volume) {
+  LevelHistogram h;
+  h.range = valueRange(volume);
+  h.span = double(h.range.max) - double(h.range.min);
+  if (!(h.span > 0)) return h;
   const std::size_t count = volume.sampleCount();
   const std::size_t step = std::max<std::size_t>(1, count >> 24);
-  cv::Mat1b levels(1, int((count + step - 1) / step));
-  std::array<std::size_t, kLevels> histogram{};
+  h.levels.create(1, int((count + step - 1) / step));
   volume.visit([&](auto samples) {
-    const double scale = kLevels / span;
+    const double scale = kLevels / h.span;
     for (std::size_t i = 0, j = 0; i < samples.size(); i += step, ++j) {
-      const double level = std::floor((double(samples[i]) - range.min) * scale);
-      levels(0, int(j)) = std::uint8_t(std::clamp(level, 0.0, kLevels - 1.0));
-      ++histogram[levels(0, int(j))];
+      const double level = std::floor((double(samples[i]) - h.range.min) * scale);
+      h.levels(0, int(j)) = std::uint8_t(std::clamp(level, 0.0, kLevels - 1.0));
+      ++h.counts[h.levels(0, int(j))];
     }
   });
+  h.total = std::size_t(h.levels.cols);
+  return h;
+}
+
+float otsuThreshold(const LevelHistogram& h) {
+  if (!(h.span > 0)) return h.range.min;
   cv::Mat1b binary;
-  const int t = int(cv::threshold(levels, binary, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU));
+  const int t = int(cv::threshold(h.levels, binary, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU));
   // Otsu puts levels <= t in the lower class. Where no sample lies between the two classes,
   // every threshold in that gap splits them alike: take the gap's middle (0.5 for a 0/1 mask,
   // where the first such t, OpenCV's choice, would be the bottom of the gap).
   int below = t, above = t + 1;
-  while (below > 0 && histogram[below] == 0) --below;
-  while (above < kLevels - 1 && histogram[above] == 0) ++above;
-  const double level = 0.5 * ((below + 1) + above);  // in units of span / kLevels
-  return float(double(range.min) + level * span / kLevels);
+  while (below > 0 && h.counts[below] == 0) --below;
+  while (above < kLevels - 1 && h.counts[above] == 0) ++above;
+  return h.valueAt(0.5 * ((below + 1) + above));  // in units of span / kLevels
+}
+
+// The top of the level holding the `fraction` quantile of the samples above `low`; the range's
+// maximum where none lies above it.
+float quantileAbove(const LevelHistogram& h, float low, double fraction) {
+  if (!(h.span > 0)) return h.range.max;
+  const int first =
+      std::clamp(int(std::floor((double(low) - h.range.min) * kLevels / h.span)) + 1, 0, kLevels);
+  std::size_t above = 0;
+  for (int level = first; level < kLevels; ++level) above += h.counts[level];
+  if (above == 0) return h.range.max;
+  const double wanted = fraction * double(above);
+  std::size_t seen = 0;
+  for (int level = first; level < kLevels; ++level) {
+    seen += h.counts[level];
+    if (double(seen) >= wanted) return std::min(h.range.max, h.valueAt(level + 1));
+  }
+  return h.range.max;
+}
+
+}  // namespace
+
+float defaultIso(const Volume& volume) {
+  return otsuThreshold(levelHistogram(volume));
 }
 
 DerivedDefaults derivedDefaults(const Volume& volume) {
-  const ValueRange range = valueRange(volume);
-  return {.iso = defaultIso(volume), .valueRangeWidth = double(range.max) - double(range.min)};
+  const LevelHistogram h = levelHistogram(volume);
+  const float iso = otsuThreshold(h);
+  return {.iso = iso,
+          .valueRangeWidth = h.span,
+          .valueMin = h.range.min,
+          .windowHigh = std::max(quantileAbove(h, iso, kDefaultWindowQuantile), iso)};
 }
 
 }  // namespace vsil

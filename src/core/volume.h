@@ -211,7 +211,13 @@ ValueRange valueRange(const Volume& volume);
 // the two classes where there is one; the range's minimum for a constant volume.
 float defaultIso(const Volume& volume);
 
-// The facts option defaults are derived from (core/options.h), for this volume.
+// The facts option defaults are derived from (core/options.h), for this volume, from one pass
+// over its samples: defaultIso, and the high end of the default grey window of the MIP family
+// (mip, lmip, demip), which runs from Otsu's threshold (air and noise lie below it and show as
+// background) to the top of the 256-level bin holding the 99.5th percentile of the samples above
+// it (a few outliers, metal in a CT, do not darken the rest; on 8-bit data that is the exact
+// percentile's level). Low == high only where nothing lies above the threshold (a constant one).
+inline constexpr double kDefaultWindowQuantile = 0.995;
 DerivedDefaults derivedDefaults(const Volume& volume);
 
 // Limits checked before a reader allocates or reads any payload. maxBytes bounds the memory of

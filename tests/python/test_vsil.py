@@ -62,8 +62,10 @@ def test_the_package_is_the_one_asked_for_and_has_the_project_version():
         {"technique": "mip", "window": (0.2, 0.9), "ortho": True},
         {"technique": "lmip", "lmip_threshold": 0.5},
         {"technique": "semantic", "rules": "example"},
+        {"technique": "illustrate", "tf": "ct-bone"},  # a preset by name, as --tf NAME
     ],
-    ids=["silhouette", "illustrate", "demip", "rightangle_tone_fill", "mip", "lmip", "semantic"],
+    ids=["silhouette", "illustrate", "demip", "rightangle_tone_fill", "mip", "lmip", "semantic",
+         "illustrate_tf_preset"],
 )
 def test_render_matches_the_command_line_byte_for_byte(tmp_path, renderer, options):
     options = {"size": (120, 90), **options}
@@ -123,6 +125,9 @@ def test_every_render_flag_has_its_keyword():
         assert "unknown keyword" not in str(error.value), flag
     with pytest.raises(TypeError, match="unknown keyword 'no_such_option'"):
         renderer.render("gen:sphere:8", no_such_option=1)
+    # tf takes the presets by name as --tf does; an unknown one lists them.
+    with pytest.raises(ValueError, match=r"--tf: unknown preset .*ct-bone.*ramp"):
+        renderer.render("gen:sphere:8", technique="mip", tf="bone")
     # Flags render does not own in the module say where they belong instead of being ignored.
     with pytest.raises(ValueError, match=r"vsil.Renderer\(gl=...\)"):
         renderer.render("gen:sphere:8", gl="egl")

@@ -51,12 +51,14 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
     table = ill.transferFunction->table(range, TransferFunctionTexture::kEntries);
     tableCoord = TransferFunctionTexture::coordinateFromValue(range);
   }
-  const float span = range.max - range.min;
+  const ValueRange domain = powerOpacityDomain(ill, range);
+  const double span = double(domain.max) - double(domain.min);
+  const float valueScale = span > 0 ? float(1.0 / span) : 0.0f;  // as the uniform
   const auto classify = [&](float value) -> glm::vec4 {
     if (ill.transferFunction) {
       return sampleTable(table, value * tableCoord.x + tableCoord.y);
     }
-    const float v = std::clamp((value - range.min) * (span > 0 ? 1.0f / span : 0.0f), 0.0f, 1.0f);
+    const float v = std::clamp((value - domain.min) * valueScale, 0.0f, 1.0f);
     return glm::vec4(ill.color.rgb01(), float(ill["k_os"]) * std::pow(v, float(ill["k_oe"])));
   };
 

@@ -83,7 +83,7 @@ float maximumOf(const std::vector<RaySample>& samples,
 class Classification {
  public:
   Classification(const OptionReader& options, ValueRange range)
-      : window_(intensityWindow(options, range)) {
+      : window_(intensityWindow(options)) {
     if (const auto tf = mipTransferFunction(options)) {
       table_ = tf->table(range, TransferFunctionTexture::kEntries);
       tableCoord_ = TransferFunctionTexture::coordinateFromValue(range);
@@ -250,7 +250,7 @@ ReferenceFrame renderDemip(const Volume& volume, const RenderSettings& settings,
 ReferenceFrame renderLmip(const Volume& volume, const RenderSettings& settings, float isoEpsilon) {
   const ReferenceSetup setup = setUpReference(volume, settings);
   const Classification classify(setup.options, valueRange(volume));
-  const float threshold = float(setup.options.number("lmip-threshold"));
+  const float threshold = lmipThreshold(setup.options);
   const RaySampler rays(volume, setup);
   ReferenceFrame result = emptyReferenceFrame(setup, settings.size, /*color=*/true);
   for (int y = 0; y < settings.size.y; ++y) {

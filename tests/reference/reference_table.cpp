@@ -28,13 +28,18 @@ const std::vector<ReferenceTechnique>& referenceTable() {
       {"rightangle", renderRightAngle, 0.0f, toneFillCaseOptions()},
       {"firsthit", renderFirstHit, 0.0f, {}},
       // Greys are quotients of floats (the window), depths of the box entry come from float
-      // ray-box slabs: rounding only, far below one 8-bit step (0.004).
-      {"mip", renderMip, 1e-4f, {}},
+      // ray-box slabs: rounding only, far below one 8-bit step (0.004). The default window
+      // (Otsu's threshold to a high percentile) is narrower than the value range, and the
+      // quotient scales the samples' rounding by range / width (up to about 4 here): 5e-4.
+      {"mip", renderMip, 5e-4f, {}},
       // Every case tints with the colour sphere, so that it is compared too.
-      {"demip", renderDemip, 1e-4f, {{"sphere-weight", 0.4}}},
+      {"demip", renderDemip, 5e-4f, {{"sphere-weight", 0.4}}},
       // LMIP on 8-bit data meets plateaus, where consecutive samples tie and float rounding
-      // decides whether a run ends there (neghip: 2.7 % of the pixels; every one flagged).
-      {"lmip", renderLmip, 1e-4f, {}, 0.05},
+      // decides whether a run ends there (neghip: 2.7 % of the pixels; every one flagged). With
+      // the default threshold at the window's low end, a ray whose first run starts within
+      // rounding of the threshold is shown (grey near 0) by one and not by the other (neghip:
+      // 8.7 %; every one flagged).
+      {"lmip", renderLmip, 5e-4f, {}, 0.1},
       // Colours are floats in [0, 1] composited in float by both; 2/255 covers early ray
       // termination (at most 1/255 per channel) and trilinear weights computed in a different
       // order, and is below what a wrong formula or a misplaced sample changes.

@@ -87,7 +87,7 @@ ReferenceFrame renderSemantic(const Volume& volume, const RenderSettings& settin
     topPriority = std::max(topPriority, float(style.priority));
   if (interaction.planeShow) topPriority += 1.0f;
 
-  const ValueRange range = valueRange(volume);
+  const ValueRange range = semanticDataDomain(setup.options, valueRange(volume));
   const double span = double(range.max) - double(range.min);
   const float valueScale = span > 0 ? float(1.0 / span) : 0.0f;
   const SliceSampler sampler(volume, view);

@@ -108,12 +108,17 @@ std::function<bool(float)> visibleValues(const Illustration& illustration,
     };
   }
   const bool opaque = illustration["k_os"] > 0;
-  return [opaque, range](float value) { return opaque && value > range.min; };
+  const float from = powerOpacityDomain(illustration, range).min;
+  return [opaque, from](float value) { return opaque && value > from; };
+}
+
+ValueRange powerOpacityDomain(const Illustration& illustration, ValueRange range) {
+  return {std::clamp(illustration.powerOpacityFrom, range.min, range.max), range.max};
 }
 
 float transparentBelow(const Illustration& illustration, const std::vector<glm::vec4>& table,
                        ValueRange range) {
-  if (!illustration.transferFunction) return range.min;
+  if (!illustration.transferFunction) return powerOpacityDomain(illustration, range).min;
   // Entries before the first opaque one are 0: values up to the entry before it read 0 (a
   // sample just above interpolates towards the opaque entry).
   const auto first =
@@ -132,9 +137,10 @@ BrickOccupancy IllustrateTechnique::occupancy(const FrameContext& frame) const {
       return TransferFunctionTexture::opaqueSomewhere(table, range, brick.min, brick.max);
     };
   }
-  // o_v = k_os·v^k_oe is above 0 exactly where v is: anywhere above the value range's minimum.
+  // o_v = k_os·v^k_oe is above 0 exactly where v is: anywhere above where the power starts.
   const bool opaque = illustration_["k_os"] > 0;
-  return [opaque, range](ValueRange brick) { return opaque && brick.max > range.min; };
+  const float from = powerOpacityDomain(illustration_, range).min;
+  return [opaque, from](ValueRange brick) { return opaque && brick.max > from; };
 }
 
 std::vector<bool> IllustrateTechnique::alsoOccupied(const FrameContext&) const {
@@ -186,8 +192,9 @@ void IllustrateTechnique::setUniforms(const FrameContext& frame) {
   if (illustration_.transferFunction) {
     program.set("tableCoordFromValue", TransferFunctionTexture::coordinateFromValue(range));
   } else {
-    const double span = double(range.max) - double(range.min);
-    program.set("valueMin", range.min);
+    const ValueRange domain = powerOpacityDomain(illustration_, range);
+    const double span = double(domain.max) - double(domain.min);
+    program.set("valueMin", domain.min);
     program.set("valueScale", span > 0 ? float(1.0 / span) : 0.0f);
     program.set("sampleColor", illustration_.color.rgb01());
   }

@@ -22,6 +22,12 @@ TechniqueInfo lmipTechniqueInfo() {
           /*needsOneTexture=*/{}};
 }
 
+ResolvedOptions LmipTechnique::resolve(const FrameContext& frame) {
+  ResolvedOptions resolved = resolveMipFamily(*frame.options);
+  resolved.details["lmip_threshold"] = lmipThreshold(*frame.options);  // given or the window's
+  return resolved;
+}
+
 BrickOccupancy LmipTechnique::occupancy(const FrameContext&) const {
   return [](ValueRange) { return true; };
 }
@@ -48,7 +54,7 @@ void LmipTechnique::beginFrame(const FrameContext& frame) {
   slicePass_ = &frame.programs->get(gl::slicePassProgram(
       hitRecordSources(), "techniques/mip/lmip_slice.frag", {kRaySamplingDefine}));
   slicePass_->use();
-  slicePass_->set("lmipThreshold", float(frame.options->number("lmip-threshold")));
+  slicePass_->set("lmipThreshold", lmipThreshold(*frame.options));
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   const GLfloat notFound[4] = {0, kNoSample, kNoSample, 0};
   targets_->record.bindForDrawing();
@@ -79,19 +85,19 @@ void LmipTechnique::endFrame(const FrameContext& frame) {
     gl::Program& march =
         marchProgram(frame, hitRecordSources(), "techniques/mip/lmip_march.comp", kLmipMarchShape);
     march.use();
-    march.set("lmipThreshold", float(frame.options->number("lmip-threshold")));
+    march.set("lmipThreshold", lmipThreshold(*frame.options));
     march.set("noSample", kNoSample);
     runMarch(frame, march, kLmipMarchShape, targets_->record);
   }
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   gl::Program& finish =
       useMipFinish(frame, {"LMIP"}, targets_->record.texture(), targets_->colour, transferTable_);
-  finish.set("lmipThreshold", float(frame.options->number("lmip-threshold")));
+  finish.set("lmipThreshold", lmipThreshold(*frame.options));
   drawScreen(frame);
 }
 
 FrameBuffers LmipTechnique::readBack(const FrameContext& frame) {
-  const float threshold = float(frame.options->number("lmip-threshold"));
+  const float threshold = lmipThreshold(*frame.options);
   // A depth where the ray met the threshold: the local maximum's.
   return colourWithDepth(
       targets_->colour, targets_->record, 3,

@@ -18,6 +18,7 @@ TechniqueInfo lmipTechniqueInfo();
 
 class LmipTechnique : public Technique {
  public:
+  ResolvedOptions resolve(const FrameContext& frame) override;  // background, threshold
   BrickOccupancy occupancy(const FrameContext& frame) const override;
   void beginFrame(const FrameContext& frame) override;
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;

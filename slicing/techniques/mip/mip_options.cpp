@@ -22,26 +22,35 @@ const std::string* givenText(const OptionValues& given, const std::string& name)
 OptionSpec windowOption() {
   OptionSpec spec = OptionSpec::text(
       "window", "LO,HI in data units mapped to black..white; values at or below LO show nothing");
-  spec.defaultNote = "the volume's value range";
+  spec.defaultNote =
+      "from the histogram: Otsu's threshold (the default --iso) to the 99.5th percentile of the "
+      "values above it";
   return spec;
 }
 
-IntensityWindow intensityWindow(const OptionReader& options, ValueRange volumeRange) {
+IntensityWindow intensityWindow(const OptionReader& options) {
   const std::string& text = options.text("window");
-  if (text.empty()) return {volumeRange.min, volumeRange.max};
+  if (text.empty()) {
+    const DerivedDefaults& derived = options.derived();
+    return {float(derived.iso), float(derived.windowHigh)};
+  }
   const glm::dvec2 pair = parseNumberPair("--window", text);
   return {float(pair.x), float(pair.y)};
+}
+
+std::string windowText(const IntensityWindow& window) {
+  return formatNumberList({double(window.low), double(window.high)});
 }
 
 std::optional<TransferFunction> mipTransferFunction(const OptionReader& options) {
   const std::string& path = options.text("tf");
   if (path.empty()) return std::nullopt;
-  return loadTransferFunction(path);
+  return transferFunctionOption(path, options.derived());
 }
 
 void checkWindowOrTf(const OptionValues& given) {
   const std::string* tf = givenText(given, "tf");
-  if (tf && !tf->empty()) loadTransferFunction(*tf);  // InputError naming the file
+  if (tf && !tf->empty()) checkTransferFunctionOption(*tf);  // InputError naming the file
   const std::string* text = givenText(given, "window");
   if (!text || text->empty()) return;
   const glm::dvec2 pair = parseNumberPair("--window", *text);
@@ -60,9 +69,16 @@ OptionSpec lmipThresholdOption() {
       "lmip-threshold", 0,
       "LMIP shows the first local maximum at or above this value along each ray (data units)");
   spec.defaultValue.reset();
+  // Resolved by lmipThreshold: the window's low end, which is the volume's iso (Otsu) unless
+  // --window is given; the derived value keeps the reader's number defined.
   spec.derived = OptionSpec::Derived::VolumeIso;
-  spec.defaultNote = "the middle of the value range";
+  spec.defaultNote = "the window's low end (given or default)";
   return spec;
+}
+
+float lmipThreshold(const OptionReader& options) {
+  if (options.given("lmip-threshold")) return float(options.number("lmip-threshold"));
+  return intensityWindow(options).low;
 }
 
 std::vector<OptionSpec> demipOptions() {

@@ -21,8 +21,11 @@ struct IntensityWindow {
   float high = 1.0f;
 };
 OptionSpec windowOption();
-// The given window, else the volume's value range.
-IntensityWindow intensityWindow(const OptionReader& options, ValueRange volumeRange);
+// The given window, else the volume's default window (core/volume.h derivedDefaults: Otsu's
+// threshold to the 99.5th percentile above it), so that air and noise show as background.
+IntensityWindow intensityWindow(const OptionReader& options);
+// The window as the metadata records it ("LO,HI"), given or derived.
+std::string windowText(const IntensityWindow& window);
 
 // --tf FILE instead of the window (illustration_options.h transferFunctionOption, the file
 // illustrate reads): each pixel's value takes the function's colour and opacity (premultiplied;
@@ -33,6 +36,9 @@ std::optional<TransferFunction> mipTransferFunction(const OptionReader& options)
 void checkWindowOrTf(const OptionValues& given);
 
 OptionSpec lmipThresholdOption();
+// The given --lmip-threshold, else the window's low end (given or default; with --tf the default
+// window's, Otsu's threshold): the first local maximum LMIP shows is one the window shows.
+float lmipThreshold(const OptionReader& options);
 
 // demip's own options: material tolerance, depth weighting, colour sphere (colour_sphere.h),
 // legend.

@@ -36,8 +36,20 @@ TechniqueInfo demipTechniqueInfo() {
           /*needsOneTexture=*/{}};
 }
 
-ResolvedOptions MipTechnique::resolve(const FrameContext& frame) {
+ResolvedOptions resolveMipFamily(const OptionReader& options) {
   ResolvedOptions resolved;
+  // Over black, as in the papers' figures: the window's low end and everything below it (air,
+  // noise) is black like the background, so the background does not outline the noise.
+  resolved.background = Rgba{0, 0, 0, 255};
+  // The window used, given or derived, for the metadata (with --tf there is none).
+  if (!mipTransferFunction(options)) {
+    resolved.details["window"] = windowText(intensityWindow(options));
+  }
+  return resolved;
+}
+
+ResolvedOptions MipTechnique::resolve(const FrameContext& frame) {
+  ResolvedOptions resolved = resolveMipFamily(*frame.options);
   if (!depthEnhanced_) return resolved;
   colourSphere_ = colourSphere(frame.options->text("sphere-map"));
   if (const auto& image = colourSphere_.image) {
@@ -61,7 +73,7 @@ BrickOccupancy MipTechnique::occupancy(const FrameContext& frame) const {
   }
   // mip shows only maxima above the window's low end; demip's second sweep needs the bricks
   // reaching low - eps.
-  const IntensityWindow window = intensityWindow(*frame.options, range);
+  const IntensityWindow window = intensityWindow(*frame.options);
   return reachesIso(window.low - eps);
 }
 
@@ -148,7 +160,7 @@ gl::Program& useMipFinish(const FrameContext& frame, std::vector<std::string> de
     finish.set("tableCoordFromValue",
                TransferFunctionTexture::coordinateFromValue(frame.valueRange));
   } else {
-    const IntensityWindow window = intensityWindow(*frame.options, frame.valueRange);
+    const IntensityWindow window = intensityWindow(*frame.options);
     finish.set("window", glm::vec2(window.low, window.high));
   }
   gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_2D, values);

@@ -62,6 +62,10 @@ class MipTechnique : public Technique {
   gl::TextureName sphereMapTexture_;                      // its image, when it has one
 };
 
+// What mip, lmip and demip resolve alike: the black background (unless --background says
+// otherwise) and the window used, for the metadata.
+ResolvedOptions resolveMipFamily(const OptionReader& options);
+
 // What a pixel's maximum holds where no slice sampled it (mip_finish.frag shows nothing there).
 constexpr float kNoSample = -3.4e38f;
 

@@ -53,6 +53,12 @@ RuleBase loadSemanticRules(const OptionReader& options) {
   return loadRulesPreset(text.empty() ? "default" : text);
 }
 
+ValueRange semanticDataDomain(const OptionReader& options, ValueRange range) {
+  const std::string& rules = options.text("rules");
+  if (!rules.empty() && rules != "default") return range;
+  return {std::clamp(float(options.derived().iso), range.min, range.max), range.max};
+}
+
 SemanticInteraction resolveSemanticInteraction(const OptionReader& options, glm::ivec3 dims,
                                                const View& view) {
   SemanticInteraction interaction;

@@ -21,6 +21,7 @@
 #include "core/camera.h"
 #include "core/options.h"
 #include "core/rules.h"
+#include "core/volume.h"
 #include "slicing/techniques/semantic/rule_compiler.h"
 #include "slicing/techniques/semantic/sphere_atlas.h"
 
@@ -43,6 +44,12 @@ SemanticInteraction resolveSemanticInteraction(const OptionReader& options, glm:
 
 // The rule base --rules names (a preset, "default" when not given).
 RuleBase loadSemanticRules(const OptionReader& options);
+
+// The data values the `data` source's [0, 1] spans. The default rule base (`default.rules`) sees
+// the values from Otsu's threshold (the default --iso) to the range's top, so its materials lie
+// above the air and noise of a CT, which read 0 (no membership: transparent); a rule base given by
+// name or file sees the whole value range, as its author wrote it for.
+ValueRange semanticDataDomain(const OptionReader& options, ValueRange range);
 
 // Styles bottom to top: by priority, equal priorities in declaration order.
 std::vector<int> styleLayerOrder(const RuleBase& rules);

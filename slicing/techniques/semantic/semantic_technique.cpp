@@ -162,7 +162,7 @@ ResolvedOptions SemanticTechnique::resolve(const FrameContext& frame) {
 
 BrickOccupancy SemanticTechnique::occupancy(const FrameContext& frame) const {
   if (interaction_.planeShow) return [](ValueRange) { return true; };
-  const ValueRange range = frame.valueRange;
+  const ValueRange range = semanticDataDomain(*frame.options, frame.valueRange);
   const double span = double(range.max) - double(range.min);
   return [visible = visible_, range, span](ValueRange brick) {
     const int last = int(visible.size());  // entries − 1
@@ -217,7 +217,7 @@ void SemanticTechnique::beginFrame(const FrameContext& frame) {
 void SemanticTechnique::setUniforms(const FrameContext& frame) {
   gl::Program& program = *program_;
   program.use();
-  const ValueRange range = frame.valueRange;
+  const ValueRange range = semanticDataDomain(*frame.options, frame.valueRange);
   const double span = double(range.max) - double(range.min);
   program.set("valueMin", range.min);
   program.set("valueScale", span > 0 ? float(1.0 / span) : 0.0f);
