@@ -119,14 +119,8 @@ void finishRecords(const FrameContext& frame, gl::Program& finish, const gl::Ren
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   finish.use();
   gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, record.texture());
-  // Once per brick: each pass shades the hits its brick owns (finish_hits.frag).
-  for (std::size_t brick = 0; brick < frame.volume->brickCount(); ++brick) {
-    gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, frame.volume->brickTexture(brick));
-    frame.uniforms->bindBrick(brick);
-    drawScreen(frame);
-  }
-  gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, frame.volume->brickTexture(0));
-  frame.uniforms->bindBrick(0);
+  // Each brick's pass shades the hits its brick owns (finish_hits.frag).
+  drawScreenPerBrick(frame);
 }
 
 FrameBuffers frameFromStateImage(const cv::Mat& stateDepthShade) {

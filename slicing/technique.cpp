@@ -53,6 +53,16 @@ void drawScreen(const FrameContext& frame) {
   VSIL_GL(glDrawArrays(GL_TRIANGLES, 0, 3));
 }
 
+void drawScreenPerBrick(const FrameContext& frame) {
+  for (std::size_t brick = 0; brick < frame.volume->brickCount(); ++brick) {
+    gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, frame.volume->brickTexture(brick));
+    frame.uniforms->bindBrick(brick);
+    drawScreen(frame);
+  }
+  gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, frame.volume->brickTexture(0));
+  frame.uniforms->bindBrick(0);
+}
+
 namespace {
 cv::Mat readFlipped(const gl::RenderTarget& target, int channels, GLenum format) {
   const glm::ivec2 size = target.size();

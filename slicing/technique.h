@@ -128,6 +128,13 @@ void requireOneBrick(const FrameContext& frame, const std::string& what, const s
 
 // One triangle over the viewport (screen passes; limit them with a scissor).
 void drawScreen(const FrameContext& frame);
+// drawScreen once per brick, with that brick's volume texture and BrickBlock bound (brick 0's
+// again afterwards): for the screen passes after the last slice that sample the volume at a
+// pixel's own point (finish_hits.frag, tone_fill.frag). Each pass must write only the pixels
+// whose point its brick owns (common.glsl ownedByBrick), and those without a point only on the
+// first brick (brickIsFirst), so that every pixel is written once, by the brick that holds its
+// neighbourhood: the same bytes as one texture.
+void drawScreenPerBrick(const FrameContext& frame);
 
 // GL texture rows run bottom-up; FrameBuffers rows top-down. Reads the target's colour
 // attachment as floats with `channels` channels (1 or 4) and flips it.

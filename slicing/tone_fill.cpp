@@ -1,5 +1,6 @@
 #include "slicing/tone_fill.h"
 
+#include <algorithm>
 #include <limits>
 #include <variant>
 
@@ -79,6 +80,7 @@ void ToneFill::draw(const FrameContext& frame, const gl::RenderTarget& record) {
   for (const auto& name : toneFillParameterNames()) {
     program.set(name.c_str(), float(illustration_[name]));
   }
+  program.set("toneScale", float(1.0 / std::max(1.0, toneShadingPeak(illustration_))));
   std::vector<glm::vec3> lights;
   for (const Light& light : illustration_.lights) lights.emplace_back(light.directionEye());
   program.set("lightCount", int(lights.size()));
@@ -88,7 +90,7 @@ void ToneFill::draw(const FrameContext& frame, const gl::RenderTarget& record) {
   target_->bindForDrawing();
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, record.texture());
-  drawScreen(frame);
+  drawScreenPerBrick(frame);  // the hit's brick shades it (tone_fill.frag)
 }
 
 void ToneFill::readBack(FrameBuffers& frame) const {

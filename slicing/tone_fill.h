@@ -3,9 +3,11 @@
 // last slice one screen pass (shaders/tone_fill.frag) colours each pixel's first iso-surface hit
 // with Ebert–Rheingans tone shading and distance colour blending, the formulas of
 // shaders/illustration.glsl that illustrate applies per sample:
-//   I = k_ta·I_G + Σ_lights (t·(k_ty, k_ty, 0) + (1 − t)·(0, 0, k_tb) + k_td·c_o·max(n·L, 0)),
+//   I = (k_ta·I_G + Σ_lights (t·(k_ty, k_ty, 0) + (1 − t)·(0, 0, k_tb) + k_td·c_o·max(n·L, 0)))
+//       / max(1, P),
 //   c = (1 − k_ds·d^k_de)·I + k_ds·d^k_de·c_b,
-// with I_G = c_o·(k_a + k_d·Σ max(n·L, 0)), t = (1 + n·L)/2, c_o the fill colour
+// with I_G = c_o·(k_a + k_d·Σ max(n·L, 0)), t = (1 + n·L)/2, P the sum's peak for a white
+// object (core/illustration.h toneShadingPeak: I stays within [0, 1]), c_o the fill colour
 // (RenderSettings::toneFill), n the outward normal at the hit (common.glsl outwardNormalEye: the
 // gradient `--fill shaded` takes its |n·v| from), d the hit's normalized depth, c_b the frame's
 // background. Parameters come from --param with the paper's names (only these eight), lights

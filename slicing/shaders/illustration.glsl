@@ -94,7 +94,15 @@ void featureHalo(inout vec3 color, inout float opacity, float h) {
 // Tone shading: I = k_ta·I_G + Σ_lights (I_t + k_td·I_o), I_t = t·c_w + (1 − t)·c_c with
 // t = (1 + n·L)/2, c_w = (k_ty, k_ty, 0), c_c = (0, 0, k_tb), I_o = c_o·max(n·L, 0) (white
 // lights). `lit` is I_G, `objectColor` c_o.
+// The paper's sum overflows: at its Figure 7 values a white object facing the light gets
+// 1 + 0.3 + 0.6 in red and green, and clamping turns every lit side white, warm tone and form
+// lost. We keep the sum and scale it by toneScale = 1 / max(1, peak), the peak the largest
+// channel the sum reaches for a white object over all normals with these parameters and lights
+// (core/illustration.h toneShadingPeak, computed on the CPU): the result stays within [0, 1]
+// for every colour, one factor for all samples and colours keeps the paper's proportions (warm
+// against cool, lit colour against directed light), and a sum that fits is left as it is.
 uniform float k_ta, k_td, k_ty, k_tb;
+uniform float toneScale;
 vec3 toneShade(vec3 lit, vec3 objectColor, vec3 n) {
   vec3 sum = vec3(0.0);
   for (int i = 0; i < lightCount; ++i) {
@@ -103,5 +111,5 @@ vec3 toneShade(vec3 lit, vec3 objectColor, vec3 n) {
     sum += vec3(k_ty, k_ty, 0.0) * t + vec3(0.0, 0.0, k_tb) * (1.0 - t) +
            objectColor * (k_td * max(nl, 0.0));
   }
-  return lit * k_ta + sum;
+  return (lit * k_ta + sum) * toneScale;
 }

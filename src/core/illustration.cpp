@@ -420,6 +420,30 @@ nlohmann::json Illustration::toJson() const {
   return json;
 }
 
+double toneShadingPeak(const Illustration& illustration) {
+  const Illustration& p = illustration;
+  const std::size_t count = p.lights.size();
+  glm::dvec3 allLights(0.0);
+  for (const Light& light : p.lights) allLights += light.directionEye();
+  // Per light, white object, x = n·L: warm channels k_ty·(1 + x)/2, cool k_tb·(1 − x)/2, both
+  // + (k_ta·k_d + k_td)·max(x, 0); the ambient k_ta·k_a once.
+  const double directed = p["k_ta"] * p["k_d"] + p["k_td"];
+  double peak = 0;
+  for (const double signedTone : {p["k_ty"] / 2, -p["k_tb"] / 2}) {
+    const double constant = p["k_ta"] * p["k_a"] + double(count) * std::abs(signedTone);
+    double largest = 0;  // max over S of |w_S|, w_S = signedTone·ΣL + directed·Σ_{i∈S} L_i
+    for (std::size_t subset = 0; subset < (std::size_t(1) << count); ++subset) {
+      glm::dvec3 w = signedTone * allLights;
+      for (std::size_t i = 0; i < count; ++i) {
+        if ((subset >> i) & 1u) w += directed * p.lights[i].directionEye();
+      }
+      largest = std::max(largest, glm::length(w));
+    }
+    peak = std::max(peak, constant + largest);
+  }
+  return peak;
+}
+
 Illustration resolveIllustration(const IllustrationStyle& base, const IllustrationStyle& overrides,
                                  std::string styleName) {
   Illustration resolved;

@@ -142,6 +142,16 @@ struct Illustration {
   nlohmann::json toJson() const;
 };
 
+// Tone shading's peak: the largest channel that the paper's sum
+// I = k_ta·I_G + Σ_lights (I_t + k_td·I_o) (shaders/illustration.glsl toneShade) reaches for a
+// white object over every normal, with these parameters and lights. The shaders divide the sum
+// by max(1, peak): then it stays within [0, 1] for every object colour within [0, 1] (the sum
+// grows with each channel of the colour), and one factor for all colours keeps the paper's
+// proportions of lit colour, warm, cool and directed light. Exact for any number of lights:
+// the sum is C + max over subsets S of the lights of w_S·n (S the lights n faces), so its
+// maximum over unit n is C + max_S |w_S|.
+double toneShadingPeak(const Illustration& illustration);
+
 // `base` (a loaded style, or empty), then each field `overrides` sets, over the defaults.
 Illustration resolveIllustration(const IllustrationStyle& base, const IllustrationStyle& overrides,
                                  std::string styleName);

@@ -1,4 +1,5 @@
 // `vsil render` end to end, through the built binary: outputs, metadata, determinism, errors.
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -202,6 +203,62 @@ TEST(RenderCommand, ToneFillIsWarmWhereLitAndRecorded) {
   EXPECT_EQ(parameters["tone_fill"]["parameters"]["k_tb"], 0.3) << "illustrate's default";
   EXPECT_EQ(parameters["tone_fill"]["lights"], nlohmann::json::parse("[[0, 90]]"));
   EXPECT_EQ(parameters["param"], nlohmann::json::parse(R"(["k_ty=0.4"])")) << "as given";
+}
+
+// The tone presets on the datasets they show best on, and the tone fill on the engine, as the
+// README shows them: Ebert–Rheingans' sum kept in range (shaders/illustration.glsl toneShade),
+// so under 1 % of the object's pixels have a channel at 255, and the object holds both warm
+// (R > B) and cool (B > R) pixels.
+TEST(RenderCommand, TonePresetsAndTheToneFillStayBelowWhiteOnTheirDatasets) {
+  VSIL_REQUIRE_DATASETS();
+  struct ToneRender {
+    const char* name;
+    std::string arguments;
+    bool states;  // object = Filled pixels of --state-out; else alpha >= 128
+  };
+  const std::string engine = test::datasetPath("engine.vti").string();
+  const ToneRender renders[] = {
+      {"fig7-tone", engine + " --technique illustrate --style fig7-tone --background transparent",
+       false},
+      {"fig15-tone",
+       test::datasetPath("ironProt.vtk").string() +
+           " --technique illustrate --style fig15-tone --background transparent",
+       false},
+      {"fill-tone", engine + " --iso 80 --view 40,25 --width 2 --fill tone --fill-color '#d9c7a0'",
+       true},
+  };
+  const auto dir = test::scratchDir();
+  for (const ToneRender& r : renders) {
+    SCOPED_TRACE(r.name);
+    const auto image = dir / (std::string(r.name) + ".png");
+    const auto states = dir / (std::string(r.name) + "-state.png");
+    const auto result =
+        test::runVsil("render " + r.arguments + " --size 192x192 --out " + image.string() +
+                      (r.states ? " --state-out " + states.string() : ""));
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const cv::Mat colour = cv::imread(image.string(), cv::IMREAD_UNCHANGED);
+    const cv::Mat state = r.states ? cv::imread(states.string(), cv::IMREAD_UNCHANGED) : cv::Mat();
+    int object = 0, atWhite = 0, warm = 0, cool = 0;
+    for (int y = 0; y < colour.rows; ++y) {
+      for (int x = 0; x < colour.cols; ++x) {
+        const std::uint8_t* bgr = colour.ptr<std::uint8_t>(y) + x * colour.channels();
+        const bool inObject = r.states
+                                  ? state.at<std::uint8_t>(y, x) == stateGrey(PixelState::Filled)
+                                  : colour.channels() == 4 && bgr[3] >= 128;
+        if (!inObject) continue;
+        ++object;
+        atWhite += bgr[0] == 255 || bgr[1] == 255 || bgr[2] == 255;
+        warm += bgr[2] > bgr[0];
+        cool += bgr[0] > bgr[2];
+      }
+    }
+    std::cout << "[ info ] " << r.name << ": " << object << " object pixels, " << atWhite
+              << " at 255, " << warm << " warm, " << cool << " cool\n";
+    EXPECT_GT(object, 2000);
+    EXPECT_LT(atWhite, object / 100) << "under 1 % at 255";
+    EXPECT_GT(warm, object / 5) << "warm where lit";
+    EXPECT_GT(cool, object / 100) << "cool where not";
+  }
 }
 
 struct BadRender {

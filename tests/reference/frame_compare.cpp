@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 namespace vsil::test {
 
@@ -80,6 +82,62 @@ int shownPixels(const FrameBuffers& frame) {
   }
   for (auto it = frame.color.begin(); it != frame.color.end(); ++it) shown += (*it)[3] > 0.0f;
   return shown;
+}
+
+cv::Mat3f objectColours(const FrameBuffers& frame) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  if (!frame.tone.empty()) {
+    cv::Mat3f colours(frame.tone.size(), cv::Vec3f(nan, nan, nan));
+    for (int y = 0; y < colours.rows; ++y) {
+      for (int x = 0; x < colours.cols; ++x) {
+        if (PixelState(frame.state(y, x)) == PixelState::Filled) colours(y, x) = frame.tone(y, x);
+      }
+    }
+    return colours;
+  }
+  cv::Mat3f colours(frame.color.size(), cv::Vec3f(nan, nan, nan));
+  for (int y = 0; y < colours.rows; ++y) {
+    for (int x = 0; x < colours.cols; ++x) {
+      const cv::Vec4f c = frame.color(y, x);
+      if (c[3] > 0.5f) colours(y, x) = cv::Vec3f(c[0], c[1], c[2]) / c[3];
+    }
+  }
+  return colours;
+}
+
+ToneSides toneSides(const cv::Mat3f& colours, glm::dvec3 light) {
+  ToneSides sides;
+  glm::dvec2 centre(0.0);
+  for (int y = 0; y < colours.rows; ++y) {
+    for (int x = 0; x < colours.cols; ++x) {
+      if (std::isnan(colours(y, x)[0])) continue;
+      centre += glm::dvec2(x + 0.5, y + 0.5);
+      ++sides.object;
+    }
+  }
+  if (sides.object == 0) return sides;
+  centre /= double(sides.object);
+  const double radius = std::sqrt(sides.object / std::numbers::pi);
+  for (int y = 0; y < colours.rows; ++y) {
+    for (int x = 0; x < colours.cols; ++x) {
+      const cv::Vec3f c = colours(y, x);
+      if (std::isnan(c[0])) continue;
+      const glm::dvec2 onDisc = glm::dvec2(x + 0.5 - centre.x, centre.y - (y + 0.5)) / radius;
+      const glm::dvec3 n(onDisc, std::sqrt(std::max(0.0, 1.0 - glm::dot(onDisc, onDisc))));
+      const double nl = glm::dot(glm::normalize(n), light);
+      if (nl > 0.25) {
+        ++sides.lit;
+        sides.litWarm += c[0] > c[2];
+      } else if (nl < -0.25) {
+        ++sides.unlit;
+        sides.unlitCool += c[2] > c[0];
+      }
+      const float brightest = std::max({c[0], c[1], c[2]});
+      sides.atWhite += brightest >= 254.5f / 255.0f;
+      sides.brightest = std::max(sides.brightest, brightest);
+    }
+  }
+  return sides;
 }
 
 OptionValues isoOptions(const TechniqueInfo& technique, double iso) {

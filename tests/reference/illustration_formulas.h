@@ -76,9 +76,12 @@ struct IllustrationFormulas {
     const float w = p("k_ds") * std::pow(d, p("k_de"));
     return c * (1.0f - w) + background * w;
   }
-  // I = k_ta·I_G + Σ (t·(k_ty, k_ty, 0) + (1 − t)·(0, 0, k_tb) + k_td·c_o·max(n·L, 0)),
-  // t = (1 + n·L)/2.
+  // I = (k_ta·I_G + Σ (t·(k_ty, k_ty, 0) + (1 − t)·(0, 0, k_tb) + k_td·c_o·max(n·L, 0)))·s,
+  // t = (1 + n·L)/2, s = 1/max(1, the sum's largest channel for a white object over all n).
   glm::vec3 tone(glm::vec3 litColor, glm::vec3 object, glm::vec3 n) const {
+    return toneSum(litColor, object, n) / std::max(1.0f, tonePeak());
+  }
+  glm::vec3 toneSum(glm::vec3 litColor, glm::vec3 object, glm::vec3 n) const {
     glm::vec3 sum(0.0f);
     for (const glm::vec3& l : lights) {
       const float nl = glm::dot(n, l);
@@ -87,6 +90,32 @@ struct IllustrationFormulas {
              object * (p("k_td") * std::max(nl, 0.0f));
     }
     return litColor * p("k_ta") + sum;
+  }
+  // The white object's sum at every normal where it can peak, and its largest channel there.
+  // Where n faces the lights of a set S and no other, each channel's sum is linear in n, so it
+  // peaks along its own gradient there: for the warm channels
+  // (k_ty/2)·ΣL + (k_ta·k_d + k_td)·Σ_S L, for the cool one −(k_tb/2)·ΣL + the same.
+  float tonePeak() const {
+    const glm::vec3 white(1.0f);
+    glm::vec3 all(0.0f);
+    for (const glm::vec3& l : lights) all += l;
+    const float directed = p("k_ta") * p("k_d") + p("k_td");
+    const glm::vec3 none = toneSum(lit(white, glm::vec3(0.0f)), white, glm::vec3(0.0f));
+    float peak = std::max({none.r, none.g, none.b});  // the constant part, where all w vanish
+    for (unsigned subset = 0; subset < (1u << lights.size()); ++subset) {
+      glm::vec3 facing(0.0f);
+      for (std::size_t i = 0; i < lights.size(); ++i) {
+        if ((subset >> i) & 1u) facing += lights[i];
+      }
+      for (const float signedTone : {p("k_ty") / 2, -p("k_tb") / 2}) {
+        const glm::vec3 w = signedTone * all + directed * facing;
+        if (glm::dot(w, w) == 0.0f) continue;
+        const glm::vec3 n = glm::normalize(w);
+        const glm::vec3 c = toneSum(lit(white, n), white, n);
+        peak = std::max({peak, c.r, c.g, c.b});
+      }
+    }
+    return peak;
   }
 };
 

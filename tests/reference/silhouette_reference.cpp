@@ -63,9 +63,10 @@ ReferenceFrame renderSilhouette(const Volume& volume, const RenderSettings& sett
           for (int dy = -1; dy <= 1; ++dy) {
             for (int dx = -1; dx <= 1; ++dx) {
               const int nx = x + dx, ny = y + dy;
-              const bool outside = nx < 0 || ny < 0 || nx >= w || ny >= h;
-              if (!outside) hinges = hinges || nearIso(ny, nx);
-              if (outside || !footprint(ny, nx)) c = PixelState::Contour;
+              // Beyond the image nothing is known: no neighbour there (silhouette.glsl).
+              if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+              hinges = hinges || nearIso(ny, nx);
+              if (!footprint(ny, nx)) c = PixelState::Contour;
             }
           }
         }

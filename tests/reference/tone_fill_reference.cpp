@@ -22,7 +22,7 @@ ToneFillReference::ToneFillReference(const RenderSettings& settings, const Refer
 glm::vec3 ToneFillReference::at(const SliceSampler& sampler, int x, int y, float eyeDistance,
                                 float depth) const {
   const glm::vec3 eye = sampler.eyePoint(x, y, eyeDistance);
-  const glm::vec3 n = sampler.outwardNormalEye(sampler.voxelFromEyePoint(eye));
+  const glm::vec3 n = sampler.outwardNormalEye(quantizedVoxel(sampler.voxelFromEyePoint(eye)));
   const IllustrationFormulas& f = *formulas_;
   return f.distance(f.tone(f.lit(color_, n), color_, n), depth);
 }

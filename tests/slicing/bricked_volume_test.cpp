@@ -1,5 +1,9 @@
 // A volume in one brick and in many (core/brick_layout.h, --max-texture-mib) renders the same
-// bytes: state, depth, shade and colour, for every technique and pipeline that takes bricks.
+// bytes: state, depth, shade, tone and colour, for every technique and pipeline that takes
+// bricks, and for the state techniques with the tone fill (the one screen pass besides the
+// finishing one that samples the volume after the last slice; the fills none, flat and shaded
+// are made from the state and shade). A case list checked against the technique table keeps a
+// new technique, or a technique that gains the tone fill, from going untested.
 // The brick borders cross the spheres' silhouettes, and the slice planes cross the borders at
 // odd angles (perspective and orthographic views off every axis). What cannot follow the
 // bricks (the tiles march, illustrate's halos) takes the volume in one texture when it fits and
@@ -7,6 +11,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -33,7 +38,16 @@ struct TechniqueCase {
   std::string name;
   std::string technique;
   OptionValues options;
+  std::optional<Rgba> toneFill;  // --fill tone
 };
+
+// The tone fill with what it reads besides the normal: two lights and distance blending (depth).
+OptionValues withToneFillOptions(OptionValues options) {
+  options["light"] = std::vector<std::string>{"30,50", "-70,-10"};
+  options["param"] = std::vector<std::string>{"k_ds=0.5,k_de=0.7"};
+  return options;
+}
+constexpr Rgba kToneFillColor{217, 199, 160, 255};
 
 std::vector<TechniqueCase> techniqueCases() {
   auto iso = [](const std::string& technique) {
@@ -44,17 +58,47 @@ std::vector<TechniqueCase> techniqueCases() {
     return options;
   };
   return {
-      {"silhouette_paper", "silhouette", with(iso("silhouette"), "pipeline", "paper")},
-      {"silhouette_fast", "silhouette", with(iso("silhouette"), "pipeline", "fast")},
-      {"rightangle", "rightangle", iso("rightangle")},
-      {"firsthit", "firsthit", iso("firsthit")},
+      {"silhouette_paper", "silhouette", with(iso("silhouette"), "pipeline", "paper"),
+       std::nullopt},
+      {"silhouette_fast", "silhouette", with(iso("silhouette"), "pipeline", "fast"), std::nullopt},
+      {"rightangle", "rightangle", iso("rightangle"), std::nullopt},
+      {"silhouette_paper_tone", "silhouette",
+       withToneFillOptions(with(iso("silhouette"), "pipeline", "paper")), kToneFillColor},
+      {"silhouette_fast_tone", "silhouette",
+       withToneFillOptions(with(iso("silhouette"), "pipeline", "fast")), kToneFillColor},
+      {"rightangle_paper_tone", "rightangle",
+       withToneFillOptions(with(iso("rightangle"), "pipeline", "paper")), kToneFillColor},
+      {"rightangle_fast_tone", "rightangle", withToneFillOptions(iso("rightangle")),
+       kToneFillColor},
+      {"firsthit", "firsthit", iso("firsthit"), std::nullopt},
       {"illustrate", "illustrate",
-       with(iso("illustrate"), "effects", "boundary,silhouette,fading,sketch,distance,tone")},
-      {"mip", "mip", iso("mip")},
-      {"demip", "demip", iso("demip")},
-      {"lmip", "lmip", iso("lmip")},
-      {"semantic", "semantic", iso("semantic")},
+       with(iso("illustrate"), "effects", "boundary,silhouette,fading,sketch,distance,tone"),
+       std::nullopt},
+      {"mip", "mip", iso("mip"), std::nullopt},
+      {"demip", "demip", iso("demip"), std::nullopt},
+      {"lmip", "lmip", iso("lmip"), std::nullopt},
+      {"semantic", "semantic", iso("semantic"), std::nullopt},
   };
+}
+
+// Every technique has a case, and every technique that offers the tone fill (the state
+// techniques that take --light: tone_fill.h withToneFillOptions) a case with it: what reads
+// the volume after slicing is compared too.
+TEST(BrickedVolumeCases, CoverEveryTechniqueAndTheToneFill) {
+  const std::vector<TechniqueCase> cases = techniqueCases();
+  for (const TechniqueInfo& info : techniqueTable()) {
+    SCOPED_TRACE(info.name);
+    const auto covered = [&](bool tone) {
+      return std::any_of(cases.begin(), cases.end(), [&](const TechniqueCase& c) {
+        return c.technique == info.name && c.toneFill.has_value() == tone;
+      });
+    };
+    EXPECT_TRUE(covered(false)) << "a case without the tone fill";
+    const bool offersToneFill = info.outputs.state && info.option("light") != nullptr;
+    if (offersToneFill) {
+      EXPECT_TRUE(covered(true)) << "a case with the tone fill";
+    }
+  }
 }
 
 void expectSameBytes(const cv::Mat& a, const cv::Mat& b, const std::string& what) {
@@ -106,6 +150,7 @@ TEST_F(BrickedVolume, ManyBricksRenderTheBytesOfOne) {
       RenderSettings settings;
       settings.technique = c.technique;
       settings.options = c.options;
+      settings.toneFill = c.toneFill;
       settings.size = {88, 72};
       settings.samplesPerVoxel = 0.73;  // slice planes at odd positions
       settings.camera.azimuthDeg = view.azimuth;
@@ -116,11 +161,13 @@ TEST_F(BrickedVolume, ManyBricksRenderTheBytesOfOne) {
       expectSameBytes(one.frame.state, many.frame.state, "state");
       expectSameBytes(one.frame.depth, many.frame.depth, "depth");
       expectSameBytes(one.frame.shade, many.frame.shade, "shade");
+      expectSameBytes(one.frame.tone, many.frame.tone, "tone");
       expectSameBytes(one.frame.color, many.frame.color, "color");
       // Not trivially equal: something is shown.
       if (!one.frame.state.empty()) {
         EXPECT_GT(cv::countNonZero(one.frame.state), 100);
       }
+      EXPECT_EQ(one.frame.tone.empty(), !c.toneFill.has_value());
     }
   }
 }

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "analytic_volumes.h"
+#include "core/illustration.h"
 #include "frame_compare.h"
 #include "generators/generators.h"
 #include "gl_harness.h"
@@ -181,9 +182,7 @@ double warmth(const cv::Mat4f& color, cv::Rect block) {
 
 TEST_F(IllustrateTest, ToneShadingMakesTheLitSideWarmerAndTheFarSideCooler) {
   const Volume volume = generateVolume("sphere:48");
-  RenderSettings settings = illustrateSettings("tone", "k_os=2", {80, 80});
-  // A grey that leaves room: ivory lit from above plus the warm tone clamps to white.
-  settings.options["color"] = std::string("#606060");
+  RenderSettings settings = illustrateSettings("tone", "k_os=2", {80, 80});  // ivory
   settings.camera.azimuthDeg = 0;
   settings.camera.elevationDeg = 0;
   settings.options["light"] = std::vector<std::string>{"0,90"};  // straight above
@@ -199,6 +198,34 @@ TEST_F(IllustrateTest, ToneShadingMakesTheLitSideWarmerAndTheFarSideCooler) {
   // Against the plain ivory composite: the top gains yellow, the bottom gains blue.
   EXPECT_GT(topWarmth, warmth(plain.frame.color, top));
   EXPECT_LT(bottomWarmth, warmth(plain.frame.color, bottom));
+}
+
+// The paper's sum over ivory exceeds 1 where the sphere faces the light (1 + 0.3 + 0.6 at its
+// Figure 7 values): scaled by its peak, the lit side stays warm, not white, and the far side
+// cool, every pixel of each, and the highlight still reaches nearly white.
+TEST_F(IllustrateTest, ToneShadedIvoryIsWarmWhereLitCoolWhereNotAndNotClipped) {
+  const Volume volume = generateVolume("sphere:48");
+  RenderSettings settings = illustrateSettings("tone", "k_os=2", {96, 96});  // ivory
+  settings.camera.azimuthDeg = 0;
+  settings.camera.elevationDeg = 0;
+  settings.camera.orthographic = true;
+  settings.options["light"] = std::vector<std::string>{"0,90"};  // straight above
+  const RenderResult above = test::renderOnce(volume, settings);
+  const test::ToneSides sides = test::toneSides(test::objectColours(above.frame), {0, 1, 0});
+  EXPECT_GT(sides.lit, 300);
+  EXPECT_EQ(sides.litWarm, sides.lit) << "R > B wherever n·L > 0.25";
+  EXPECT_GT(sides.unlit, 300);
+  EXPECT_EQ(sides.unlitCool, sides.unlit) << "B > R wherever n·L < -0.25";
+  // The default light (0,60), as the presets have it: its highlight faces the viewer.
+  settings.options.erase("light");
+  const RenderResult lit = test::renderOnce(volume, settings);
+  const test::ToneSides clip =
+      test::toneSides(test::objectColours(lit.frame), Light{}.directionEye());
+  std::cout << "[ info ] " << clip.atWhite << " of " << clip.object
+            << " pixels with a channel at 255, brightest " << clip.brightest << "\n";
+  EXPECT_GT(clip.object, 1000);
+  EXPECT_LT(clip.atWhite, clip.object / 100) << "under 1 % at 255";
+  EXPECT_GT(clip.brightest, 0.9f) << "the highlight nearly white";
 }
 
 TEST_F(IllustrateTest, SilhouetteEnhancementRaisesOpacityAtTheRimNotWhereTheSphereFacesTheViewer) {

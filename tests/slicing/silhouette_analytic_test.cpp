@@ -1,5 +1,7 @@
 // Analytic truth: silhouettes of spheres whose outlines are known exactly.
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -117,6 +119,61 @@ TEST_F(SilhouetteAnalytic, OverlappingSpheresShowOnlyTheVisibleOutline) {
   EXPECT_EQ(interior, 0) << "silhouette pixels away from both outlines (double lines?)";
   EXPECT_GT(frontRim, int(2 * std::numbers::pi * f.radius * 0.8));
   EXPECT_GT(backRim, int(std::numbers::pi * b.radius * 0.5));
+}
+
+// A view that clips the object: the sphere crosses the right and bottom borders of the frame.
+// Its silhouette is the visible arc of its circle and nothing else: off-screen neighbours are
+// not known, so the rows and columns along the border hold no line (they once did, wherever
+// the surface crossed the border). Every pipeline, and precision and recall against the
+// exact circle (a rim pixel: centre within 1.5 px inside to 0.25 px outside of it, as above).
+TEST_F(SilhouetteAnalytic, AViewThatClipsTheSphereDrawsNoLineAlongTheFrame) {
+  const test::Ball ball{{58, 26, 40}, 20.0};
+  const Volume volume = test::ballsVolume({80, 80, 80}, {ball});
+  for (const char* pipeline : {"fast", "paper", "tiles"}) {
+    SCOPED_TRACE(pipeline);
+    RenderSettings settings;
+    settings.size = {160, 140};
+    settings.options["iso"] = 0.5;
+    settings.options["pipeline"] = std::string(pipeline);
+    settings.camera.orthographic = true;
+    settings.camera.azimuthDeg = 0;
+    settings.camera.elevationDeg = 0;
+    settings.camera.zoom = 3.0;
+    Renderer renderer(test::sharedGlContext());
+    renderer.setVolume(volume);
+    const RenderResult result = renderer.render(settings);
+    const Circle circle = projectBall(ball, result.view);
+    const int w = result.frame.width(), h = result.frame.height();
+    ASSERT_GT(circle.centre.x + circle.radius, w + 10) << "the sphere must cross the right border";
+    ASSERT_GT(circle.centre.y + circle.radius, h + 10) << "and the bottom one";
+    int truePositives = 0, falsePositives = 0, onBorder = 0, rimPixels = 0;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const glm::dvec2 p(x + 0.5, y + 0.5);
+        const double off = glm::length(p - circle.centre) - circle.radius;
+        const bool rim = off <= 0.25 && off >= -1.5;
+        const bool line = PixelState(result.frame.state(y, x)) == PixelState::Silhouette;
+        // Recall counts the rim pixels a one-pixel line must hold: inside by more than the
+        // reconstruction's error (0.25 px), and within half a pixel, so that the neighbour
+        // outward (at least 0.92 px further out) is outside.
+        const bool mustHold = off <= -0.25 && off >= -0.5;
+        rimPixels += mustHold;
+        truePositives += line && mustHold;
+        falsePositives += line && !rim;
+        onBorder += line && (x == 0 || y == 0 || x == w - 1 || y == h - 1) && !rim;
+      }
+    }
+    ASSERT_GT(rimPixels, 20);
+    EXPECT_EQ(onBorder, 0) << "a line along the frame";
+    int lines = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        lines += PixelState(result.frame.state(y, x)) == PixelState::Silhouette;
+    const double precision = 1.0 - double(falsePositives) / std::max(lines, 1);
+    const double recall = double(truePositives) / rimPixels;
+    EXPECT_GE(precision, 0.99) << falsePositives << " of " << lines << " line pixels off the rim";
+    EXPECT_GE(recall, 0.99) << truePositives << " of " << rimPixels << " rim pixels drawn";
+  }
 }
 
 TEST_F(SilhouetteAnalytic, SilhouetteDepthIsWhereTheViewRayGrazesTheSphere) {

@@ -169,6 +169,7 @@ void IllustrateTechnique::setUniforms(const FrameContext& frame) {
   program.use();
   for (const auto& [name, value] : illustration_.parameters)
     program.set(name.c_str(), float(value));
+  program.set("toneScale", float(1.0 / std::max(1.0, toneShadingPeak(illustration_))));
   const glm::mat3 rotation = worldFromEye(*frame.view);
   program.set("worldFromEye", rotation);
   std::vector<glm::vec3> lights;

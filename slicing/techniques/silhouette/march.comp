@@ -5,7 +5,8 @@
 // invocation samples its column (the alpha test) into a bit mask and puts it in shared memory;
 // after a barrier it reads its two neighbours' masks, and the 8-neighbourhood test and the
 // decision table run on all its own pixels at once as bit operations (silhouette.glsl
-// decideBits). Pixels beyond the image are EMPTY, as in the slice passes' contour test.
+// decideBits). Pixels beyond the image are no neighbours, as in the slice passes' contour
+// test: their footprint bits are set, so they never make a pixel CONTOUR.
 // What is sampled: a pixel whose ray is inside occupied bricks (elsewhere its sample is below
 // the iso value) and which has a busy own pixel in its 3x3 neighbourhood (elsewhere no decision
 // depends on it); busy: not FILLED or SILHOUETTE (final), and not past where its ray leaves
@@ -51,6 +52,7 @@ void main() {
   float entryDepth[kRows], exitDepth[kRows];
   float firstDepth[kRows], firstEye[kRows], contourDepth[kRows];
   uint own = 0u;
+  uint beyondImage = 0u;  // rows of this column outside the image
   uint states[4] = uint[4](0u, 0u, 0u, 0u);  // bit j set in states[t]: row j's state is t
   float tileEntry = 1.0;
   for (int j = 0; j < kRows; ++j) {
@@ -59,6 +61,7 @@ void main() {
     bool owned = inside && ownColumn && j >= 1 && j <= MARCH_TILE_Y;
     uint bit = 1u << uint(j);
     own |= owned ? bit : 0u;
+    beyondImage |= inside ? 0u : bit;
     vec4 record = continuesMarch() && owned ? imageLoad(recordImage, pixel) : vec4(0.0);
     for (uint t = 0u; t < 4u; ++t) states[t] |= owned && uint(record.r) == t ? bit : 0u;
     firstDepth[j] = record.g;
@@ -95,6 +98,7 @@ void main() {
         vec3 voxel = sliceVoxelOf(slice, pixelNdc(ivec2(x, origin.y + j - 1)));
         filled |= insideVolume(voxel) && sampleVolume(voxel) >= isoValue ? 1u << uint(j) : 0u;
       }
+      filled |= beyondImage;  // not EMPTY: they never make a neighbour CONTOUR
       int parity = k & 1;
       columns[parity][column] = uvec2(filled, busy);
       barrier();

@@ -40,18 +40,18 @@ uint footprintTag() {
 }
 
 // The contour value of a pixel from a footprint: STATE_CONTOUR for a FILLED pixel whose
-// 8-neighbourhood is not all FILLED; pixels beyond the image count as EMPTY.
+// 8-neighbourhood is not all FILLED. Pixels beyond the image are not known, so they are no
+// neighbours: counting them EMPTY drew a false line along every border the surface crosses
+// when the view clips the object. Their coordinates are clamped to the image, which makes
+// such a neighbour the pixel itself or one of its other neighbours.
 uint contourAt(usampler2D footprint, ivec2 pixel) {
   uint tag = footprintTag();
-  ivec2 size = textureSize(footprint, 0);
+  ivec2 last = textureSize(footprint, 0) - 1;
   if (texelFetch(footprint, pixel, 0).r != tag) return STATE_EMPTY;
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
-      ivec2 neighbour = pixel + ivec2(dx, dy);
-      if (any(lessThan(neighbour, ivec2(0))) || any(greaterThanEqual(neighbour, size)) ||
-          texelFetch(footprint, neighbour, 0).r != tag) {
-        return STATE_CONTOUR;
-      }
+      ivec2 neighbour = clamp(pixel + ivec2(dx, dy), ivec2(0), last);
+      if (texelFetch(footprint, neighbour, 0).r != tag) return STATE_CONTOUR;
     }
   }
   return STATE_FILLED;
