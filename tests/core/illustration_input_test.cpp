@@ -112,7 +112,7 @@ TEST(IllustrationInput, StylesSetOnlyWhatTheyNameAndFlagsWin) {
   const Illustration resolved = resolveIllustration(style, flags, "s.json");
   EXPECT_TRUE(resolved.effects.has(Effect::Tone));
   EXPECT_FALSE(resolved.effects.has(Effect::Halo));
-  EXPECT_EQ(resolved["k_gc"], 0.9);  // the flag
+  EXPECT_EQ(resolved["k_gc"], 0.9);                             // the flag
   EXPECT_EQ(resolved["k_gs"], defaultParameters().at("k_gs"));  // the default
   ASSERT_EQ(resolved.lights.size(), 2u);
   EXPECT_EQ(resolved.lights[1].elevationDeg, 45.0);

@@ -411,7 +411,8 @@ TEST_F(IllustrateTest, SilhouetteAtItsDefaultsMakesTheOutlineMoreOpaque) {
   const int y = 48, rim = rimOf(plain.frame.color, y, 48);
   ASSERT_GT(rim, 60);
   // Two pixels inside the plain composite's outline: its soft edge, seen edge-on.
-  const float before = plain.frame.color(y, rim - 2)[3], after = enhanced.frame.color(y, rim - 2)[3];
+  const float before = plain.frame.color(y, rim - 2)[3],
+              after = enhanced.frame.color(y, rim - 2)[3];
   std::cout << "[ info ] silhouette: alpha at the rim " << before << " -> " << after << "\n";
   EXPECT_GT(after - before, 0.2f);
   // The centre (opaque either way) keeps its colour.
@@ -433,7 +434,8 @@ TEST_F(IllustrateTest, HalosAtTheirDefaultsDarkenJustOutsideTheOutlineAndNeverBr
     ASSERT_LT(rim, 90);
     float darkest = 1.0f;
     for (int x = 40; x < 96; ++x) {
-      const float withHalo = over(halo.frame.color(y, x), b), without = over(plain.frame.color(y, x), b);
+      const float withHalo = over(halo.frame.color(y, x), b),
+                  without = over(plain.frame.color(y, x), b);
       // The halo's added opacity is dark: it never brightens a pixel, over any background.
       EXPECT_LE(withHalo, without + 1.0f / 255.0f) << "x " << x << " background " << b;
       if (x > rim - 6) darkest = std::min(darkest, withHalo - without);
@@ -445,7 +447,8 @@ TEST_F(IllustrateTest, HalosAtTheirDefaultsDarkenJustOutsideTheOutlineAndNeverBr
           << "x " << x;
     }
     EXPECT_EQ(halo.frame.color(y, 95), plain.frame.color(y, 95));
-    std::cout << "[ info ] halo over " << b << ": darkest change at the outline " << darkest << "\n";
+    std::cout << "[ info ] halo over " << b << ": darkest change at the outline " << darkest
+              << "\n";
     if (b > 0.5f) {
       EXPECT_LT(darkest, -0.3f) << "a dark rim just outside the outline";
     }
@@ -470,11 +473,59 @@ TEST_F(IllustrateTest, SketchAloneAtItsDefaultsLeavesTheFacingBallClearAndItsOut
   // The outline, right of the centre: its darkest pixel.
   float rim = 1.0f;
   for (int x = 60; x < 96; ++x) rim = std::min(rim, over(c(y, x)));
-  std::cout << "[ info ] sketch: lightest-dark centre " << centre << ", darkest outline " << rim
-            << "\n";
+  std::cout << "[ info ] sketch: darkest pixel of the centre " << centre << ", darkest outline "
+            << rim << "\n";
   EXPECT_GT(centre, 0.85f);
   EXPECT_LT(rim, 0.3f);
   EXPECT_EQ(c(y, 95), cv::Vec4f(0, 0, 0, 0));
+}
+
+// HSV saturation and value of a premultiplied pixel's straight colour.
+std::pair<float, float> saturationAndValue(const cv::Vec4f& c) {
+  const float a = std::max(c[3], 1e-6f);
+  const float hi = std::max({c[0], c[1], c[2]}) / a, lo = std::min({c[0], c[1], c[2]}) / a;
+  return {hi > 0 ? (hi - lo) / hi : 0.0f, hi};
+}
+
+TEST_F(IllustrateTest, FadingAtItsDefaultsDesaturatesWhatFacesTheViewerAndDarkensWhatTurnsAway) {
+  const Volume volume = test::ballsVolume({64, 64, 64}, {{{31.5, 31.5, 31.5}, 20.0}}, 8.0);
+  RenderSettings settings = headOn("fading");
+  settings.options["color"] = std::string("#c06040");  // saturated, so desaturation shows
+  const RenderResult faded = test::renderOnce(volume, settings);
+  settings.options.erase("effects");
+  const RenderResult plain = test::renderOnce(volume, settings);
+  const int y = 48, rim = rimOf(plain.frame.color, y, 48);
+  ASSERT_GT(rim, 60);
+  const auto [plainSat, plainValue] = saturationAndValue(plain.frame.color(y, 48));
+  const auto [fadedSat, fadedValue] = saturationAndValue(faded.frame.color(y, 48));
+  const float plainRim = saturationAndValue(plain.frame.color(y, rim - 3)).second;
+  const float fadedRim = saturationAndValue(faded.frame.color(y, rim - 3)).second;
+  std::cout << "[ info ] fading: centre saturation " << plainSat << " -> " << fadedSat
+            << ", rim value " << plainRim << " -> " << fadedRim << "\n";
+  EXPECT_LT(fadedSat, 0.5f * plainSat);        // facing: k_fs = 0.8 takes most of it
+  EXPECT_NEAR(fadedValue, plainValue, 0.02f);  // and keeps its value
+  EXPECT_LT(fadedRim, 0.75f * plainRim);       // turned away: darker
+  EXPECT_EQ(faded.frame.color(y, 95), plain.frame.color(y, 95));
+}
+
+TEST_F(IllustrateTest, DistanceAtItsDefaultsBlendsTheFartherPartsMoreTowardTheBackground) {
+  const Volume volume = test::ballsVolume({64, 64, 64}, {{{31.5, 31.5, 31.5}, 20.0}}, 8.0);
+  RenderSettings settings = headOn("distance");  // c_b: the white background
+  const RenderResult blended = test::renderOnce(volume, settings);
+  settings.options.erase("effects");
+  const RenderResult plain = test::renderOnce(volume, settings);
+  const int y = 48, rim = rimOf(plain.frame.color, y, 48);
+  ASSERT_GT(rim, 60);
+  // The share of the way to white: over white, (blended − plain) / (1 − plain).
+  const auto share = [&](int x) {
+    const float p = over(plain.frame.color(y, x)), b = over(blended.frame.color(y, x));
+    return (b - p) / std::max(1.0f - p, 1e-3f);
+  };
+  std::cout << "[ info ] distance: share toward the background at the centre " << share(48)
+            << ", near the rim " << share(rim - 6) << "\n";
+  EXPECT_GT(share(48), 0.2f);                    // the front is a fifth of the way in, d^0.5 > 0.4
+  EXPECT_GT(share(rim - 6), share(48) + 0.05f);  // the surface near the rim lies deeper
+  EXPECT_EQ(blended.frame.color(y, 95), plain.frame.color(y, 95));
 }
 
 TEST_F(IllustrateTest, SkippingChangesNoPixelAndEarlyTerminationNoChannelByMoreThan1Of255) {
