@@ -51,12 +51,17 @@ void orientedFading(inout vec3 color, inout float opacity, float facing) {
 }
 
 // Sketch lines: regions facing the viewer transparent, silhouette regions in the sketch colour,
-// opacity ×min(1, k_ls·(1 − |n·v|)^k_le).
+// opacity ×min(1, k_ls·|∇f|²·(1 − |n·v|)^k_le). Lines are drawn on surfaces, and a surface is
+// where the gradient is strong (|∇f| normalized by the volume's largest, squared as boundary
+// enhancement's Figure 3 does): without it the random normals of a CT's noisy homogeneous
+// inside (|∇f| about 0.05 on the engine, 0.3 at its surfaces) and the nested shells of smooth
+// data turn away from the viewer somewhere along every ray, and sketch alone drew a black blob.
 uniform float k_ls, k_le;
 uniform vec3 sketchColor;
-void sketchLines(inout vec3 color, inout float opacity, float facing) {
+void sketchLines(inout vec3 color, inout float opacity, float facing, float gradientMagnitude) {
   color = sketchColor;
-  opacity *= min(1.0, k_ls * pow(max(1.0 - facing, 0.0), k_le));
+  float surface = gradientMagnitude * gradientMagnitude;
+  opacity *= min(1.0, k_ls * surface * pow(max(1.0 - facing, 0.0), k_le));
 }
 
 // Distance colour blending: c_d = (1 − k_ds·d^k_de)·c + k_ds·d^k_de·c_b, d the normalized depth
@@ -66,6 +71,24 @@ uniform vec3 backgroundColor;
 vec3 distanceBlend(vec3 color, float depth) {
   float w = k_ds * pow(depth, k_de);
   return color * (1.0 - w) + backgroundColor * w;
+}
+
+// Feature halos darken (the paper's Section 5.2: regions just outside features "darker and more
+// opaque, obscuring background elements"): the sample's colour ×max(0, 1 − k_hd·h), and the
+// opacity k_ho·h the halo adds is a black layer behind the sample's material in the same sample:
+// c·o premultiplied over the opacity o + (1 − o)·k_ho·h. An opaque sample stays as it was (no
+// halo on a feature itself), an empty one turns black at k_ho·h. Adding the opacity in the
+// sample's own lit colour instead made halos a pale glow wherever h is small or the sample is
+// lit: in the soft fringe of smooth data, over a white background.
+uniform float k_hd, k_ho;
+void featureHalo(inout vec3 color, inout float opacity, float h) {
+  color *= max(1.0 - k_hd * h, 0.0);
+  float halo = clamp(k_ho * h, 0.0, 1.0);
+  if (halo <= 0.0) return;
+  float material = clamp(opacity, 0.0, 1.0);
+  float total = material + (1.0 - material) * halo;
+  color *= material / total;
+  opacity = total;
 }
 
 // Tone shading: I = k_ta·I_G + Σ_lights (I_t + k_td·I_o), I_t = t·c_w + (1 − t)·c_c with

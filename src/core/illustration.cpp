@@ -102,10 +102,16 @@ std::vector<ParameterSpec> makeParameters() {
       // diffuse from the lights, ours.
       parameter("k_a", 0.3, {}, "ambient share of the lit colour"),
       parameter("k_d", 0.7, {}, "diffuse share of the lit colour, per light"),
-      // Figure 4.
-      parameter("k_gc", 0.8, E::Boundary, "boundary: share of the original opacity"),
-      parameter("k_gs", 5.0, E::Boundary, "boundary: scale of the gradient term"),
+      // Boundary enhancement, ours: o_v·|∇f| (Levoy's, the paper's "k_gc = 0: only areas with
+      // large gradients"). Every sample's opacity here is per voxel and the plain composite is
+      // near opaque after a few voxels of dense material, so any k_gc above a few hundredths
+      // leaves homogeneous insides opaque and changes nothing visible (Figure 4's 0.8, 5, 1:
+      // 2/255 on the engine); with k_gc = 0 the insides fade and the surfaces between materials
+      // remain, as in Figure 3. The presets name the paper's values (fig3, fig4).
+      parameter("k_gc", 0.0, E::Boundary, "boundary: share of the original opacity"),
+      parameter("k_gs", 1.0, E::Boundary, "boundary: scale of the gradient term"),
       exponent("k_ge", 1.0, E::Boundary, "boundary: exponent of the gradient magnitude"),
+      // Figure 4.
       parameter("k_sc", 0.9, E::Silhouette, "silhouette: scale of non-silhouette regions"),
       parameter("k_ss", 50.0, E::Silhouette, "silhouette: amount of enhancement"),
       exponent("k_se", 0.25, E::Silhouette, "silhouette: sharpness"),
@@ -115,10 +121,12 @@ std::vector<ParameterSpec> makeParameters() {
       fraction("k_fv", 0.6, E::Fading, "fading: darkening of regions turned away"),
       fraction("k_fo", 0.0, E::Fading, "fading: transparency of regions facing the viewer"),
       exponent("k_fe", 1.0, E::Fading, "fading: exponent of |∇f_n·V|"),
-      // Sketch lines (Figure 5), ours: opacity ×min(1, k_ls·(1 − |∇f_n·V|)^k_le), colour the
-      // sketch colour.
-      parameter("k_ls", 4.0, E::Sketch, "sketch: line opacity scale"),
-      exponent("k_le", 2.0, E::Sketch, "sketch: line sharpness"),
+      // Sketch lines (Figure 5), ours: opacity ×min(1, k_ls·|∇f|²·(1 − |∇f_n·V|)^k_le), colour
+      // the sketch colour. k_ls = 16 saturates lines where |∇f| is 0.25 (a CT's surfaces) and
+      // the surface is edge-on, and keeps a noisy inside (|∇f| about 0.05) near transparent;
+      // k_le = 4 keeps the lines thin (k_le = 2 blackened the outer third of a ball's disc).
+      parameter("k_ls", 16.0, E::Sketch, "sketch: line opacity scale"),
+      exponent("k_le", 4.0, E::Sketch, "sketch: line sharpness"),
       // Figure 6 (its "kse = 0.5" is k_de).
       fraction("k_ds", 1.0, E::Distance, "distance: size of the blend towards c_b"),
       exponent("k_de", 0.5, E::Distance, "distance: rate of the blend with depth"),

@@ -72,9 +72,10 @@ TEST(IllustrationInput, EffectsAndParametersByThePapersNames) {
   EXPECT_NE(inputError([] { parseEffects("tone,glow", "--effects"); }).find("'glow'"),
             std::string::npos);
 
-  // The paper's Figure 4 values are the defaults.
+  // Silhouette: the paper's Figure 4 values; boundary: o_v·|∇f| (README, issue 32).
   const ParameterValues defaults = defaultParameters();
-  EXPECT_EQ(defaults.at("k_gc"), 0.8);
+  EXPECT_EQ(defaults.at("k_gc"), 0.0);
+  EXPECT_EQ(defaults.at("k_gs"), 1.0);
   EXPECT_EQ(defaults.at("k_ss"), 50.0);
   EXPECT_EQ(defaults.at("k_se"), 0.25);
   ParameterValues values;
@@ -111,8 +112,8 @@ TEST(IllustrationInput, StylesSetOnlyWhatTheyNameAndFlagsWin) {
   const Illustration resolved = resolveIllustration(style, flags, "s.json");
   EXPECT_TRUE(resolved.effects.has(Effect::Tone));
   EXPECT_FALSE(resolved.effects.has(Effect::Halo));
-  EXPECT_EQ(resolved["k_gc"], 0.9);  // the flag
-  EXPECT_EQ(resolved["k_gs"], 5.0);  // the default
+  EXPECT_EQ(resolved["k_gc"], 0.9);                             // the flag
+  EXPECT_EQ(resolved["k_gs"], defaultParameters().at("k_gs"));  // the default
   ASSERT_EQ(resolved.lights.size(), 2u);
   EXPECT_EQ(resolved.lights[1].elevationDeg, 45.0);
   EXPECT_EQ(resolved.background, (Rgba{0, 0, 0x26, 255}));

@@ -119,7 +119,7 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
         if (has(Effect::Fading)) formulas.fading(base, opacity, facing);
         glm::vec3 color = formulas.lit(base, n);
         if (has(Effect::Tone)) color = formulas.tone(color, base, n);
-        if (has(Effect::Sketch)) formulas.sketchLines(color, opacity, facing);
+        if (has(Effect::Sketch)) formulas.sketchLines(color, opacity, facing, magnitude);
         if (has(Effect::Distance)) color = formulas.distance(color, float(slice.depth));
         if (has(Effect::Halo)) {
           // h = Σ w_n·|∇f_n|·(n_n·d)^k_hpe·(1 − |n_n·V|)^k_hse, times (1 − |∇f|) here.
@@ -134,8 +134,7 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
                  std::pow(across, formulas.p("k_hse"));
           }
           h *= (1.0f - magnitude) * nearFeature;
-          color *= std::max(1.0f - formulas.p("k_hd") * h, 0.0f);
-          opacity += formulas.p("k_ho") * h;
+          formulas.halo(color, opacity, h);
         }
         // α = 1 − (1 − o)^(Δ/Δ₀), premultiplied, behind what is there.
         const float alpha = 1.0f - std::pow(1.0f - std::clamp(opacity, 0.0f, 1.0f), exponent);

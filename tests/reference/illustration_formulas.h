@@ -55,9 +55,21 @@ struct IllustrationFormulas {
     c = out;
     o *= 1.0f - p("k_fo") * f;
   }
-  void sketchLines(glm::vec3& c, float& o, float facing) const {
+  // Sketch: colour the sketch colour, o ×min(1, k_ls·|∇f|²·(1 − |n·v|)^k_le).
+  void sketchLines(glm::vec3& c, float& o, float facing, float m) const {
     c = sketch;
-    o *= std::min(1.0f, p("k_ls") * std::pow(std::max(1.0f - facing, 0.0f), p("k_le")));
+    o *= std::min(1.0f, p("k_ls") * m * m * std::pow(std::max(1.0f - facing, 0.0f), p("k_le")));
+  }
+  // Halo h: the colour ×max(0, 1 − k_hd·h), then a black layer of opacity k_ho·h behind the
+  // material in the same sample: premultiplied c·o over the opacity o + (1 − o)·k_ho·h.
+  void halo(glm::vec3& c, float& o, float h) const {
+    c *= std::max(1.0f - p("k_hd") * h, 0.0f);
+    const float added = std::clamp(p("k_ho") * h, 0.0f, 1.0f);
+    if (added <= 0) return;
+    const float material = std::clamp(o, 0.0f, 1.0f);
+    const float total = material + (1.0f - material) * added;
+    c *= material / total;
+    o = total;
   }
   // c_d = (1 − k_ds·d^k_de)·c + k_ds·d^k_de·c_b
   glm::vec3 distance(glm::vec3 c, float d) const {

@@ -280,10 +280,11 @@ TEST_F(IllustrateTest, HalosDarkenJustOutsideTheOutlineAndChangeNothingInside) {
   const cv::Vec4f h = halo.frame.color(y, edge + 2);
   EXPECT_LT(h[0] + (1 - h[3]), 1.0f - 0.05f) << "the halo should darken the background";
   // Inside, around the centre: nothing changes (the neighbours' normals point away from it);
-  // 1e-5 allows float rounding in the halo program's different instruction order.
+  // 1e-4 (0.03/255) allows float rounding in the halo program's different instruction order
+  // and the black of halos of about 1e-4 in the ball's fringe in front.
   for (int x = 40; x <= 56; ++x) {
     for (int k = 0; k < 4; ++k) {
-      EXPECT_NEAR(halo.frame.color(y, x)[k], plain.frame.color(y, x)[k], 1e-5) << "x " << x;
+      EXPECT_NEAR(halo.frame.color(y, x)[k], plain.frame.color(y, x)[k], 1e-4) << "x " << x;
     }
   }
 }
@@ -346,6 +347,185 @@ TEST_F(IllustrateTest, DistanceBlendingMovesSamplesTowardTheBackgroundMonotonica
   }
   EXPECT_GT(checked, 10);
   EXPECT_LT(previous, blended.frame.color(y, 48)[1] / plain.frame.color(y, 48)[1] - 0.02f);
+}
+
+// Each effect alone at its default parameters (and the default classification, k_os = 1) must
+// show, where the paper says it acts, and change nothing elsewhere (issue 32: boundary changed
+// 2/255, halos glowed pale, sketch alone drew a black blob). Seen head-on, orthographic.
+RenderSettings headOn(const std::string& effects, glm::ivec2 size = {96, 96}) {
+  RenderSettings settings = illustrateSettings(effects, "", size);
+  settings.camera.orthographic = true;
+  settings.camera.azimuthDeg = 0;
+  settings.camera.elevationDeg = 0;
+  return settings;
+}
+
+// A premultiplied pixel over `background` (grey level in [0, 1]), the mean of its channels.
+float over(const cv::Vec4f& c, float background = 1.0f) {
+  return (c[0] + c[1] + c[2]) / 3.0f + (1.0f - c[3]) * background;
+}
+
+// The outermost pixel of row y, right of x0, where the frame shows anything.
+int rimOf(const cv::Mat4f& color, int y, int x0) {
+  int rim = x0;
+  while (rim + 1 < color.cols && color(y, rim + 1)[3] > 1e-3f) ++rim;
+  return rim;
+}
+
+TEST_F(IllustrateTest, BoundaryAtItsDefaultsFadesAFlatInsideAndLeavesTheBackground) {
+  // A ball with a sharp boundary (ramp 2 voxels) and a flat inside (no gradient).
+  const Volume volume = test::ballsVolume({64, 64, 64}, {{{31.5, 31.5, 31.5}, 20.0}}, 2.0);
+  RenderSettings settings = headOn("boundary");
+  const RenderResult boundary = test::renderOnce(volume, settings);
+  settings.options.erase("effects");
+  const RenderResult plain = test::renderOnce(volume, settings);
+  double change = 0;
+  int object = 0, background = 0;
+  for (int y = 0; y < 96; ++y) {
+    for (int x = 0; x < 96; ++x) {
+      const cv::Vec4f p = plain.frame.color(y, x), b = boundary.frame.color(y, x);
+      if (p[3] > 0.5f) {
+        change += std::abs(over(b) - over(p));
+        ++object;
+      } else if (p[3] == 0.0f) {
+        EXPECT_EQ(b, p) << "background changed at " << x << "," << y;
+        ++background;
+      }
+    }
+  }
+  ASSERT_GT(object, 1000);
+  ASSERT_GT(background, 1000);
+  // The opaque inside fades to the two boundary shells: the ball turns translucent.
+  const double meanLevels = 255.0 * change / object;
+  std::cout << "[ info ] boundary: mean |change| over the ball " << meanLevels << "/255\n";
+  EXPECT_GT(meanLevels, 5.0);
+  EXPECT_LT(boundary.frame.color(48, 48)[3], plain.frame.color(48, 48)[3] - 0.1f);
+}
+
+TEST_F(IllustrateTest, SilhouetteAtItsDefaultsMakesTheOutlineMoreOpaque) {
+  const Volume volume = test::ballsVolume({64, 64, 64}, {{{31.5, 31.5, 31.5}, 20.0}}, 8.0);
+  RenderSettings settings = headOn("silhouette");
+  const RenderResult enhanced = test::renderOnce(volume, settings);
+  settings.options.erase("effects");
+  const RenderResult plain = test::renderOnce(volume, settings);
+  const int y = 48, rim = rimOf(plain.frame.color, y, 48);
+  ASSERT_GT(rim, 60);
+  // Two pixels inside the plain composite's outline: its soft edge, seen edge-on.
+  const float before = plain.frame.color(y, rim - 2)[3],
+              after = enhanced.frame.color(y, rim - 2)[3];
+  std::cout << "[ info ] silhouette: alpha at the rim " << before << " -> " << after << "\n";
+  EXPECT_GT(after - before, 0.2f);
+  // The centre (opaque either way) keeps its colour.
+  EXPECT_NEAR(over(enhanced.frame.color(y, 48)), over(plain.frame.color(y, 48)), 2.0 / 255.0);
+}
+
+TEST_F(IllustrateTest, HalosAtTheirDefaultsDarkenJustOutsideTheOutlineAndNeverBrighten) {
+  // gen:sphere's cone, lit: halo samples lie in its soft fringe, whose own lit colour is light.
+  const Volume volume = generateVolume("sphere:48");
+  for (const Rgba background : {Rgba{255, 255, 255, 255}, Rgba{0, 0, 0, 255}}) {
+    RenderSettings settings = headOn("halo");
+    settings.background = background;
+    const float b = background.r / 255.0f;
+    const RenderResult halo = test::renderOnce(volume, settings);
+    settings.options.erase("effects");
+    const RenderResult plain = test::renderOnce(volume, settings);
+    const int y = 48, rim = rimOf(plain.frame.color, y, 48);
+    ASSERT_GT(rim, 60);
+    ASSERT_LT(rim, 90);
+    float darkest = 1.0f;
+    for (int x = 40; x < 96; ++x) {
+      const float withHalo = over(halo.frame.color(y, x), b),
+                  without = over(plain.frame.color(y, x), b);
+      // The halo's added opacity is dark: it never brightens a pixel, over any background.
+      EXPECT_LE(withHalo, without + 1.0f / 255.0f) << "x " << x << " background " << b;
+      if (x > rim - 6) darkest = std::min(darkest, withHalo - without);
+    }
+    // Inside, around the centre, nothing changes (the neighbours' normals face the viewer);
+    // far outside (beyond k_hr = 4 voxels, 2.8 pixels each here) neither.
+    for (int x = 44; x <= 52; ++x) {
+      EXPECT_NEAR(over(halo.frame.color(y, x), b), over(plain.frame.color(y, x), b), 1.0 / 255.0)
+          << "x " << x;
+    }
+    EXPECT_EQ(halo.frame.color(y, 95), plain.frame.color(y, 95));
+    std::cout << "[ info ] halo over " << b << ": darkest change at the outline " << darkest
+              << "\n";
+    if (b > 0.5f) {
+      EXPECT_LT(darkest, -0.3f) << "a dark rim just outside the outline";
+    }
+  }
+}
+
+TEST_F(IllustrateTest, SketchAloneAtItsDefaultsLeavesTheFacingBallClearAndItsOutlineDark) {
+  // A ball with a flat inside carrying a little noise (its gradient 1.4 % of the boundary's), as
+  // a CT's homogeneous material: the noise's normals point anywhere.
+  Volume volume = test::ballsVolume({64, 64, 64}, {{{31.5, 31.5, 31.5}, 20.0}}, 4.0);
+  std::mt19937 random(32);
+  std::uniform_real_distribution<float> noise(-0.005f, 0.005f);
+  for (float& v : volume.samples<float>()) {
+    if (v >= 1.0f) v += noise(random);
+  }
+  const RenderResult sketch = test::renderOnce(volume, headOn("sketch"));
+  const cv::Mat4f& c = sketch.frame.color;
+  const int y = 48;
+  // Facing the viewer (front shell, flat noisy inside): the white background shows through.
+  float centre = 1.0f;
+  for (int x = 40; x <= 56; ++x) centre = std::min(centre, over(c(y, x)));
+  // The outline, right of the centre: its darkest pixel.
+  float rim = 1.0f;
+  for (int x = 60; x < 96; ++x) rim = std::min(rim, over(c(y, x)));
+  std::cout << "[ info ] sketch: darkest pixel of the centre " << centre << ", darkest outline "
+            << rim << "\n";
+  EXPECT_GT(centre, 0.85f);
+  EXPECT_LT(rim, 0.3f);
+  EXPECT_EQ(c(y, 95), cv::Vec4f(0, 0, 0, 0));
+}
+
+// HSV saturation and value of a premultiplied pixel's straight colour.
+std::pair<float, float> saturationAndValue(const cv::Vec4f& c) {
+  const float a = std::max(c[3], 1e-6f);
+  const float hi = std::max({c[0], c[1], c[2]}) / a, lo = std::min({c[0], c[1], c[2]}) / a;
+  return {hi > 0 ? (hi - lo) / hi : 0.0f, hi};
+}
+
+TEST_F(IllustrateTest, FadingAtItsDefaultsDesaturatesWhatFacesTheViewerAndDarkensWhatTurnsAway) {
+  const Volume volume = test::ballsVolume({64, 64, 64}, {{{31.5, 31.5, 31.5}, 20.0}}, 8.0);
+  RenderSettings settings = headOn("fading");
+  settings.options["color"] = std::string("#c06040");  // saturated, so desaturation shows
+  const RenderResult faded = test::renderOnce(volume, settings);
+  settings.options.erase("effects");
+  const RenderResult plain = test::renderOnce(volume, settings);
+  const int y = 48, rim = rimOf(plain.frame.color, y, 48);
+  ASSERT_GT(rim, 60);
+  const auto [plainSat, plainValue] = saturationAndValue(plain.frame.color(y, 48));
+  const auto [fadedSat, fadedValue] = saturationAndValue(faded.frame.color(y, 48));
+  const float plainRim = saturationAndValue(plain.frame.color(y, rim - 3)).second;
+  const float fadedRim = saturationAndValue(faded.frame.color(y, rim - 3)).second;
+  std::cout << "[ info ] fading: centre saturation " << plainSat << " -> " << fadedSat
+            << ", rim value " << plainRim << " -> " << fadedRim << "\n";
+  EXPECT_LT(fadedSat, 0.5f * plainSat);        // facing: k_fs = 0.8 takes most of it
+  EXPECT_NEAR(fadedValue, plainValue, 0.02f);  // and keeps its value
+  EXPECT_LT(fadedRim, 0.75f * plainRim);       // turned away: darker
+  EXPECT_EQ(faded.frame.color(y, 95), plain.frame.color(y, 95));
+}
+
+TEST_F(IllustrateTest, DistanceAtItsDefaultsBlendsTheFartherPartsMoreTowardTheBackground) {
+  const Volume volume = test::ballsVolume({64, 64, 64}, {{{31.5, 31.5, 31.5}, 20.0}}, 8.0);
+  RenderSettings settings = headOn("distance");  // c_b: the white background
+  const RenderResult blended = test::renderOnce(volume, settings);
+  settings.options.erase("effects");
+  const RenderResult plain = test::renderOnce(volume, settings);
+  const int y = 48, rim = rimOf(plain.frame.color, y, 48);
+  ASSERT_GT(rim, 60);
+  // The share of the way to white: over white, (blended − plain) / (1 − plain).
+  const auto share = [&](int x) {
+    const float p = over(plain.frame.color(y, x)), b = over(blended.frame.color(y, x));
+    return (b - p) / std::max(1.0f - p, 1e-3f);
+  };
+  std::cout << "[ info ] distance: share toward the background at the centre " << share(48)
+            << ", near the rim " << share(rim - 6) << "\n";
+  EXPECT_GT(share(48), 0.2f);                    // the front is a fifth of the way in, d^0.5 > 0.4
+  EXPECT_GT(share(rim - 6), share(48) + 0.05f);  // the surface near the rim lies deeper
+  EXPECT_EQ(blended.frame.color(y, 95), plain.frame.color(y, 95));
 }
 
 TEST_F(IllustrateTest, SkippingChangesNoPixelAndEarlyTerminationNoChannelByMoreThan1Of255) {

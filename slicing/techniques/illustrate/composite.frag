@@ -49,7 +49,7 @@ layout(binding = UNIT_AUXILIARY0) uniform sampler3D haloMask;
 uniform vec3 haloOffsets[HALO_TAPS];     // voxel offsets, in the slice plane
 uniform vec3 haloDirections[HALO_TAPS];  // world, unit: from the tap towards the sample
 uniform float haloWeights[HALO_TAPS];
-uniform float k_hpe, k_hse, k_hd, k_ho;
+uniform float k_hpe, k_hse;
 
 // The voxel nearest to a voxel position (what GL_NEAREST picks), clamped to the volume. Halos
 // need the volume in one brick (origin 0; illustrate_technique.cpp refuses more), so it is
@@ -117,15 +117,14 @@ void main() {
   color = toneShade(color, base, n);
 #endif
 #ifdef SKETCH
-  sketchLines(color, opacity, facing);
+  sketchLines(color, opacity, facing, gradientMagnitude);
 #endif
 #ifdef DISTANCE
   color = distanceBlend(color, sliceDepth);
 #endif
 #ifdef HALO
   float h = haloSize(voxel, v, gradientMagnitude) * nearFeature;
-  color *= max(1.0 - k_hd * h, 0.0);
-  opacity += k_ho * h;
+  featureHalo(color, opacity, h);
 #endif
   result = compositedSample(color, opacity);
 }
