@@ -127,6 +127,17 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
                      const VolumeLimits& limits) {
   const RenderSettings& settings = request.settings;
   const double sampling = settings.samplesPerVoxel;
+  const glm::dvec3 s = volume.spacing;
+  const std::string spacingText =
+      formatNumber(s.x) + "," + formatNumber(s.y) + "," + formatNumber(s.z);
+  // Every spacing is positive and finite (the readers check), but their extent or ratio can
+  // still overflow a double (1e308 along each axis, 1e-320 beside 1).
+  const double ratio = std::max({s.x, s.y, s.z}) / std::min({s.x, s.y, s.z});
+  if (!std::isfinite(glm::length(glm::dvec3(volume.dims) * s)) || !std::isfinite(ratio)) {
+    throw InputError(volume.source + ": spacing " + spacingText +
+                     " is out of range (the volume's extent or the ratio of its axes is not a "
+                     "finite number); check the spacing's units");
+  }
   const std::int64_t slices = limits::sliceCountBound(volume.dims, volume.spacing, sampling);
   if (slices > limits::kMaxSlices) {
     const std::string over =
@@ -137,8 +148,6 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
     }
     // The samples alone fit: the spacing's axes differ so much that slices one step of the
     // finest axis apart cross the others thousands of times over (a unit mixed up, mm and m).
-    const glm::dvec3 s = volume.spacing;
-    const double ratio = std::max({s.x, s.y, s.z}) / std::min({s.x, s.y, s.z});
     const double enough = sampling * double(limits::kMaxSlices - 1) / double(slices);
     const auto twoDigits = [](double number, bool down) {
       const double unit = std::pow(10.0, std::floor(std::log10(number)) - 1);
@@ -147,9 +156,9 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
            << (down ? std::floor(number / unit) : std::round(number / unit)) * unit;
       return text.str();
     };
-    throw InputError(volume.source + ": spacing " + formatNumber(s.x) + "," + formatNumber(s.y) +
-                     "," + formatNumber(s.z) + " (its coarsest axis " + twoDigits(ratio, false) +
-                     " times its finest) would need up to " + std::to_string(slices) + over +
+    throw InputError(volume.source + ": spacing " + spacingText + " (its coarsest axis " +
+                     twoDigits(ratio, false) + " times its finest) would need up to " +
+                     std::to_string(slices) + over +
                      "; check the spacing's units, or lower --sampling to " +
                      twoDigits(enough, true) + " or less");
   }
