@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+
+#include "core/error.h"
+#include "core/limits.h"
 
 namespace vsil {
 
@@ -190,7 +194,14 @@ SlicePlan planSlices(const View& view, glm::ivec3 dims, glm::dvec3 spacing,
   const glm::dvec3 directionVoxel = view.viewDirectionWorld() * (longest / spacing);
   const double voxelsPerUnit = glm::length(directionVoxel);
   const double range = view.farEye - view.nearEye;
-  const int count = std::max(1, int(std::lround(range * voxelsPerUnit * samplesPerVoxel)));
+  // Checked as a double: an extreme spacing ratio makes it more than an int holds (the render
+  // job refuses such volumes first, limits::sliceCountBound; this guards every other caller).
+  const double wanted = std::round(range * voxelsPerUnit * samplesPerVoxel);
+  if (!(wanted <= double(limits::kMaxSlices))) {
+    throw InputError("a frame would need more slices than the limit of " +
+                     std::to_string(limits::kMaxSlices) + " (the spacing's axes differ too much)");
+  }
+  const int count = std::max(1, int(wanted));
   SlicePlan plan;
   plan.stepEye = range / count;
   plan.stepVoxels = plan.stepEye * voxelsPerUnit;

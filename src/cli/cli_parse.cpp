@@ -3,6 +3,8 @@
 #include <cstdlib>
 #include <limits>
 
+#include <CLI/CLI.hpp>
+
 #include "core/error.h"
 
 namespace vsil::cli {
@@ -18,6 +20,13 @@ bool parseInt(const std::string& text, int& value) {
 }
 
 }  // namespace
+
+CLI::Option* nonEmpty(CLI::Option* option) {
+  const std::string flag = option->get_name();
+  return option->each([flag](const std::string& value) {
+    if (value.empty()) throwInputError(flag, "is empty: give a value, or leave the flag out");
+  });
+}
 
 glm::ivec2 parseSize(const std::string& flag, const std::string& text) {
   const auto x = text.find_first_of("xX");

@@ -4,7 +4,15 @@
 
 #include <glm/glm.hpp>
 
+namespace CLI {
+class Option;
+}
+
 namespace vsil::cli {
+
+// Refuses an empty value for `option` (--crop '', a shell variable left unset): InputError
+// "<flag>: is empty: give a value, or leave the flag out", never the flag read as left out.
+CLI::Option* nonEmpty(CLI::Option* option);
 
 // "WxH" with positive integers.
 glm::ivec2 parseSize(const std::string& flag, const std::string& text);

@@ -1,5 +1,7 @@
 #include "cli/cli_postfx_options.h"
 
+#include <charconv>
+
 #include "core/error.h"
 
 namespace vsil::cli {
@@ -16,7 +18,12 @@ void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options) {
   const auto width = [](const std::string& flag) {
     return [flag](const std::string& text) {
       double value = 0;
-      if (!CLI::detail::lexical_cast(text, value)) {
+      const char* end = text.data() + text.size();
+      const auto [stop, error] = std::from_chars(text.data(), end, value);
+      if (error == std::errc::result_out_of_range) {
+        throwInputError(flag, "'" + text + "' is out of range");
+      }
+      if (text.empty() || error != std::errc() || stop != end) {
         throwInputError(flag, "'" + text + "' is not a number");
       }
       vsil::WidthLaw::fixed(value).validate(flag);

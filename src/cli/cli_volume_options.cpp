@@ -1,5 +1,7 @@
 #include "cli/cli_volume_options.h"
 
+#include "cli/cli_parse.h"
+
 #include <array>
 #include <iostream>
 #include <limits>
@@ -79,20 +81,23 @@ ReadRegion parseCrop(const std::string& text) {
 
 void addVolumeOptions(CLI::App& command, VolumeOptions& options) {
   const std::string group = "Raw volume layout (headerless files)";
-  command.add_option("--dims", options.dims, "samples along x, y, z, e.g. 256x256x128")
-      ->group(group);
+  nonEmpty(command.add_option("--dims", options.dims, "samples along x, y, z, e.g. 256x256x128")
+               ->group(group));
   command.add_option("--type", options.type, "sample type")
       ->check(CLI::IsMember({"uint8", "uint16", "int16", "float32"}))
       ->group(group);
-  command.add_option("--spacing", options.spacing, "sample spacing along x, y, z (default 1,1,1)")
-      ->group(group);
+  nonEmpty(
+      command
+          .add_option("--spacing", options.spacing, "sample spacing along x, y, z (default 1,1,1)")
+          ->group(group));
   command
       .add_option("--endian", options.endian, "byte order of multi-byte samples (default little)")
       ->check(CLI::IsMember({"little", "big"}))
       ->group(group);
-  command.add_option("--crop", options.crop,
-                     "read only voxels X0..X1-1, Y0..Y1-1, Z0..Z1-1: X0:X1,Y0:Y1,Z0:Z1, half-open "
-                     "like Python slices, an empty bound is the edge (e.g. 0:128,:,64:)");
+  nonEmpty(command.add_option(
+      "--crop", options.crop,
+      "read only voxels X0..X1-1, Y0..Y1-1, Z0..Z1-1: X0:X1,Y0:Y1,Z0:Z1, half-open "
+      "like Python slices, an empty bound is the edge (e.g. 0:128,:,64:)"));
   command.add_option("--stride", options.stride,
                      "read only every Nth sample along each axis (from the crop's start); the "
                      "spacing grows N times");
@@ -100,9 +105,10 @@ void addVolumeOptions(CLI::App& command, VolumeOptions& options) {
                      "cut the volume into 3D textures (bricks) of at most this many MiB (default " +
                          std::to_string(limits::kMaxTextureBytes >> 20) +
                          ", the most one texture holds here); the images are the same");
-  command.add_option("--series", options.series,
-                     "DICOM: the Series Instance UID to read from a folder holding several (by "
-                     "default the series with the most slices; `vsil info` lists the others)");
+  nonEmpty(
+      command.add_option("--series", options.series,
+                         "DICOM: the Series Instance UID to read from a folder holding several (by "
+                         "default the series with the most slices; `vsil info` lists the others)"));
   command.add_option("--max-memory", options.maxMemoryMiB,
                      "refuse work needing more than this many MiB of memory (default: half the "
                      "physical memory, " +

@@ -28,6 +28,9 @@ struct MeasureWidthArgs {
 
 void run(const MeasureWidthArgs& args) {
   const Rgba color = parseColor(args.lineColor, "--line-color");
+  OutputBatch outputs;  // both written, or neither
+  outputs.claim("--plot", args.plot);
+  outputs.claim("--json", args.json);
   if (validateOnly()) return;
   const cv::Mat image = readImage(args.image);
   if (image.depth() != CV_8U) throwInputError(args.image, "only 8-bit images are measured");
@@ -59,9 +62,12 @@ void run(const MeasureWidthArgs& args) {
                 << "\n";
     }
     report["by_depth"] = depthBinsJson(bins);
-    if (!args.plot.empty()) writePng(args.plot, plotWidthAgainstDepth(samples, depth, bins));
+    if (!args.plot.empty()) {
+      outputs.add(args.plot, encodePng(args.plot, plotWidthAgainstDepth(samples, depth, bins)));
+    }
   }
-  if (!args.json.empty()) writeFileAtomically(args.json, report.dump(2) + "\n");
+  if (!args.json.empty()) outputs.add(args.json, report.dump(2) + "\n");
+  outputs.commit();
 }
 
 const CommandRegistration registerMeasureWidthCommand(30, [](CLI::App& app) {

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_parse.h"
 #include "cli/cli_progress.h"
 #include "cli/cli_render_options.h"
 #include "cli/commands.h"
@@ -24,8 +25,13 @@ struct RenderOutputs {
   std::string stateOut, depthOut, metaOut;
 };
 
-// Outputs the technique cannot make are refused before any work.
-void checkOutputs(const RenderFlags& flags, const RenderOutputs& outputs) {
+// Outputs the technique cannot make, and two outputs naming one file, are refused before any
+// work.
+void checkOutputs(const RenderFlags& flags, const RenderOutputs& outputs, OutputBatch& batch) {
+  batch.claim("--out", outputs.out);
+  batch.claim("--state-out", outputs.stateOut);
+  batch.claim("--depth-out", outputs.depthOut);
+  batch.claim("--meta-out", outputs.metaOut);
   const TechniqueInfo& technique = findTechnique(flags.technique);
   if (!outputs.stateOut.empty() && !technique.outputs.state) {
     throw InputError("--state-out: technique '" + technique.name + "' makes no state image");
@@ -41,7 +47,8 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   RenderRequest request = toRenderRequest(flags);
   request.settings.readDepth = !outputs.depthOut.empty();
   RenderJob::checkRequest(request, loadOptions.limits);
-  checkOutputs(flags, outputs);
+  OutputBatch batch;
+  checkOutputs(flags, outputs, batch);
   const gl::ContextOptions glOptions = toContextOptions(flags.gl);
   if (validateOnly()) return;
 
@@ -58,9 +65,14 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   RenderOutput output = job.render(request, loadOptions.limits);
   for (const auto& warning : output.warnings) std::cerr << "vsil: warning: " << warning << "\n";
 
-  writePng(outputs.out, output.image);
-  if (!outputs.stateOut.empty()) writePng(outputs.stateOut, stateImage(output.result.frame));
-  if (!outputs.depthOut.empty()) writePng(outputs.depthOut, depthImage(output.result.frame));
+  // Every output is complete before any replaces its target (core/atomic_file.h OutputBatch).
+  batch.add(outputs.out, encodePng(outputs.out, output.image));
+  if (!outputs.stateOut.empty()) {
+    batch.add(outputs.stateOut, encodePng(outputs.stateOut, stateImage(output.result.frame)));
+  }
+  if (!outputs.depthOut.empty()) {
+    batch.add(outputs.depthOut, encodePng(outputs.depthOut, depthImage(output.result.frame)));
+  }
   if (!outputs.metaOut.empty()) {
     nlohmann::json& meta = output.metadata;
     meta["parameters"]["out"] = outputs.out;
@@ -72,8 +84,9 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
     }
     meta["timings_ms"]["total"] =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    writeFileAtomically(outputs.metaOut, meta.dump(2) + "\n");
+    batch.add(outputs.metaOut, meta.dump(2) + "\n");
   }
+  batch.commit();
   std::cout << outputs.out << "\n";
 }
 
@@ -82,13 +95,15 @@ const CommandRegistration registerRenderCommand(10, [](CLI::App& app) {
   auto outputs = std::make_shared<RenderOutputs>();
   CLI::App* command = app.add_subcommand("render", "Render one frame of a technique to PNG");
   addRenderOptions(*command, *flags);
-  command->add_option("--out", outputs->out, "Output PNG")->capture_default_str();
-  command->add_option("--state-out", outputs->stateOut,
-                      "8-bit PNG of pixel states: 0 Empty, 85 Filled, 170 Contour, 255 Silhouette");
-  command->add_option("--depth-out", outputs->depthOut,
-                      "16-bit PNG of normalized depth d: 1 + round(d*65534), 0 where none "
-                      "(for line techniques: the line pixels)");
-  command->add_option("--meta-out", outputs->metaOut, "JSON with parameters, camera, timings");
+  nonEmpty(command->add_option("--out", outputs->out, "Output PNG")->capture_default_str());
+  nonEmpty(command->add_option(
+      "--state-out", outputs->stateOut,
+      "8-bit PNG of pixel states: 0 Empty, 85 Filled, 170 Contour, 255 Silhouette"));
+  nonEmpty(command->add_option("--depth-out", outputs->depthOut,
+                               "16-bit PNG of normalized depth d: 1 + round(d*65534), 0 where none "
+                               "(for line techniques: the line pixels)"));
+  nonEmpty(
+      command->add_option("--meta-out", outputs->metaOut, "JSON with parameters, camera, timings"));
   command->callback([flags, outputs] { run(*flags, *outputs); });
 });
 

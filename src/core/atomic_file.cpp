@@ -123,30 +123,85 @@ AtomicOutputFile::~AtomicOutputFile() {
   if (!committed_) ::unlink(temporary_.c_str());
 }
 
-void AtomicOutputFile::commit() {
+void AtomicOutputFile::finish() {
+  if (fd_ < 0) return;
   fchmod(fd_, 0644);
   const int closed = ::close(fd_);
   fd_ = -1;
-  if (closed != 0 || std::rename(temporary_.c_str(), target_.c_str()) != 0) {
+  if (closed != 0) {
     const int err = errno;
-    ::unlink(temporary_.c_str());
+    throwInputError(target_.string(), std::string("cannot write: ") + std::strerror(err));
+  }
+}
+
+void AtomicOutputFile::commit() {
+  finish();
+  if (std::rename(temporary_.c_str(), target_.c_str()) != 0) {
+    const int err = errno;
     throwInputError(target_.string(), std::string("cannot write: ") + std::strerror(err));
   }
   committed_ = true;
 }
 
-void writeFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
-  AtomicOutputFile file(path);
+namespace {
+
+std::unique_ptr<AtomicOutputFile> writeTemporary(const std::filesystem::path& path,
+                                                 std::span<const std::uint8_t> bytes) {
+  auto file = std::make_unique<AtomicOutputFile>(path);
   std::size_t written = 0;
   while (written < bytes.size()) {
-    const ssize_t n = ::write(file.descriptor(), bytes.data() + written, bytes.size() - written);
+    const ssize_t n = ::write(file->descriptor(), bytes.data() + written, bytes.size() - written);
     if (n < 0) {
       if (errno == EINTR) continue;
       throwInputError(path.string(), std::string("cannot write: ") + std::strerror(errno));
     }
     written += std::size_t(n);
   }
-  file.commit();
+  file->finish();
+  return file;
+}
+
+// The file a path names, for comparing outputs: the folder's real path (symlinks, "..", "."
+// resolved) joined with the name, itself resolved when it is a symlink.
+std::filesystem::path resolvedOutput(const std::filesystem::path& path) {
+  std::error_code ec;
+  std::filesystem::path resolved = std::filesystem::weakly_canonical(path, ec);
+  if (ec) resolved = std::filesystem::absolute(path, ec).lexically_normal();
+  return resolved;
+}
+
+}  // namespace
+
+void OutputBatch::claim(const std::string& flag, const std::filesystem::path& path) {
+  if (path.empty()) return;
+  Claim claim{flag, path, resolvedOutput(path)};
+  for (const Claim& other : claims_) {
+    std::error_code ec;
+    const bool same = other.resolved == claim.resolved ||
+                      std::filesystem::equivalent(other.path, claim.path, ec);  // hard links
+    if (same) {
+      throw InputError(flag + " " + path.string() + ": names the same file as " + other.flag + " " +
+                       other.path.string() + "; give each output its own file");
+    }
+  }
+  claims_.push_back(std::move(claim));
+}
+
+void OutputBatch::add(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+  files_.push_back(writeTemporary(path, bytes));
+}
+
+void OutputBatch::add(const std::filesystem::path& path, std::string_view text) {
+  add(path, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()),
+                                          text.size()));
+}
+
+void OutputBatch::commit() {
+  for (const auto& file : files_) file->commit();
+}
+
+void writeFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+  writeTemporary(path, bytes)->commit();
 }
 
 void writeFileAtomically(const std::filesystem::path& path, std::string_view text) {

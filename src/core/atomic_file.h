@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace vsil {
 
@@ -34,6 +36,9 @@ class AtomicOutputFile {
   // Closes the descriptor and renames the temporary over the target (mode 0644). Throws
   // InputError naming the target when that fails; the temporary is then removed.
   void commit();
+  // commit()'s first half: closes the descriptor (a full disk can fail here), leaving the
+  // complete temporary to rename. Throws InputError naming the target; commit() renames.
+  void finish();
 
  private:
   struct Registration;
@@ -41,6 +46,38 @@ class AtomicOutputFile {
   int fd_ = -1;
   bool committed_ = false;
   std::unique_ptr<Registration> registration_;
+};
+
+// The outputs of one run (render's --out, --state-out, --depth-out, --meta-out), all or none:
+// each is written whole to its temporary first and only when every one is complete (written,
+// closed) are they renamed over their targets, so a full disk or an unwritable folder for one
+// leaves every target as it was. (The renames themselves, in one folder each, are the only
+// step that could fail between two outputs.)
+//
+//   OutputBatch outputs;
+//   outputs.claim("--out", out); outputs.claim("--meta-out", meta);   // before any work
+//   ...
+//   outputs.add(out, pngBytes); outputs.add(meta, json);
+//   outputs.commit();
+class OutputBatch {
+ public:
+  // Refuses (InputError) an output naming the same file as one claimed before: the same path
+  // spelled otherwise (./o.png, dir/../o.png), or a symlink or hard link to it. Empty paths
+  // (an output not asked for) are ignored.
+  void claim(const std::string& flag, const std::filesystem::path& path);
+  // Writes `bytes` to a temporary for `path` (not yet the target).
+  void add(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
+  void add(const std::filesystem::path& path, std::string_view text);
+  // Renames every temporary over its target. Without commit() none is renamed.
+  void commit();
+
+ private:
+  struct Claim {
+    std::string flag;
+    std::filesystem::path path, resolved;
+  };
+  std::vector<Claim> claims_;
+  std::vector<std::unique_ptr<AtomicOutputFile>> files_;
 };
 
 // Throws InputError (naming the path) when the directory is missing or not writable.

@@ -239,8 +239,15 @@ void parseParameterList(std::string_view text, const std::string& where,
                                  " (known: " + joined(known) + ")");
     }
     const auto value = parseNumber(valueText);
-    if (!value)
-      throwInputError(where + ": " + spec->name, quotedText(valueText) + " is not a number");
+    if (!value) {
+      double ignored = 0;
+      const bool outOfRange =
+          std::from_chars(valueText.data(), valueText.data() + valueText.size(), ignored).ec ==
+          std::errc::result_out_of_range;
+      throwInputError(
+          where + ": " + spec->name,
+          quotedText(valueText) + (outOfRange ? " is out of range" : " is not a number"));
+    }
     checkParameter(*spec, *value, where);
     values[spec->name] = *value;
   }

@@ -1,10 +1,16 @@
 #include "core/image_file.h"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <mutex>
+#include <string>
 #include <system_error>
 #include <vector>
 
@@ -13,14 +19,19 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 
 namespace vsil {
 
-void writePng(const std::filesystem::path& path, const cv::Mat& image) {
+std::vector<std::uint8_t> encodePng(const std::filesystem::path& path, const cv::Mat& image) {
   if (image.empty()) throwInputError(path.string(), "refusing to write an empty image");
   std::vector<std::uint8_t> bytes;
   if (!cv::imencode(".png", image, bytes)) throwInputError(path.string(), "PNG encoding failed");
-  writeFileAtomically(path, bytes);
+  return bytes;
+}
+
+void writePng(const std::filesystem::path& path, const cv::Mat& image) {
+  writeFileAtomically(path, encodePng(path, image));
 }
 
 namespace {
@@ -38,10 +49,75 @@ std::uint32_t bigEndian32(const unsigned char* bytes) {
          std::uint32_t(bytes[2]) << 8 | std::uint32_t(bytes[3]);
 }
 
+// Sends what is written to stderr (descriptor 2) into a temporary file for its lifetime, for
+// libraries that print there themselves; text() reads it back. One at a time (a mutex): a line
+// another thread writes meanwhile lands there too, which only a decode's milliseconds risk.
+class StderrCapture {
+ public:
+  StderrCapture() : lock_(mutex()) {
+    std::fflush(stderr);
+    file_ = std::tmpfile();
+    saved_ = ::dup(2);
+    if (file_ && saved_ >= 0) ::dup2(::fileno(file_), 2);
+  }
+  ~StderrCapture() {
+    restore();
+    if (file_) std::fclose(file_);
+  }
+  StderrCapture(const StderrCapture&) = delete;
+  StderrCapture& operator=(const StderrCapture&) = delete;
+
+  std::string text() const {
+    if (!file_) return {};
+    std::fflush(stderr);
+    std::string result;
+    std::rewind(file_);
+    char buffer[512];
+    std::size_t got = 0;
+    while (result.size() < 4096 && (got = std::fread(buffer, 1, sizeof buffer, file_)) > 0) {
+      result.append(buffer, got);
+    }
+    return result;
+  }
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  void restore() {
+    std::fflush(stderr);
+    if (saved_ >= 0) {
+      ::dup2(saved_, 2);
+      ::close(saved_);
+      saved_ = -1;
+    }
+  }
+  std::lock_guard<std::mutex> lock_;
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
+};
+
 }  // namespace
 
 cv::Mat readImage(const std::filesystem::path& path) {
   requireRegularFile(path);
+  {
+    static constexpr char kSignature[8] = {'\x89', 'P', 'N', 'G', '\r', '\n', '\x1a', '\n'};
+    char head[8] = {};
+    std::ifstream(path, std::ios::binary).read(head, sizeof head);
+    if (std::memcmp(head, kSignature, 8) == 0) {
+      // An image vsil could have written: at most kMaxImageSide pixels a side.
+      const cv::Size size = readPngSize(path);
+      if (size.width > limits::kMaxImageSide || size.height > limits::kMaxImageSide) {
+        throwInputError(path.string(), std::to_string(size.width) + "x" +
+                                           std::to_string(size.height) +
+                                           " pixels is over the limit of " +
+                                           std::to_string(limits::kMaxImageSide) + " per side");
+      }
+      return readPng(path);
+    }
+  }
   cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
   if (image.empty()) throwInputError(path.string(), "not a readable image");
   return image;
@@ -59,6 +135,11 @@ cv::Size readPngSize(const std::filesystem::path& path) {
   if (got < std::streamsize(sizeof head) || std::memcmp(head, kSignature, 8) != 0 ||
       std::memcmp(head + 12, "IHDR", 4) != 0) {
     throwInputError(path.string(), "is not a PNG image");
+  }
+  // IHDR holds 13 bytes; a shorter one would have its width and height read from what follows.
+  if (const std::uint32_t length = bigEndian32(head + 8); length != 13) {
+    throwInputError(path.string(), "is not a valid PNG image (its IHDR chunk holds " +
+                                       std::to_string(length) + " bytes, 13 expected)");
   }
   const std::uint32_t width = bigEndian32(head + 16), height = bigEndian32(head + 20);
   constexpr std::uint32_t kLargest = 0x7fffffff;  // the PNG specification's limit
@@ -108,8 +189,24 @@ cv::Mat readPng(const std::filesystem::path& path) {
     at += 12 + length;
     if (type == "IEND") break;
   }
-  cv::Mat image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
-  if (image.empty() || image.size() != size) throwInputError(name, "not a readable PNG image");
+  // libpng prints its warnings and errors on stderr itself ("libpng error: IDAT: invalid
+  // distance too far back", or a warning about a valid file's colour profile); they are kept
+  // off stderr, and an error's text goes into vsil's one line.
+  std::string libpngSaid;
+  cv::Mat image;
+  {
+    const StderrCapture capture;
+    image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+    libpngSaid = capture.text();
+  }
+  if (image.empty() || image.size() != size) {
+    std::string reason;
+    if (const auto at = libpngSaid.find("libpng error: "); at != std::string::npos) {
+      reason = libpngSaid.substr(at + 14);
+      reason = reason.substr(0, std::min(reason.find('\n'), std::size_t(120)));
+    }
+    throwInputError(name, "not a readable PNG image" + (reason.empty() ? "" : " (" + reason + ")"));
+  }
   return image;
 }
 

@@ -31,8 +31,23 @@ std::string conciseReason(const std::string& what) {
 }  // namespace
 
 nlohmann::json parseJsonText(std::string_view text, const std::string& source) {
+  // The parser itself keeps its nesting on the heap, but every later walk of the value
+  // (dump, comparison, the readers) recurses: a file of 100000 '[' would overflow the stack
+  // there. The callback sees each container open with the count of those enclosing it.
+  struct TooDeep {};
+  const auto depthGuard = [](int depth, nlohmann::json::parse_event_t event, nlohmann::json&) {
+    if ((event == nlohmann::json::parse_event_t::object_start ||
+         event == nlohmann::json::parse_event_t::array_start) &&
+        depth >= limits::kMaxJsonDepth) {
+      throw TooDeep{};
+    }
+    return true;
+  };
   try {
-    return nlohmann::json::parse(text.begin(), text.end());
+    return nlohmann::json::parse(text.begin(), text.end(), depthGuard);
+  } catch (const TooDeep&) {
+    throwInputError(source, "not valid JSON (nested more than " +
+                                std::to_string(limits::kMaxJsonDepth) + " levels deep)");
   } catch (const nlohmann::json::exception& e) {
     throwInputError(source, "not valid JSON (" + conciseReason(e.what()) + ")");
   }
@@ -42,10 +57,52 @@ nlohmann::json readJsonFile(const std::string& path) {
   return parseJsonText(io::readWholeFile(path, limits::kMaxHeaderBytes), path);
 }
 
+namespace {
+
+// Appends `value` as compact JSON until `text` holds more than `budget` characters: a message
+// quotes the start of a value, so a large or deep one is never serialised whole (each level
+// adds a character, so the recursion stops within `budget` levels).
+void appendSnippet(const nlohmann::json& value, std::string& text, std::size_t budget) {
+  if (text.size() > budget) return;
+  const auto dumpScalar = [](const nlohmann::json& scalar) {
+    return scalar.dump(-1, ' ', /*ensure_ascii=*/true, nlohmann::json::error_handler_t::replace);
+  };
+  if (value.is_object()) {
+    text += '{';
+    bool first = true;
+    for (const auto& item : value.items()) {
+      if (text.size() > budget) return;
+      if (!first) text += ',';
+      first = false;
+      const std::string& key = item.key();
+      text += dumpScalar(nlohmann::json(key.substr(0, budget + 1))) + ':';
+      appendSnippet(item.value(), text, budget);
+    }
+    text += '}';
+  } else if (value.is_array()) {
+    text += '[';
+    bool first = true;
+    for (const auto& item : value) {
+      if (text.size() > budget) return;
+      if (!first) text += ',';
+      first = false;
+      appendSnippet(item, text, budget);
+    }
+    text += ']';
+  } else if (value.is_string()) {
+    // Only the start of a long string is escaped and quoted.
+    text += dumpScalar(nlohmann::json(value.get_ref<const std::string&>().substr(0, budget + 1)));
+  } else {
+    text += dumpScalar(value);
+  }
+}
+
+}  // namespace
+
 std::string jsonSnippet(const nlohmann::json& value) {
-  std::string text =
-      value.dump(-1, ' ', /*ensure_ascii=*/true, nlohmann::json::error_handler_t::replace);
   constexpr std::size_t kMax = 40;
+  std::string text;
+  appendSnippet(value, text, kMax);
   if (text.size() > kMax) text = text.substr(0, kMax) + "...";
   return text;
 }

@@ -63,10 +63,12 @@ std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample, boo
          2 * slabBytes;
 }
 
-std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel) {
-  const double diagonal = glm::length(glm::dvec3(dims));
+std::int64_t sliceCountBound(glm::ivec3 dims, glm::dvec3 spacing, double samplesPerVoxel) {
+  const double finest = std::min({spacing.x, spacing.y, spacing.z});
+  const double diagonal = glm::length(glm::dvec3(dims) * (spacing / finest));
   const double slices = std::ceil(diagonal * samplesPerVoxel) + 1.0;
-  return slices > 1e15 ? std::int64_t(1e15) : std::int64_t(slices);
+  // Not `slices > 1e15`: NaN (a spacing of 0 or inf) saturates too.
+  return slices <= 1e15 ? std::int64_t(slices) : std::int64_t(1e15);
 }
 
 void checkMemory(const std::string& what, std::uint64_t bytes, std::size_t limitBytes) {

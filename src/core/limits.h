@@ -30,6 +30,9 @@ inline constexpr std::int64_t kMaxSlices = std::int64_t(1) << 17;
 inline constexpr int kMaxFrames = 100000;
 // Bytes of a header or text file read whole (NRRD headers, rule, style, transfer functions).
 inline constexpr std::size_t kMaxHeaderBytes = std::size_t(1) << 20;
+// Containers nested in one JSON file (transfer functions, styles): every walk of a parsed value
+// recurses, so a deeper file is refused while it is parsed.
+inline constexpr int kMaxJsonDepth = 64;
 // --stride accepts 1 .. this (a larger stride keeps one sample per axis of any volume).
 inline constexpr int kMaxStride = 1 << 16;
 // demip's equirectangular sphere map (--sphere-map FILE.png), kept as RGBA32F (16 bytes per
@@ -75,8 +78,11 @@ std::uint64_t renderImageBytes(glm::ivec2 size, double maxLineWidth);
 std::uint64_t renderVolumeBytes(glm::ivec3 dims, std::size_t bytesPerSample, bool gradients = false,
                                 std::uint64_t maxTextureBytes = kMaxTextureBytes,
                                 bool oneTexture = false);
-// An upper bound of the slices a frame draws: ceil(|dims| * samplesPerVoxel) + 1.
-std::int64_t sliceCountBound(glm::ivec3 dims, double samplesPerVoxel);
+// An upper bound of the slices a frame draws from any camera: the box's diagonal counted in its
+// finest spacing, ceil(|dims * spacing / min(spacing)| * samplesPerVoxel) + 1 (slicing/slicer.h
+// planSlices steps 1 / samplesPerVoxel voxels along the view, the finest axis the densest;
+// its eye-distance range is at most the diagonal). Saturates at 1e15.
+std::int64_t sliceCountBound(glm::ivec3 dims, glm::dvec3 spacing, double samplesPerVoxel);
 
 // Throws InputError "<what> needs N MiB, over the --max-memory limit of M MiB" when
 // bytes > limitBytes.

@@ -176,6 +176,11 @@ std::string OptionSpec::key() const {
 }
 
 OptionValue OptionSpec::parse(const std::string& text) const {
+  // An empty value (--tf '', a shell variable left unset) is refused, never read as the flag
+  // left out: that would render something else than asked without a word.
+  if (text.empty() && kind != OptionKind::Switch) {
+    throwInputError(flag(), "is empty: give a value, or leave the flag out");
+  }
   OptionValue value;
   switch (kind) {
     case OptionKind::Number:

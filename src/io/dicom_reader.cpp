@@ -704,6 +704,27 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
                               std::to_string(framesDecoded) + " frames where its Number of " +
                               "Frames (0028,0008) says " + std::to_string(frames));
   }
+  // GDCM reads a Pixel Spacing it cannot parse (nan, abc) or one of 0 as 1, and a Rescale
+  // Slope of nan or inf as none: the values as written are checked here instead.
+  const gdcm::DataSet& firstSet = first.GetFile().GetDataSet();
+  const auto checkWritten = [&](const gdcm::Tag& tag, const std::string& name, std::size_t count,
+                                const std::string& needed, auto valid) {
+    std::string text = textOf(firstSet, tag);
+    text.erase(std::find(text.begin(), text.end(), '\0'), text.end());
+    text = std::string(trim(text));
+    if (text.empty()) return;
+    const std::vector<double> values = parseNumbers(text.c_str(), count);
+    if (values.empty() || !std::all_of(values.begin(), values.end(), valid)) {
+      throwInputError(path, "slice " + fileLabel(slices.front().file) + " has " + name + " " +
+                                quote(text.substr(0, 40)) + ": " + needed);
+    }
+  };
+  checkWritten(kPixelSpacing, "Pixel Spacing (0028,0030)", 2, "not two positive distances",
+               [](double v) { return v > 0; });
+  checkWritten(kRescaleSlope, "Rescale Slope (0028,1053)", 1, "not a finite number other than 0",
+               [](double v) { return v != 0; });
+  checkWritten(kRescaleIntercept, "Rescale Intercept (0028,1052)", 1, "not a finite number",
+               [](double) { return true; });
   const StoredType type = storedTypeOfPixels(firstWhere, firstImage.GetPixelFormat());
   const glm::ivec3 dims =
       parseDims(path, "Columns, Rows, slices",
@@ -761,6 +782,14 @@ Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
     }
     if (gdcmWarnings.incompletePixelData()) {
       throwInputError(path, where + ": the file ends inside its pixel data (truncated)");
+    }
+    // Native (not encapsulated) pixels are the element's bytes: GDCM copies what there is and
+    // leaves the rest of a short element as zeros.
+    if (const gdcm::ByteValue* stored = image.GetDataElement().GetByteValue();
+        stored && !image.GetTransferSyntax().IsEncapsulated() && stored->GetLength() < bytes) {
+      throwInputError(path, where + ": its Pixel Data (7fe0,0010) holds " +
+                                std::to_string(stored->GetLength()) + " bytes, " +
+                                std::to_string(bytes) + " expected");
     }
     buffer.resize(std::size_t(bytes));
     if (!withinGdcm(path, [&] { return image.GetBuffer(buffer.data()); })) {

@@ -37,7 +37,17 @@ std::uint64_t regularFileSize(const std::string& path) {
   if (status.type() != fs::file_type::regular) throwInputError(path, "is not a regular file");
   const std::uintmax_t size = fs::file_size(path, error);
   if (error) throwInputError(path, "cannot be examined: " + error.message());
-  if (size == 0) throwInputError(path, "file is empty");
+  if (size == 0) {
+    // A size of 0 is also what /proc and /sys report for files that hold something (or that
+    // cannot be read at all, /proc/self/mem): one byte read tells them from an empty file.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) openForReading(path);  // says why it cannot be opened
+    char byte = 0;
+    const ssize_t got = fd >= 0 ? ::read(fd, &byte, 1) : -1;
+    if (fd >= 0) ::close(fd);
+    if (got == 0) throwInputError(path, "file is empty");
+    throwInputError(path, "is a special file (its size reads as 0), not a volume file");
+  }
   openForReading(path);  // permissions: fail here with a clear message rather than later
   return size;
 }

@@ -3,20 +3,24 @@
 // gzip layer). nifticlib parses the header and finds the data; vsil checks the dims and type
 // against its limits before any sample is read, then streams the samples through znzlib (or,
 // uncompressed, reads only the rows --crop/--stride keep) into the volume: no second copy.
-// scl_slope/scl_inter are applied as the standard says (slope 0 or not finite: none); the
+// scl_slope/scl_inter are applied as the standard says (slope 0: none; not finite: refused); the
 // qform and sform are recorded as the volume's orientations, not applied.
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iomanip>
 #include <memory>
 #include <sstream>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/error.h"
 #include "core/options.h"
 #include "io/file_access.h"
+#include "io/inflate.h"
 #include "io/readers.h"
 #include "io/text_fields.h"
 
@@ -77,6 +81,8 @@ struct RawHeader {
   int datatype = 0;
   double voxOffset = 0;  // NIfTI-1 stores a float (any value, 1e25 too), NIfTI-2 an int64
   double pixdim[4] = {};
+  double sclSlope = 0, sclInter = 0;  // as written (nifticlib reads a non-finite one as 0)
+  std::string magic;                  // "n+1", "ni1", "n+2", "ni2"; anything else: ANALYZE 7.5
 };
 
 RawHeader readRawHeader(const std::string& path) {
@@ -114,6 +120,9 @@ RawHeader readRawHeader(const std::string& path) {
     header.datatype = h->datatype;
     header.voxOffset = double(h->vox_offset);
     for (int i = 0; i < 4; ++i) header.pixdim[i] = h->pixdim[i];
+    header.sclSlope = h->scl_slope;
+    header.sclInter = h->scl_inter;
+    header.magic.assign(h->magic, strnlen(h->magic, 4));
     if (!nifti_hdr2_looks_good(h)) header.version = -2;
   } else {
     const auto* h = static_cast<const nifti_1_header*>(raw);
@@ -121,6 +130,9 @@ RawHeader readRawHeader(const std::string& path) {
     header.datatype = h->datatype;
     header.voxOffset = h->vox_offset;
     for (int i = 0; i < 4; ++i) header.pixdim[i] = h->pixdim[i];
+    header.sclSlope = h->scl_slope;
+    header.sclInter = h->scl_inter;
+    header.magic.assign(h->magic, strnlen(h->magic, 4));
     if (!nifti_hdr1_looks_good(h)) header.version = -1;
   }
   return header;
@@ -156,6 +168,18 @@ void checkRawHeader(const std::string& path, const RawHeader& header) {
                               " MiB: not the header of an image");
   }
   storedTypeOfNifti(path, header.datatype);
+  // Without NIfTI's magic the header is ANALYZE 7.5's, whose image is a .hdr/.img pair: a .nii
+  // without it is a damaged file (nifticlib would read it as NIfTI-1 all the same).
+  std::string name = std::filesystem::path(path).filename().string();
+  for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const bool oneFile = name.ends_with(".nii") || name.ends_with(".nii.gz");
+  const bool niftiMagic = header.magic == "n+1" || header.magic == "n+2" || header.magic == "ni1" ||
+                          header.magic == "ni2";
+  if (oneFile && !niftiMagic) {
+    throwInputError(path, "magic " + quote(header.magic) +
+                              " is not NIfTI's (n+1 or n+2): a damaged file, or an ANALYZE 7.5 "
+                              "header, whose image is a .hdr/.img pair");
+  }
   if (header.version < 0) {
     throwInputError(path, "nifticlib rejects its NIfTI-" + std::to_string(-header.version) +
                               " header (inconsistent fields)");
@@ -225,10 +249,19 @@ Volume readNifti(const std::string& path, const LoadOptions& options) {
   const glm::ivec3 dims = parseDims(path, "dim[1..3]",
                                     std::to_string(image->nx) + " " + std::to_string(image->ny) +
                                         " " + std::to_string(image->nz));
+  // The standard's rule: a slope of 0 means none; any other applies with its intercept. A
+  // slope or intercept that is not a number (nifticlib would read it as 0) is refused.
+  if (!std::isfinite(raw.sclSlope)) {
+    throwInputError(path, "scl_slope " + formatNumber(raw.sclSlope) +
+                              " is not a finite number (0 means no scaling)");
+  }
   Rescale rescale;
-  if (std::isfinite(image->scl_slope) && image->scl_slope != 0.0) {
-    rescale.slope = image->scl_slope;
-    if (std::isfinite(image->scl_inter)) rescale.intercept = image->scl_inter;
+  if (raw.sclSlope != 0.0) {
+    if (!std::isfinite(raw.sclInter)) {
+      throwInputError(path, "scl_inter " + formatNumber(raw.sclInter) + " is not a finite number");
+    }
+    rescale.slope = raw.sclSlope;
+    rescale.intercept = raw.sclInter;
   }
   planVolume(path, dims, keptSampleType(type, rescale), options.limits, options.region);
   glm::dvec3 spacing(image->dx, image->dy, image->dz);
@@ -256,7 +289,11 @@ Volume readNifti(const std::string& path, const LoadOptions& options) {
                               quote(std::filesystem::path(dataPath).filename().string()) +
                               " is missing");
   }
-  if (!gzipped) {
+  if (gzipped) {
+    // Before the volume is allocated: a few KiB of gzip cannot hold a 2048³ volume (deflate
+    // packs at most 1032:1), as NRRD and MetaImage check their compressed payloads.
+    checkInflatable(path, dataLabel + " (gzip)", regularFileSize(dataPath), offset + expected);
+  } else {
     const std::uint64_t available = regularFileSize(dataPath);
     if (available < offset || available - offset < expected) {
       throwInputError(path, dataLabel + " holds " +

@@ -89,8 +89,12 @@ glm::ivec3 parseDims(const std::string& where, const std::string& field, std::st
   glm::ivec3 dims;
   for (int axis = 0; axis < 3; ++axis) {
     const std::int64_t value = parseInteger(where, field, tokens[axis]);
-    if (value <= 0 || value > std::numeric_limits<int>::max()) {
+    if (value <= 0) {
       throwInputError(where, field + " value " + std::to_string(value) + " is not a positive size");
+    }
+    if (value > std::numeric_limits<int>::max()) {
+      throwInputError(where, field + " value " + std::to_string(value) + " is too large (at most " +
+                                 std::to_string(std::numeric_limits<int>::max()) + ")");
     }
     dims[axis] = int(value);
   }

@@ -12,22 +12,37 @@
 namespace vsil {
 
 Volume loadVolume(const std::string& spec, const LoadOptions& options) {
+  // --series chooses among a DICOM folder's series; anything else would ignore it silently.
+  const auto refuseSeries = [&] {
+    if (options.series.empty()) return;
+    throwInputError("--series " + io::quote(options.series),
+                    "chooses a DICOM series, but " + spec + " is not DICOM");
+  };
   if (spec.starts_with("gen:")) {
+    refuseSeries();
     return generateVolume(spec.substr(4), options.limits, options.region);
   }
   if (spec.empty()) throw InputError("no volume given (a file path or gen:NAME[:N])");
-  if (options.raw) return io::readRaw(spec, *options.raw, options);
+  if (options.raw) {
+    refuseSeries();
+    return io::readRaw(spec, *options.raw, options);
+  }
 
   std::string extension = io::toLower(std::filesystem::path(spec).extension().string());
   if (extension == ".gz") {  // name.nii.gz: the extension before .gz says the format
     extension = io::toLower(std::filesystem::path(spec).stem().extension().string()) + ".gz";
   }
-  if (extension == ".nrrd" || extension == ".nhdr") return io::readNrrd(spec, options);
-  if (extension == ".vti") return io::readVti(spec, options);
-  if (extension == ".vtk") return io::readLegacyVtk(spec, options);
-  if (extension == ".mhd" || extension == ".mha") return io::readMetaImage(spec, options);
+  using Reader = Volume (*)(const std::string&, const LoadOptions&);
+  const auto read = [&](Reader reader) {
+    refuseSeries();
+    return reader(spec, options);
+  };
+  if (extension == ".nrrd" || extension == ".nhdr") return read(io::readNrrd);
+  if (extension == ".vti") return read(io::readVti);
+  if (extension == ".vtk") return read(io::readLegacyVtk);
+  if (extension == ".mhd" || extension == ".mha") return read(io::readMetaImage);
   for (const char* nifti : {".nii", ".nii.gz", ".hdr", ".hdr.gz", ".img", ".img.gz"}) {
-    if (extension == nifti) return io::readNifti(spec, options);
+    if (extension == nifti) return read(io::readNifti);
   }
 
   // A folder is a DICOM series (one named like a volume file was refused above: "is a

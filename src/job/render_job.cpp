@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -12,6 +13,7 @@
 #include "core/depth_image.h"
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/options.h"
 #include "core/version.h"
 #include "postfx/broaden.h"
 #include "slicing/gl_context.h"
@@ -124,11 +126,41 @@ std::uint64_t renderBytes(const RenderRequest& request, glm::ivec3 dims, SampleT
 void checkVolumeWork(const Volume& volume, const RenderRequest& request,
                      const VolumeLimits& limits) {
   const RenderSettings& settings = request.settings;
-  const std::int64_t slices = limits::sliceCountBound(volume.dims, settings.samplesPerVoxel);
+  const double sampling = settings.samplesPerVoxel;
+  const glm::dvec3 s = volume.spacing;
+  const std::string spacingText =
+      formatNumber(s.x) + "," + formatNumber(s.y) + "," + formatNumber(s.z);
+  // Every spacing is positive and finite (the readers check), but their extent or ratio can
+  // still overflow a double (1e308 along each axis, 1e-320 beside 1).
+  const double ratio = std::max({s.x, s.y, s.z}) / std::min({s.x, s.y, s.z});
+  if (!std::isfinite(glm::length(glm::dvec3(volume.dims) * s)) || !std::isfinite(ratio)) {
+    throw InputError(volume.source + ": spacing " + spacingText +
+                     " is out of range (the volume's extent or the ratio of its axes is not a "
+                     "finite number); check the spacing's units");
+  }
+  const std::int64_t slices = limits::sliceCountBound(volume.dims, volume.spacing, sampling);
   if (slices > limits::kMaxSlices) {
-    throw InputError("--sampling " + std::to_string(settings.samplesPerVoxel) + ": " +
-                     volume.source + " would need up to " + std::to_string(slices) +
-                     " slices per frame, over the limit of " + std::to_string(limits::kMaxSlices));
+    const std::string over =
+        " slices per frame, over the limit of " + std::to_string(limits::kMaxSlices);
+    if (limits::sliceCountBound(volume.dims, glm::dvec3(1.0), sampling) > limits::kMaxSlices) {
+      throw InputError("--sampling " + formatNumber(sampling) + ": " + volume.source +
+                       " would need up to " + std::to_string(slices) + over);
+    }
+    // The samples alone fit: the spacing's axes differ so much that slices one step of the
+    // finest axis apart cross the others thousands of times over (a unit mixed up, mm and m).
+    const double enough = sampling * double(limits::kMaxSlices - 1) / double(slices);
+    const auto twoDigits = [](double number, bool down) {
+      const double unit = std::pow(10.0, std::floor(std::log10(number)) - 1);
+      std::ostringstream text;
+      text << std::setprecision(2)
+           << (down ? std::floor(number / unit) : std::round(number / unit)) * unit;
+      return text.str();
+    };
+    throw InputError(volume.source + ": spacing " + spacingText + " (its coarsest axis " +
+                     twoDigits(ratio, false) + " times its finest) would need up to " +
+                     std::to_string(slices) + over +
+                     "; check the spacing's units, or lower --sampling to " +
+                     twoDigits(enough, true) + " or less");
   }
   const std::uint64_t bytes =
       renderBytes(request, volume.dims, volume.type(), limits.maxTextureBytes);

@@ -671,6 +671,13 @@ class PythonRenderer {
 
 cv::Mat1b maskFromArray(const py::array& lines, const std::string& function) {
   if (lines.ndim() != 2) throw InputError(function + ": expected a 2-dimensional line mask");
+  // The image side of a render (--size), checked before the array is copied or converted.
+  if (lines.shape(0) < 1 || lines.shape(1) < 1 || lines.shape(0) > limits::kMaxImageSide ||
+      lines.shape(1) > limits::kMaxImageSide) {
+    throw InputError(function + ": a " + std::to_string(lines.shape(0)) + "x" +
+                     std::to_string(lines.shape(1)) + " mask; each side must be 1 .. " +
+                     std::to_string(limits::kMaxImageSide) + " pixels");
+  }
   const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast> mask(lines);
   cv::Mat1b result(int(mask.shape(0)), int(mask.shape(1)));
   std::memcpy(result.data, mask.data(), result.total());
@@ -694,6 +701,14 @@ void checkWidth(double width, const std::string& what) {
   }
 }
 
+// The FFT broadening's buffers, bounded as a render's image (limits::renderImageBytes), against
+// the default --max-memory.
+void checkBroadenMemory(cv::Size size, double width) {
+  limits::checkMemory(
+      "vsil.broaden: a " + std::to_string(size.height) + "x" + std::to_string(size.width) + " mask",
+      limits::renderImageBytes({size.width, size.height}, width), limits::defaultMemoryBytes());
+}
+
 py::array broaden(const py::array& lines, std::optional<double> width,
                   std::optional<double> widthNear, std::optional<double> widthFar,
                   std::optional<py::array> depth) {
@@ -705,6 +720,7 @@ py::array broaden(const py::array& lines, std::optional<double> width,
       throw InputError(function + ": give width, or width_near and width_far, not both");
     }
     checkWidth(*width, "width");
+    checkBroadenMemory(mask.size(), *width);
     py::gil_scoped_release release;
     FftGaussianBlur blur;
     result = broadenMask(mask, *width, blur);
@@ -714,6 +730,7 @@ py::array broaden(const py::array& lines, std::optional<double> width,
     }
     checkWidth(*widthNear, "width_near");
     checkWidth(*widthFar, "width_far");
+    checkBroadenMemory(mask.size(), std::max(*widthNear, *widthFar));
     const cv::Mat1f depths = depthFromArray(*depth, mask.size(), function);
     py::gil_scoped_release release;
     FftGaussianBlur blur;

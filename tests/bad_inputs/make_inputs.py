@@ -121,7 +121,8 @@ write('slice_list.mhd', mha % (3, '4 4 4', '', 'LIST'))
 # NIfTI-1 (.nii, .nii.gz, .hdr/.img): truncated data, a 4D series, complex samples, a negative
 # size, a vox_offset far past any header, a cut gzip stream, a pair without its .img, text named
 # .nii, sizes past the memory limit.
-def nifti1(dims=(4, 4, 4), datatype=2, bitpix=8, vox_offset=352.0, extra_dims=(), magic=b'n+1\0'):
+def nifti1(dims=(4, 4, 4), datatype=2, bitpix=8, vox_offset=352.0, extra_dims=(), magic=b'n+1\0',
+           slope=0.0, inter=0.0):
     header = bytearray(348)
     struct.pack_into('<i', header, 0, 348)
     dim = [3 + len(extra_dims)] + list(dims) + list(extra_dims)
@@ -129,6 +130,7 @@ def nifti1(dims=(4, 4, 4), datatype=2, bitpix=8, vox_offset=352.0, extra_dims=()
     struct.pack_into('<hh', header, 70, datatype, bitpix)
     struct.pack_into('<8f', header, 76, 1, 1, 1, 1, 0, 0, 0, 0)
     struct.pack_into('<f', header, 108, vox_offset)
+    struct.pack_into('<ff', header, 112, slope, inter)
     header[344:348] = magic
     return bytes(header) + (bytes(4) if magic == b'n+1\0' else b'')
 
@@ -149,7 +151,7 @@ write('nifti_oversized.nii', nifti1(dims=(30000, 30000, 30000)) + bytes(64))
 # DICOM series (folders; written with pydicom): a missing slice, a slice cut short, no DICOM at
 # all, slices of two sizes, a header promising 65535 x 65535 slices, colour (RGB) pixels.
 def dicom_series(folder, count=3, positions=None, rows=3, columns=4, pixels=None, rgb=False,
-                 orientation=(1.0, 0.0, 0.0, 0.0, 1.0, 0.0)):
+                 orientation=(1.0, 0.0, 0.0, 0.0, 1.0, 0.0), pixel_spacing=None, slope=None):
     from pydicom.dataset import Dataset, FileMetaDataset
     from pydicom.uid import ExplicitVRLittleEndian, generate_uid
     path = os.path.join(here, folder)
@@ -167,7 +169,16 @@ def dicom_series(folder, count=3, positions=None, rows=3, columns=4, pixels=None
         ds.Modality, ds.SeriesInstanceUID, ds.InstanceNumber = 'CT', series, k + 1
         ds.ImageOrientationPatient = list(orientation)
         ds.ImagePositionPatient = [0.0, 0.0, float(positions[k] if positions else 2 * k)]
-        ds.PixelSpacing = [1.0, 1.0]
+        if pixel_spacing is None:
+            ds.PixelSpacing = [1.0, 1.0]
+        else:  # written as text, as a hostile file would hold it (pydicom checks DS values)
+            ds.add_new(0x00280030, 'DS', None)
+            ds[0x00280030]._value = pixel_spacing
+        if slope is not None:
+            ds.add_new(0x00281052, 'DS', None)
+            ds[0x00281052]._value = '0'
+            ds.add_new(0x00281053, 'DS', None)
+            ds[0x00281053]._value = slope
         r, c = (rows[k], columns[k]) if isinstance(rows, list) else (rows, columns)
         ds.Rows, ds.Columns = r, c
         ds.SamplesPerPixel = 3 if rgb else 1
@@ -242,3 +253,39 @@ for offset, value in ((166, 0x30), (679, 0x08), (870, 0x27)):
     slice_bytes[offset] = value
 os.makedirs(os.path.join(here, 'dicom_gdcm_assert'), exist_ok=True)
 write('dicom_gdcm_assert/slice.dcm', bytes(slice_bytes))
+
+# Issue 33. JSON nested 100000 deep (200 KB): refused while parsed, before any walk of the value
+# could overflow the stack.
+write('tf_deep.json', '[' * 100000 + ']' * 100000)
+write('style_deep.json', '{"effects": ' + '[' * 100000 + ']' * 100000 + '}')
+# A spacing whose axes differ 10^7 times: slices one step of the finest axis apart would number
+# 5.7e7 per frame (it was an out-of-memory kill after minutes).
+write('tiny_spacing.mha', (mha % (3, '4 4 4', 'ElementSpacing = 1 1 1e-7\n', 'LOCAL')).encode() + bytes(64))
+# 1 KiB of gzip whose NIfTI header declares 2048³ samples: refused from the compressed size.
+write('nifti_gz_claims_2048.nii.gz', gzip.compress(nifti1(dims=(2048, 2048, 2048)) + bytes(512), 9, mtime=0))
+# A spacing whose slice gap is 10^-7 of its pixel spacing (DICOM positions 1e-7 apart).
+dicom_series('dicom_tiny_gap', positions=[0, 1e-7, 2e-7])
+# A slice whose Pixel Data holds 10 bytes of the 24 its 3 x 4 16-bit pixels need (the file is
+# whole: GDCM read it as zeros).
+dicom_series('dicom_short_pixels', pixels=bytes(10))
+# Pixel Spacing and Rescale Slope GDCM cannot parse, or 0: it read them as 1 (or no rescale).
+dicom_series('dicom_spacing_nan', pixel_spacing='nan\\1')
+dicom_series('dicom_spacing_zero', pixel_spacing='0\\1')
+dicom_series('dicom_spacing_text', pixel_spacing='abc\\1')
+dicom_series('dicom_slope_nan', slope='nan')
+# NIfTI slopes that are not numbers (nifticlib reads them as 0, no scaling) and a bad magic.
+write('nifti_slope_nan.nii', nifti1(slope=float('nan')) + bytes(64))
+write('nifti_slope_inf.nii', nifti1(slope=float('inf')) + bytes(64))
+write('nifti_bad_magic.nii', nifti1(magic=b'xyz\0') + bytes(4 + 64))
+# A rule base whose sphere strip declares 100000 x 100000 pixels (OpenCV's assertion, before),
+# and PNGs whose IHDR holds 4 bytes.
+write('rules_huge_spheres.rules', rules % 'huge_spheres.png')
+write('huge_spheres.png', png_header(100000, 100000))
+write('short_ihdr_map.png', b'\x89PNG\r\n\x1a\n' + png_chunk(b'IHDR', struct.pack('>I', 64)) + png_chunk(b'IEND', b''))
+# A NRRD whose sizes hold 2^32.
+write('sizes_2_32.nrrd', (nrrd % ('uint8', '4 4 4294967296', '', 'raw')).encode() + bytes(8))
+# Valid chunks (every CRC right) around a corrupt deflate stream: only libpng sees it; its own
+# "libpng error" line must not reach stderr.
+packed = bytearray(zlib.compress(rows, 9))
+packed[len(packed) // 2] ^= 0x55
+write('bad_deflate_map.png', png_header(16, 8) + png_chunk(b'IDAT', bytes(packed)) + png_chunk(b'IEND', b''))

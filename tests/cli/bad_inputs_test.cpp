@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -99,6 +100,44 @@ TEST(BadInputs, UnreadableFile) {
   EXPECT_EQ(result.err,
             "vsil: " + file.string() + ": cannot be opened for reading: Permission denied\n");
   EXPECT_EQ(result.out, "");
+}
+
+// Outputs of one run are committed together: with --meta-out unwritable, the --out file that
+// existed before keeps its bytes and no temporary is left (the table's cases start from an
+// empty folder; this one from a previous render's file).
+TEST(BadInputs, AFailedOutputLeavesEveryPreviousOutputUntouched) {
+  const fs::path dir = test::scratchDir();
+  std::ofstream(dir / "o.png") << "previous";
+  const test::CommandResult result =
+      test::runVsil("render gen:sphere:16 --size 32x32 --out " + (dir / "o.png").string() +
+                    " --meta-out " + (dir / "missing" / "m.json").string());
+  EXPECT_EQ(result.exitCode, 2) << result.err;
+  std::ifstream in(dir / "o.png");
+  const std::string kept((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(kept, "previous");
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 1) << "a temporary was left behind";
+}
+
+// Two outputs naming one file through a symlink or a hard link: refused before any work.
+TEST(BadInputs, OutputsNamingOneFileThroughALink) {
+  const fs::path dir = test::scratchDir();
+  std::ofstream(dir / "o.png") << "previous";
+  fs::create_symlink(dir / "o.png", dir / "symlink.png");
+  fs::create_hard_link(dir / "o.png", dir / "hardlink.png");
+  for (const char* other : {"symlink.png", "hardlink.png"}) {
+    const test::CommandResult result =
+        test::runVsil("render gen:sphere:16 --size 32x32 --out " + (dir / "o.png").string() +
+                      " --state-out " + (dir / other).string());
+    EXPECT_EQ(result.exitCode, 2) << other;
+    EXPECT_EQ(result.err, "vsil: --state-out " + (dir / other).string() +
+                              ": names the same file as --out " + (dir / "o.png").string() +
+                              "; give each output its own file\n");
+  }
+  std::ifstream in(dir / "o.png");
+  const std::string kept((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(kept, "previous");
 }
 
 }  // namespace

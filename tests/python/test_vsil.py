@@ -504,3 +504,50 @@ def test_info_is_what_the_command_prints(tmp_path):
     with pytest.raises(FileNotFoundError):
         vsil.info(tmp_path / "missing.vti")
     assert "crop" in inspect.signature(vsil.info).parameters
+
+
+# ---- hostile input (issue 33): a ValueError of one line, never the end of the interpreter ----
+
+def test_a_spacing_ratio_past_the_slice_limit_is_refused_before_any_work(renderer):
+    volume = vsil.Volume(np.ones((4, 4, 4), np.float32), spacing=(1, 1, 1e-7))
+    with pytest.raises(ValueError, match=r"spacing 1,1,1e-07 .* over the limit of 131072"):
+        renderer.render(volume, size=(16, 16))
+
+
+def test_json_nested_100000_deep_is_refused_not_a_crash(tmp_path, renderer):
+    deep = tmp_path / "deep.json"
+    deep.write_text("[" * 100000 + "]" * 100000)
+    for key in ("tf", "style"):
+        with pytest.raises(ValueError, match="nested more than 64 levels deep"):
+            renderer.render("gen:sphere:16", technique="illustrate", size=(16, 16),
+                            **{key: str(deep)})
+
+
+@pytest.mark.parametrize("value", ["no", 0, 1, "", [], "True"])
+def test_a_switch_takes_only_a_boolean(renderer, value):
+    with pytest.raises(TypeError, match=r"ortho takes True or False"):
+        renderer.render("gen:sphere:16", technique="mip", size=(16, 16), ortho=value)
+
+
+def test_a_switch_given_false_is_off(renderer):
+    on = renderer.render("gen:sphere:16", technique="mip", size=(16, 16), ortho=True)
+    off = renderer.render("gen:sphere:16", technique="mip", size=(16, 16), ortho=False)
+    assert on.metadata["camera"]["orthographic"] is True
+    assert off.metadata["camera"]["orthographic"] is False
+
+
+def test_broaden_refuses_a_mask_past_the_image_limit_before_any_work():
+    # A 100000 x 1 view of a few bytes: the shape alone is refused (it ran 80 s, then OpenCV).
+    huge = np.lib.stride_tricks.as_strided(np.zeros(1, np.uint8), shape=(100000, 100000),
+                                           strides=(0, 0))
+    with pytest.raises(ValueError, match=r"100000x100000 mask; each side must be 1 \.\. 16384"):
+        vsil.broaden(huge, width=2)
+
+
+@pytest.mark.parametrize("key", ["tf", "style", "effects", "window", "rules"])
+def test_an_empty_value_is_refused_not_read_as_absent(renderer, key):
+    technique = {"window": "mip", "rules": "semantic"}.get(key, "illustrate")
+    with pytest.raises(ValueError, match="is empty: give a value, or leave the flag out"):
+        renderer.render("gen:sphere:16", technique=technique, size=(16, 16), **{key: ""})
+    with pytest.raises(ValueError, match="--crop: is empty"):
+        vsil.load("gen:sphere:16", crop="")

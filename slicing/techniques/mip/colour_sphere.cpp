@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <numbers>
 
 #include <opencv2/imgproc.hpp>
@@ -124,6 +125,17 @@ void checkSphereMap(const std::string& nameOrFile) {
   }
   std::string known;
   for (const auto& map : sphereMaps()) known += map.name + ", ";
+  // Something of that name exists (a folder, a FIFO, a file not named .png): it was meant as
+  // a file, and calling it an unknown map name would mislead.
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(nameOrFile, error);
+  if (!error && std::filesystem::exists(status)) {
+    const std::string what = std::filesystem::is_directory(status)      ? "is a directory"
+                             : std::filesystem::is_regular_file(status) ? "is a file not named .png"
+                                                                        : "is not a regular file";
+    throwInputError(nameOrFile, what + " (--sphere-map takes a map name, " + known +
+                                    "or an equirectangular FILE.png)");
+  }
   throwInputError("--sphere-map", "unknown map '" + nameOrFile + "' (known: " + known +
                                       "or an equirectangular FILE.png)");
 }

@@ -9,6 +9,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "core/image_file.h"
+#include "core/limits.h"
 
 namespace vsil {
 
@@ -71,8 +73,22 @@ std::vector<std::vector<glm::vec4>> sphereRamp(const Spheres& spheres, const std
   if (!std::filesystem::is_regular_file(spheres.file, error)) {
     throwInputError(file, "no such sphere image" + context);
   }
-  const cv::Mat image = cv::imread(file, cv::IMREAD_UNCHANGED);
-  if (image.empty()) throwInputError(file, "cannot read the sphere image" + context);
+  // The checks of every PNG input (core/image_file.h readPng), and a size from the header
+  // before anything is decoded: the strip is kept as floats, as a sphere map is.
+  const cv::Mat image = [&] {
+    try {
+      const cv::Size size = readPngSize(spheres.file);
+      if (std::int64_t(size.width) * size.height > limits::kMaxSphereMapPixels) {
+        throwInputError(file, std::to_string(size.width) + "x" + std::to_string(size.height) +
+                                  " pixels is over the limit of " +
+                                  std::to_string(limits::kMaxSphereMapPixels) +
+                                  " for a sphere image");
+      }
+      return readPng(spheres.file);
+    } catch (const InputError& e) {
+      throw InputError(e.what() + context);
+    }
+  }();
   const int height = image.rows, width = image.cols;
   if (height < 2 || width % height != 0 || width / height > kMaxSpheresPerStrip) {
     throwInputError(file, "a strip of spheres must be 1 to " + std::to_string(kMaxSpheresPerStrip) +
