@@ -92,10 +92,11 @@ vec3 rayVoxel(PixelRay ray, int k) {
 // then cross the region of the next face's normals in a periodic pattern, a rope along the
 // edges and a stair along the outline that only more slices shrink.
 float boxPhase(PixelRay ray) {
-  // Axes the ray runs along exactly: no crossing (1e30 stands in for infinity, as in the CPU
-  // reference).
-  vec3 d = mix(ray.direction, vec3(1e-30), lessThan(abs(ray.direction), vec3(1e-30)));
-  vec3 toLow = (vec3(-0.5) - ray.origin) / d, toHigh = (volumeDims - 0.5 - ray.origin) / d;
+  // Three reciprocals instead of six divisions; an axis the ray runs along exactly (1/0 = inf)
+  // gets ±1e30, finite, so that 0·it stays 0 (as in the CPU reference).
+  vec3 inverse = clamp(1.0 / ray.direction, vec3(-1e30), vec3(1e30));
+  vec3 toLow = (vec3(-0.5) - ray.origin) * inverse;
+  vec3 toHigh = (volumeDims - 0.5 - ray.origin) * inverse;
   vec3 enter = min(toLow, toHigh);
   float entry = max(max(enter.x, enter.y), enter.z);
   return fract(-entry / rayStepEye - 0.5);

@@ -124,10 +124,9 @@ SliceSampler::BoxAlignedRay SliceSampler::boxAlignedRay(int x, int y, const Pixe
   ray.stepEye = rays.stepEye;
   float entry = -INFINITY;
   for (int axis = 0; axis < 3; ++axis) {
-    float d = ray.direction[axis];
-    if (std::abs(d) < 1e-30f) d = 1e-30f;
-    const float toLow = (-0.5f - ray.origin[axis]) / d;
-    const float toHigh = (dims_[axis] - 0.5f - ray.origin[axis]) / d;
+    const float inverse = std::clamp(1.0f / ray.direction[axis], -1e30f, 1e30f);
+    const float toLow = (-0.5f - ray.origin[axis]) * inverse;
+    const float toHigh = (dims_[axis] - 0.5f - ray.origin[axis]) * inverse;
     entry = std::max(entry, std::min(toLow, toHigh));
   }
   const float u = -entry / rays.stepEye - 0.5f;
