@@ -13,6 +13,8 @@
 // whose opacity reached 1 − 1/255 get depth 1 (mark_dead.frag, DeadRule::Opacity). What the
 // retired pixels would still have received is at most 1/255 of a colour in [0, 1].
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -46,6 +48,13 @@ class FrontToBackCompositor {
   std::optional<Targets> targets_;
   float deadOpacity_ = kTerminationOpacity;
 };
+
+// The #define that puts each pixel's samples at whole steps from half a step past its ray's
+// entry into the volume's box (common.glsl BOX_ALIGNED_SAMPLING; the technique's info sets
+// samplesOffPlanes). On the planes, the first sample past a box face lies 0 to 1 step inside,
+// varying along the face, which draws a rope along the box's edges wherever the box is the
+// visible surface.
+inline constexpr const char* kBoxAlignedSampling = "BOX_ALIGNED_SAMPLING";
 
 // "shaders/compositing.glsl", to list before a compositing technique's own sources.
 inline constexpr const char* kCompositingSource = "shaders/compositing.glsl";

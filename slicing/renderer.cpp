@@ -170,13 +170,16 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   const BrickLayout& layout = impl_->volumeTexture->layout();
   std::vector<glm::vec3> vertices;
   std::vector<SliceContext> slices(plan.slices.size());
+  const double margin = info.samplesOffPlanes ? pieceMargin(plan) : kPieceMargin;
+  const double overlap = info.samplesOffPlanes ? margin : 0.0;
   for (std::size_t k = 0; k < plan.slices.size(); ++k) {
     SliceContext& slice = slices[k];
     slice.index = int(k);
     slice.slice = &plan.slices[k];
     slice.firstVertex = GLint(vertices.size());
     if (!plan.slices[k].polygonVoxel.empty()) {
-      for (const SlicePiece& piece : slicePieces(result.view, layout, plan.slices[k].eyeDistance)) {
+      for (const SlicePiece& piece :
+           slicePieces(result.view, layout, plan.slices[k].eyeDistance, margin, overlap)) {
         slice.pieces.push_back(
             {GLint(vertices.size()), GLsizei(piece.polygonVoxel.size()), piece.brick});
         for (const auto& p : piece.polygonVoxel) vertices.emplace_back(p);

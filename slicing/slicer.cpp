@@ -144,10 +144,14 @@ std::vector<glm::dvec3> clipPolygon(const std::vector<glm::dvec3>& polygon, int 
 
 }  // namespace
 
-std::vector<SlicePiece> slicePieces(const View& view, const BrickLayout& layout,
-                                    double eyeDistance) {
-  const glm::dvec3 lo(-0.5 - kPieceMargin);
-  const glm::dvec3 hi = glm::dvec3(layout.dims()) - 0.5 + kPieceMargin;
+double pieceMargin(const SlicePlan& plan) {
+  return std::max(kPieceMargin, 1.25 * plan.stepVoxels);
+}
+
+std::vector<SlicePiece> slicePieces(const View& view, const BrickLayout& layout, double eyeDistance,
+                                    double margin, double overlap) {
+  const glm::dvec3 lo(-0.5 - margin);
+  const glm::dvec3 hi = glm::dvec3(layout.dims()) - 0.5 + margin;
   const std::vector<glm::dvec3> polygon = boxSlicePolygon(view, lo, hi, eyeDistance);
   std::vector<SlicePiece> pieces;
   if (polygon.empty()) return pieces;
@@ -160,20 +164,20 @@ std::vector<SlicePiece> slicePieces(const View& view, const BrickLayout& layout,
   for (int i = 0; i < counts.x; ++i) {
     std::vector<glm::dvec3> strip = polygon;
     const Brick& bx = brickAt(i, 0, 0);
-    if (i > 0) strip = clipPolygon(strip, 0, bx.low.x, +1);
-    if (i + 1 < counts.x) strip = clipPolygon(strip, 0, bx.high.x, -1);
+    if (i > 0) strip = clipPolygon(strip, 0, bx.low.x - overlap, +1);
+    if (i + 1 < counts.x) strip = clipPolygon(strip, 0, bx.high.x + overlap, -1);
     if (strip.empty()) continue;
     for (int j = 0; j < counts.y; ++j) {
       std::vector<glm::dvec3> bar = strip;
       const Brick& by = brickAt(0, j, 0);
-      if (j > 0) bar = clipPolygon(bar, 1, by.low.y, +1);
-      if (j + 1 < counts.y) bar = clipPolygon(bar, 1, by.high.y, -1);
+      if (j > 0) bar = clipPolygon(bar, 1, by.low.y - overlap, +1);
+      if (j + 1 < counts.y) bar = clipPolygon(bar, 1, by.high.y + overlap, -1);
       if (bar.empty()) continue;
       for (int k = 0; k < counts.z; ++k) {
         std::vector<glm::dvec3> piece = bar;
         const Brick& bz = brickAt(0, 0, k);
-        if (k > 0) piece = clipPolygon(piece, 2, bz.low.z, +1);
-        if (k + 1 < counts.z) piece = clipPolygon(piece, 2, bz.high.z, -1);
+        if (k > 0) piece = clipPolygon(piece, 2, bz.low.z - overlap, +1);
+        if (k + 1 < counts.z) piece = clipPolygon(piece, 2, bz.high.z + overlap, -1);
         if (piece.empty()) continue;
         pieces.push_back({(std::size_t(k) * counts.y + std::size_t(j)) * counts.x + std::size_t(i),
                           std::move(piece)});

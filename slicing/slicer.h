@@ -65,9 +65,18 @@ struct SlicePiece {
   std::size_t brick = 0;  // index in BrickLayout::bricks()
   std::vector<glm::dvec3> polygonVoxel;
 };
+// `margin` (voxels, at least kPieceMargin): pixels whose sample lies off the plane, up to that
+// far (common.glsl BOX_ALIGNED_SAMPLING: up to one step in front), still get a fragment.
 inline constexpr double kPieceMargin = 1.0;
-std::vector<SlicePiece> slicePieces(const View& view, const BrickLayout& layout,
-                                    double eyeDistance);
+// With `overlap` > 0 each piece reaches that far (voxels) into its neighbours' bricks, so that
+// pieces overlap and a pixel may be drawn by several: for samples off the plane, whose shader
+// keeps only the one its brick owns (common.glsl ownedByBrick).
+std::vector<SlicePiece> slicePieces(const View& view, const BrickLayout& layout, double eyeDistance,
+                                    double margin = kPieceMargin, double overlap = 0.0);
+// The margin for a plan: a step along the view and a quarter more for perspective rays off the
+// axis (the box-aligned samples lie up to a step in front of their plane).
+struct SlicePlan;
+double pieceMargin(const SlicePlan& plan);
 
 // Pixel rectangle [x0, x1) x [y0, y1) in image pixels (origin top-left); empty when x0 >= x1.
 struct PixelRect {

@@ -39,6 +39,10 @@ struct TechniqueInfo {
   // texture when it fits (BrickLayout::Bricking::OneIfItFits), else the frame refuses. Unset:
   // never.
   std::function<bool(const OptionReader& options)> needsOneTexture;
+  // Samples off the slice planes, up to a step in front (common.glsl BOX_ALIGNED_SAMPLING): the
+  // slice pieces get a wider margin and overlap by it across brick borders (slicer.h
+  // slicePieces), and the slice shader keeps only the samples its brick owns.
+  bool samplesOffPlanes = false;
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }

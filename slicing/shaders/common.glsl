@@ -83,6 +83,25 @@ vec3 rayVoxel(PixelRay ray, int k) {
   return quantizedVoxel(ray.origin + (float(k) * rayStepEye) * ray.direction);
 }
 
+// BOX_ALIGNED_SAMPLING (the compositing techniques, slicing/compositing.h): a pixel's samples lie
+// on its ray (pixelRay) at whole steps from half a step past where the ray enters the volume's
+// box, not on the slice planes: slice k samples (k − boxPhase)·rayStepEye along it, boxPhase in
+// [0, 1) the same for every slice. On the planes, the first sample past a face of the box lies
+// anywhere from 0 to a step inside, varying along the face with the planes' phase; where the
+// box itself is the visible surface (a volume opaque up to its faces, gen:cube) the samples
+// then cross the region of the next face's normals in a periodic pattern, a rope along the
+// edges and a stair along the outline that only more slices shrink.
+float boxPhase(PixelRay ray) {
+  // Three reciprocals instead of six divisions; an axis the ray runs along exactly (1/0 = inf)
+  // gets ±1e30, finite, so that 0·it stays 0 (as in the CPU reference).
+  vec3 inverse = clamp(1.0 / ray.direction, vec3(-1e30), vec3(1e30));
+  vec3 toLow = (vec3(-0.5) - ray.origin) * inverse;
+  vec3 toHigh = (volumeDims - 0.5 - ray.origin) * inverse;
+  vec3 enter = min(toLow, toHigh);
+  float entry = max(max(enter.x, enter.y), enter.z);
+  return fract(-entry / rayStepEye - 0.5);
+}
+
 #ifdef VSIL_FRAGMENT_SHADER
 // This pixel's centre in normalized device coordinates.
 vec2 fragmentNdc() { return gl_FragCoord.xy / viewportSize * 2.0 - 1.0; }
@@ -99,6 +118,10 @@ vec3 eyePointAt(float eyeDistance) {
 vec3 sliceVoxel() {
 #ifdef RAY_SAMPLING
   return rayVoxel(pixelRay(gl_FragCoord.xy), int(sliceIndex));
+#elif defined(BOX_ALIGNED_SAMPLING)
+  PixelRay ray = pixelRay(gl_FragCoord.xy);
+  return quantizedVoxel(ray.origin + ((float(sliceIndex) - boxPhase(ray)) * rayStepEye) *
+                                         ray.direction);
 #else
   vec2 ndc = fragmentNdc();
   return quantizedVoxel(ndc.x * sliceVoxelPerNdcX + ndc.y * sliceVoxelPerNdcY +

@@ -86,18 +86,18 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
   };
 
   const float exponent = float(setup.plan.stepVoxels);
-  std::vector<SliceVoxelCoords> coords;
-  for (const Slice& slice : setup.plan.slices) {
-    coords.push_back(sliceVoxelCoords(view, slice.eyeDistance));
-  }
+  // Samples on each pixel's ray, aligned to its entry into the box (BOX_ALIGNED_SAMPLING).
+  const PixelRays rays = pixelRays(view, setup.plan);
   ReferenceFrame result = emptyReferenceFrame(setup, settings.size, /*color=*/true);
   for (int y = 0; y < settings.size.y; ++y) {
     for (int x = 0; x < settings.size.x; ++x) {
       glm::vec4 dst(0.0f);
+      const SliceSampler::BoxAlignedRay ray = sampler.boxAlignedRay(x, y, rays);
+      if (ray.phaseAmbiguous) result.ambiguous(y, x) = 1;
       for (std::size_t k = 0; k < setup.plan.slices.size(); ++k) {
         const Slice& slice = setup.plan.slices[k];
         if (slice.polygonVoxel.empty()) continue;
-        const glm::vec3 voxel = sampler.sliceVoxel(x, y, coords[k]);
+        const glm::vec3 voxel = SliceSampler::boxAlignedVoxel(ray, int(k));
         if (!sampler.insideVolume(voxel)) continue;
         const glm::vec4 material = classify(sampler.sample(voxel));
         const float nearFeature = has(Effect::Halo) ? maskAt(nearestTexel(voxel, volume.dims)) : 0;

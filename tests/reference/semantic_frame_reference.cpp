@@ -109,10 +109,8 @@ ReferenceFrame renderSemantic(const Volume& volume, const RenderSettings& settin
   const float inverseImageDiagonal = float(1.0 / glm::length(size));
   const float exponent = float(setup.plan.stepVoxels);
 
-  std::vector<SliceVoxelCoords> coords;
-  for (const Slice& slice : setup.plan.slices) {
-    coords.push_back(sliceVoxelCoords(view, slice.eyeDistance));
-  }
+  // Samples on each pixel's ray, aligned to its entry into the box (BOX_ALIGNED_SAMPLING).
+  const PixelRays rays = pixelRays(view, setup.plan);
   ReferenceFrame result = emptyReferenceFrame(setup, settings.size, /*color=*/true);
   const int styleCount = int(rules.styles.size());
   std::vector<float> weight(static_cast<std::size_t>(styleCount), 0.0f);
@@ -121,12 +119,13 @@ ReferenceFrame renderSemantic(const Volume& volume, const RenderSettings& settin
     for (int x = 0; x < settings.size.x; ++x) {
       glm::vec4 dst(0.0f);
       float top = -1e30f;
-      bool ambiguous = false;
+      const SliceSampler::BoxAlignedRay ray = sampler.boxAlignedRay(x, y, rays);
+      bool ambiguous = ray.phaseAmbiguous;
       const glm::vec2 fragCoord(float(x) + 0.5f, float(settings.size.y - 1 - y) + 0.5f);
       for (std::size_t k = 0; k < setup.plan.slices.size(); ++k) {
         const Slice& slice = setup.plan.slices[k];
         if (slice.polygonVoxel.empty()) continue;
-        const glm::vec3 voxel = sampler.sliceVoxel(x, y, coords[k]);
+        const glm::vec3 voxel = SliceSampler::boxAlignedVoxel(ray, int(k));
         if (!sampler.insideVolume(voxel)) continue;
         const float value = sampler.sample(voxel);
         const float data = std::clamp((value - range.min) * valueScale, 0.0f, 1.0f);

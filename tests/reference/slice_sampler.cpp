@@ -114,6 +114,34 @@ VoxelCandidates SliceSampler::rayVoxelCandidates(int x, int y, const PixelRays& 
           std::abs(t) * (glm::abs(dx) + glm::abs(dy) + glm::abs(rays.directionAtWindowOrigin)));
 }
 
+SliceSampler::BoxAlignedRay SliceSampler::boxAlignedRay(int x, int y, const PixelRays& rays) const {
+  const glm::vec2 w = fragCoord(x, y);
+  BoxAlignedRay ray;
+  ray.origin =
+      w.x * rays.originPerWindowX + w.y * rays.originPerWindowY + rays.originAtWindowOrigin;
+  ray.direction = w.x * rays.directionPerWindowX + w.y * rays.directionPerWindowY +
+                  rays.directionAtWindowOrigin;
+  ray.stepEye = rays.stepEye;
+  float entry = -INFINITY;
+  for (int axis = 0; axis < 3; ++axis) {
+    const float inverse = std::clamp(1.0f / ray.direction[axis], -1e30f, 1e30f);
+    const float toLow = (-0.5f - ray.origin[axis]) * inverse;
+    const float toHigh = (dims_[axis] - 0.5f - ray.origin[axis]) * inverse;
+    entry = std::max(entry, std::min(toLow, toHigh));
+  }
+  const float u = -entry / rays.stepEye - 0.5f;
+  ray.phase = u - std::floor(u);
+  // The ray's coefficients and the division round differently in GL (fused, reordered): a
+  // relative 1e-6 of an entry up to a few hundred steps away.
+  const float slack = 1e-3f;
+  ray.phaseAmbiguous = ray.phase < slack || ray.phase > 1.0f - slack;
+  return ray;
+}
+
+glm::vec3 SliceSampler::boxAlignedVoxel(const BoxAlignedRay& ray, int k) {
+  return quantizedVoxel(ray.origin + ((float(k) - ray.phase) * ray.stepEye) * ray.direction);
+}
+
 VoxelCandidates SliceSampler::candidatesNear(glm::vec3 unrounded, glm::vec3 magnitudes) {
   const glm::vec3 rounded = quantizedVoxel(unrounded);
   // Per axis, the steps (units of 1/1024 voxel) the position may round to, sliceVoxel's first:

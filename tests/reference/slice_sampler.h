@@ -74,6 +74,17 @@ class SliceSampler {
   // The same for the MIP family's sampling (common.glsl RAY_SAMPLING: pixelRay, rayVoxel): slice
   // k's sample on pixel (x, y)'s ray, first the one computed here.
   VoxelCandidates rayVoxelCandidates(int x, int y, const PixelRays& rays, int k) const;
+  // The compositing techniques' samples (common.glsl BOX_ALIGNED_SAMPLING): pixel (x, y)'s ray
+  // (as rayVoxelCandidates) and its phase; slice k samples boxAlignedVoxel(ray, k).
+  struct BoxAlignedRay {
+    glm::vec3 origin{0.0f}, direction{0.0f};
+    float stepEye = 0, phase = 0;
+    // The phase within rounding of 0 or 1: GL may have taken the other, which moves every
+    // sample one slice (the same positions, the planes' depths one step apart).
+    bool phaseAmbiguous = false;
+  };
+  BoxAlignedRay boxAlignedRay(int x, int y, const PixelRays& rays) const;
+  static glm::vec3 boxAlignedVoxel(const BoxAlignedRay& ray, int k);
   bool insideVolume(glm::vec3 voxel) const;
   glm::vec3 gradientVoxel(glm::vec3 voxel) const;
   // −∇f/|∇f| in eye space, 0 where the gradient vanishes (common.glsl outwardNormalEye).

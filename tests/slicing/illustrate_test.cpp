@@ -113,11 +113,17 @@ TEST_P(IllustrateMatchesReference, EveryChannelWithin2Of255) {
   const RenderResult gl = renderer.render(settings);
   ASSERT_EQ(gl.sliceCount, cpu.sliceCount);
   double maxError = 0;
-  int over = 0;
+  int over = 0, ambiguous = 0;
   std::ostringstream first;
   for (int y = 0; y < settings.size.y; ++y) {
     for (int x = 0; x < settings.size.x; ++x) {
       const double pixelError = test::maxChannelDifference(gl.frame.color, cpu.frame.color, y, x);
+      // The box-aligned samples' phase within rounding of 0 or 1 (slice_sampler.h): GL may
+      // sample one slice over, with distance blending's depths a step apart.
+      if (cpu.ambiguous(y, x)) {
+        ambiguous += pixelError > 2.0 / 255.0;
+        continue;
+      }
       maxError = std::max(maxError, pixelError);
       if (pixelError > 2.0 / 255.0 && ++over <= 3) {
         first << " (" << x << "," << y << ") gl " << gl.frame.color(y, x) << " cpu "
@@ -128,7 +134,7 @@ TEST_P(IllustrateMatchesReference, EveryChannelWithin2Of255) {
   const int shown = test::shownPixels(cpu.frame);
   std::cout << "[ info ] " << c.name << (eightBit ? " (8-bit)" : "") << ": " << shown
             << " pixels shown, max channel error " << maxError * 255.0 << "/255, " << over
-            << " pixels over 2/255\n";
+            << " pixels over 2/255, " << ambiguous << " ambiguous pixels differing\n";
   EXPECT_GT(shown, 500);
   // Both composite in float; 2/255 covers early ray termination (<= 1/255) and trilinear weights
   // rounded differently, and is far below what a wrong formula or sample position changes.
@@ -138,6 +144,7 @@ TEST_P(IllustrateMatchesReference, EveryChannelWithin2Of255) {
   const bool halos = c.effects.find("halo") != std::string::npos;
   EXPECT_LE(over, halos ? shown / 500 : 0) << "pixels off by more than 2/255:" << first.str();
   EXPECT_LE(maxError, (halos ? 8.0 : 2.0) / 255.0) << first.str();
+  EXPECT_LE(ambiguous, std::max(2, shown / 100));
 }
 
 INSTANTIATE_TEST_SUITE_P(Effects, IllustrateMatchesReference,

@@ -76,7 +76,8 @@ float haloSize(vec3 voxel, vec3 v, float gradientMagnitude) {
 
 void main() {
   vec3 voxel = sliceVoxel();
-  if (!insideVolume(voxel)) discard;
+  // The pieces overlap across brick borders (slicer.h slicePieces): the owner draws a sample.
+  if (!insideVolume(voxel) || !ownedByBrick(voxel)) discard;
   vec4 fetched;
   float value = sampleValue(voxel, fetched);
 #ifdef HALO

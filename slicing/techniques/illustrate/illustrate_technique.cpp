@@ -33,18 +33,21 @@ glm::mat3 worldFromEye(const View& view) {
 }  // namespace
 
 TechniqueInfo illustrateTechniqueInfo() {
-  return {"illustrate",
-          "Ebert–Rheingans volume illustration: front-to-back compositing with "
-          "boundary, silhouette, fading, sketch, distance, halo and tone effects",
-          illustrateOptions(), FrameOutputs{.state = false, .color = true, .depth = false},
-          [] { return std::make_unique<IllustrateTechnique>(); },
-          /*usesGradients=*/true,
-          /*checkValues=*/{},
-          // The halo taps reach farther than a brick's overlap.
-          /*needsOneTexture=*/
-          [](const OptionReader& options) {
-            return illustrationFromOptions(illustrateOptions(), options).effects.has(Effect::Halo);
-          }};
+  TechniqueInfo info{
+      "illustrate",
+      "Ebert–Rheingans volume illustration: front-to-back compositing with "
+      "boundary, silhouette, fading, sketch, distance, halo and tone effects",
+      illustrateOptions(), FrameOutputs{.state = false, .color = true, .depth = false},
+      [] { return std::make_unique<IllustrateTechnique>(); },
+      /*usesGradients=*/true,
+      /*checkValues=*/{},
+      // The halo taps reach farther than a brick's overlap.
+      /*needsOneTexture=*/
+      [](const OptionReader& options) {
+        return illustrationFromOptions(illustrateOptions(), options).effects.has(Effect::Halo);
+      }};
+  info.samplesOffPlanes = true;  // aligned to the box entry (compositing.h)
+  return info;
 }
 
 std::vector<std::string> illustrateDefines(const Illustration& illustration) {
@@ -154,6 +157,7 @@ void IllustrateTechnique::beginFrame(const FrameContext& frame) {
   const GradientTexture& gradients = frame.gradients->texture();
   std::vector<std::string> defines = illustrateDefines(illustration_);
   gradients.addDefines(defines);
+  defines.emplace_back(kBoxAlignedSampling);
   program_ = &frame.programs->get(gl::slicePassProgram(
       {kCompositingSource, "shaders/gradients.glsl", "shaders/illustration.glsl"},
       "techniques/illustrate/composite.frag", std::move(defines)));

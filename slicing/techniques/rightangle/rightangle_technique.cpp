@@ -10,8 +10,16 @@ TechniqueInfo rightAngleTechniqueInfo() {
                OptionSpec::number("ra-exponent", 8.0,
                                   "exponent k of the line test (1 - |n.v|)^k > threshold")
                    .above(0),
-               OptionSpec::number("ra-threshold", 0.3,
-                                  "a first hit is a line pixel where (1 - |n.v|)^k exceeds this"),
+               // The pair only sets the largest |n.v| drawn, c = 1 - threshold^(1/k): 0.33 with
+               // the defaults (0.04^(1/8) = 0.669). Where the surface's radial curvature radius is
+               // r pixels, |n.v| < c holds in a band about r·c²/2 px wide inside the outline: a
+               // line continuous for r >= ~9 px (band >= ~0.5 px; the first hit lies up to a
+               // slice behind the surface, where n is nearer the perpendicular) and at most
+               // ~3 px wide up to r = 6/c² = 54 px. The old 0.3 drew |n.v| < 0.14: dashed below
+               // r = 50 px (the analytic torus). README "Right-angle line width".
+               OptionSpec::number("ra-threshold", 0.04,
+                                  "a first hit is a line pixel where (1 - |n.v|)^k exceeds this "
+                                  "(the defaults draw |n.v| < 0.33)"),
                pipelineOption()}),
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<RightAngleTechnique>(); },

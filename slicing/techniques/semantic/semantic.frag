@@ -45,7 +45,8 @@ uniform float topPriority;
 
 void main() {
   vec3 voxel = sliceVoxel();
-  if (!insideVolume(voxel)) discard;
+  // The pieces overlap across brick borders (slicer.h slicePieces): the owner draws a sample.
+  if (!insideVolume(voxel) || !ownedByBrick(voxel)) discard;
 #ifdef SEMANTIC_FLAT
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 dst = imageLoad(colorImage, pixel);

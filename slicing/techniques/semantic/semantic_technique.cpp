@@ -61,15 +61,18 @@ glm::mat3 semanticWorldFromEye(const View& view) {
 }  // namespace
 
 TechniqueInfo semanticTechniqueInfo() {
-  return {"semantic",
-          "Rautek et al. interaction-dependent semantics: fuzzy rules (--rules) compiled to the "
-          "slice shader, lit-sphere styles by priority, the flat rendering mode",
-          semanticOptions(),
-          FrameOutputs{.state = false, .color = true, .depth = false},
-          [] { return std::make_unique<SemanticTechnique>(); },
-          /*usesGradients=*/true,
-          /*checkValues=*/{},
-          /*needsOneTexture=*/{}};
+  TechniqueInfo info{
+      "semantic",
+      "Rautek et al. interaction-dependent semantics: fuzzy rules (--rules) compiled to the "
+      "slice shader, lit-sphere styles by priority, the flat rendering mode",
+      semanticOptions(),
+      FrameOutputs{.state = false, .color = true, .depth = false},
+      [] { return std::make_unique<SemanticTechnique>(); },
+      /*usesGradients=*/true,
+      /*checkValues=*/{},
+      /*needsOneTexture=*/{}};
+  info.samplesOffPlanes = true;  // aligned to the box entry (compositing.h)
+  return info;
 }
 
 gl::ProgramSpec semanticProgram(const CompiledRules& compiled, bool flat, bool planeShow,
@@ -86,6 +89,7 @@ gl::ProgramSpec semanticProgram(const CompiledRules& compiled, bool flat, bool p
   if (flat) spec.defines.emplace_back("SEMANTIC_FLAT");
   if (planeShow) spec.defines.emplace_back("SEMANTIC_PLANE_SHOW");
   gradients.addDefines(spec.defines);
+  spec.defines.emplace_back(kBoxAlignedSampling);
   return spec;
 }
 
