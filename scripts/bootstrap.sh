@@ -27,6 +27,7 @@ packages=(
   python3-dev pybind11-dev       # the Python module (src/python)
   python3-numpy python3-pytest python3-pil  # its tests (tests/python; Pillow reads the CLI's PNGs)
   python3-nibabel python3-pydicom  # reference writers for the NIfTI and DICOM round trips
+  libcpp-httplib-dev             # vsil serve's HTTP server
   ${VSIL_EXTRA_PACKAGES:-}
 )
 # vsil needs one GL back end (EGL or OSMesa) and builds each one that is there; where Debian no

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 #include <system_error>
 #include <vector>
 
@@ -18,9 +19,15 @@ namespace vsil {
 
 void writePng(const std::filesystem::path& path, const cv::Mat& image) {
   if (image.empty()) throwInputError(path.string(), "refusing to write an empty image");
+  writeFileAtomically(path, encodePng(image));
+}
+
+std::vector<std::uint8_t> encodePng(const cv::Mat& image) {
   std::vector<std::uint8_t> bytes;
-  if (!cv::imencode(".png", image, bytes)) throwInputError(path.string(), "PNG encoding failed");
-  writeFileAtomically(path, bytes);
+  if (image.empty() || !cv::imencode(".png", image, bytes)) {
+    throw std::runtime_error("PNG encoding failed");
+  }
+  return bytes;
 }
 
 namespace {

@@ -1,6 +1,8 @@
 #pragma once
 // PNG images in and out, through OpenCV. Writing is atomic (core/atomic_file.h).
+#include <cstdint>
 #include <filesystem>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -8,6 +10,8 @@ namespace vsil {
 
 // Writes 8-bit or 16-bit grey, BGR or BGRA images as PNG. Throws InputError naming the path.
 void writePng(const std::filesystem::path& path, const cv::Mat& image);
+// The bytes writePng writes (`vsil serve` sends them: the page's PNG is the file's).
+std::vector<std::uint8_t> encodePng(const cv::Mat& image);
 
 // Reads an image as stored (IMREAD_UNCHANGED). Throws InputError naming the path when it is
 // missing or not a decodable image.
