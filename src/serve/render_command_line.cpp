@@ -160,6 +160,7 @@ PageParameters::PageParameters(RenderCommandLine base) : base_(std::move(base)) 
   cli::addRenderOptions(app, flags);
   for (const CLI::Option* option : app.get_options()) {
     const std::string name = option->get_single_name();
+    order_.push_back(name);
     if (option->get_positional() || fixed.count(name)) fixed_.push_back(name);
     if (option->get_positional() || name == "help" || fixed.count(name)) continue;
     Settable settable;
@@ -233,6 +234,11 @@ RenderCommandLine PageParameters::apply(
     if (values.size() > 1 && !settable->second.isList) throwInputError(key, "given more than once");
     line.flags.push_back({name, values});
   }
+  const auto rank = [&](const GivenFlag& flag) {
+    return std::find(order_.begin(), order_.end(), flag.name) - order_.begin();
+  };
+  std::stable_sort(line.flags.begin(), line.flags.end(),
+                   [&](const GivenFlag& a, const GivenFlag& b) { return rank(a) < rank(b); });
   return line;
 }
 

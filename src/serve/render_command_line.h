@@ -57,7 +57,8 @@ class PageParameters {
 
   // `base` with the page's parameters (by key: width_near for --width-near; a List key may
   // repeat) put in: a value replaces the base's, an empty value (or "off" for a switch) removes
-  // the flag. Throws InputError naming the parameter for an unknown or fixed one, or a value
+  // the flag. The flags come out in `vsil render`'s order (--technique first), whatever the
+  // order of the query. Throws InputError naming the parameter for an unknown or fixed one, or a value
   // that names a file.
   RenderCommandLine apply(const std::multimap<std::string, std::string>& parameters) const;
 
@@ -80,6 +81,7 @@ class PageParameters {
   RenderCommandLine base_;
   std::map<std::string, Settable> settable_;  // by flag name
   std::vector<std::string> fixed_;            // the server's: input, volume and GL flags
+  std::vector<std::string> order_;            // every flag, as `vsil render` registers them
 };
 
 }  // namespace vsil::serve
