@@ -69,13 +69,25 @@ function requestFrame() {
   });
 }
 
+// Shows a value set by the pointer or by another control in that option's control.
+function reflect(key) {
+  const input = document.getElementById('option-' + key);
+  if (!input) return;
+  const value = values[key];
+  if (input.type === 'checkbox') {
+    input.checked = value === 'on';
+  } else {
+    input.value = value === '' && input.type === 'range' ? input.min : value;
+    if (input.type === 'range') input.nextSibling.textContent = value;
+  }
+}
+
 // The CLI takes --width or --width-near with --width-far: setting one kind clears the other and
 // gives a lone near (far) width its partner.
 function setWidths(key, value) {
   const show = (k, v) => {
     values[k] = v;
-    const slider = document.getElementById('option-' + k);
-    if (slider) slider.value = v || 1;
+    reflect(k);
   };
   if (key === 'width') {
     show('width_near', '');
@@ -233,11 +245,11 @@ function setUpPointer() {
       // A sphere of weight 0 does not show: turning it turns it on, at half weight.
       if (!Number(values.sphere_weight)) {
         values.sphere_weight = '0.5';
-        const slider = document.getElementById('option-sphere_weight');
-        if (slider) slider.value = 0.5;
+        reflect('sphere_weight');
       }
       set('sphere_rotate', num(drag.sphere[0] + dx * 0.5, 1) + ',' +
                            num(Math.max(-90, Math.min(90, drag.sphere[1] - dy * 0.5)), 1));
+      reflect('sphere_rotate');
     } else {
       const el = Math.max(-89, Math.min(89, drag.start.el + dy * 0.5));
       set('view', num(drag.start.az - dx * 0.5, 1) + ',' + num(el, 1));
@@ -247,8 +259,7 @@ function setUpPointer() {
     if (!drag) return;
     if (!drag.moved && technique().options.some((o) => o.name === 'cursor-pixel')) {
       set('cursor_pixel', pixelOf(event).join(','));
-      const field = document.getElementById('option-cursor_pixel');
-      if (field) field.value = values.cursor_pixel;
+      reflect('cursor_pixel');
     }
     drag = null;
     frame.classList.remove('dragging');
