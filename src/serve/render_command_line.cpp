@@ -200,6 +200,11 @@ RenderCommandLine PageParameters::apply(
     };
     const std::string flag = "--" + name;
     for (const auto& value : values) {
+      // No line breaks or other control characters: the command line goes out in a header.
+      if (std::any_of(value.begin(), value.end(),
+                      [](unsigned char c) { return c < 0x20 || c == 0x7f; })) {
+        throwInputError(flag, "the value holds a control character");
+      }
       if (value.empty() || isOwn(value)) continue;
       const auto presets = presetOnlyOptions().find(name);
       if (presets != presetOnlyOptions().end()) {

@@ -180,6 +180,7 @@ TEST(FrameServer, BadParametersAre400WithTheOneLineMessageAndTheServerGoesOn) {
       {"/frame?technique=illustrate&style=..%2Fx.json", "--style"},
       {"/frame?technique=mip&tf=tf.json", "--tf"},
       {"/frame?ortho=maybe", "--ortho"},
+      {"/frame?line_color=red%0D%0AX-Evil:%201", "--line-color"},
   };
   for (const auto& [path, flag] : bad) {
     auto answer = server.get(path);
