@@ -175,7 +175,15 @@ def main():
         assert driver.find_element("id", "command").get_attribute("value") == dragged_command
         assert render_command(binary, dragged_command, os.path.join(scratch, "drag.png")) == dragged, \
             "vsil render of the page's command line gave other bytes than the page shows"
-        print("drag: frame changed; command line reproduces the page's bytes:", dragged_command)
+        # What the element shows on screen is that PNG, pixel for pixel (no border, no scaling).
+        from PIL import Image, ImageChops
+        on_screen = Image.open(io.BytesIO(frame.screenshot_as_png)).convert("RGB")
+        served = Image.open(io.BytesIO(dragged)).convert("RGB")
+        assert on_screen.size == served.size, (on_screen.size, served.size)
+        assert ImageChops.difference(on_screen, served).getbbox() is None, \
+            "the page shows other pixels than its PNG"
+        print("drag: frame changed; the screen shows the PNG; its command line reproduces it:",
+              dragged_command)
 
         # semantic: a click sets --cursor-pixel; the focus region follows the click.
         focus_server = Server(binary, "gen:spheres:96", "--size", "320x320", "--technique",

@@ -286,9 +286,13 @@ async function start() {
   buildControls();
   setUpPointer();
   document.getElementById('copy').onclick = () => {
-    const text = document.getElementById('command').value;
-    if (navigator.clipboard) navigator.clipboard.writeText(text).catch(() => {});
-    document.getElementById('command').select();
+    const field = document.getElementById('command');
+    field.select();
+    // The selection's copy works where the asynchronous clipboard is not granted (plain http
+    // from another host, headless browsers).
+    if (!document.execCommand('copy') && navigator.clipboard) {
+      navigator.clipboard.writeText(field.value).catch(() => {});
+    }
   };
   requestFrame();
 }
