@@ -1,7 +1,6 @@
 #include "serve/frame_server.h"
 
 #include <chrono>
-#include <cstdio>
 #include <future>
 #include <iostream>
 #include <thread>

@@ -1,7 +1,10 @@
 #include "serve/render_command_line.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <set>
+#include <string_view>
 
 #include "cli/cli_gl_options.h"
 #include "cli/cli_volume_options.h"
