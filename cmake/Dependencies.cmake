@@ -98,6 +98,16 @@ vsil_require(nlohmann_json_FOUND "nlohmann JSON" nlohmann-json3-dev)
 find_package(CLI11 QUIET)
 vsil_require(CLI11_FOUND "CLI11 (command-line parsing)" libcli11-dev)
 
+# cpp-httplib: the HTTP server of `vsil serve`. Debian builds it as a shared library
+# (libcpp-httplib.so) with OpenSSL, zlib and Brotli support, and the header must be compiled
+# with the same defines, which only its pkg-config file carries (no CMake config).
+if(PkgConfig_FOUND)
+  pkg_check_modules(CPP_HTTPLIB QUIET IMPORTED_TARGET cpp-httplib)
+endif()
+vsil_require(CPP_HTTPLIB_FOUND "cpp-httplib (vsil serve) and pkg-config" libcpp-httplib-dev)
+add_library(vsil::httplib INTERFACE IMPORTED)
+target_link_libraries(vsil::httplib INTERFACE PkgConfig::CPP_HTTPLIB)
+
 find_package(tinyxml2 QUIET)
 vsil_require(tinyxml2_FOUND "TinyXML-2 (VTK XML files)" libtinyxml2-dev)
 

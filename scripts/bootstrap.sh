@@ -28,6 +28,8 @@ packages=(
   python3-numpy python3-pytest python3-pil  # its tests (tests/python; Pillow reads the CLI's PNGs)
   python3-venv python3-setuptools python3-wheel  # pip install . without a package index (pyproject.toml)
   python3-nibabel python3-pydicom  # reference writers for the NIfTI and DICOM round trips
+  libcpp-httplib-dev             # vsil serve's HTTP server
+  chromium chromium-driver python3-selenium  # vsil serve's browser test drives the page headless
   ${VSIL_EXTRA_PACKAGES:-}
 )
 # vsil needs one GL back end (EGL or OSMesa) and builds each one that is there; where Debian no

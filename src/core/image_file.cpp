@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -23,11 +24,21 @@
 
 namespace vsil {
 
+std::vector<std::uint8_t> encodePng(const cv::Mat& image) {
+  std::vector<std::uint8_t> bytes;
+  if (image.empty() || !cv::imencode(".png", image, bytes)) {
+    throw std::runtime_error("PNG encoding failed");
+  }
+  return bytes;
+}
+
 std::vector<std::uint8_t> encodePng(const std::filesystem::path& path, const cv::Mat& image) {
   if (image.empty()) throwInputError(path.string(), "refusing to write an empty image");
-  std::vector<std::uint8_t> bytes;
-  if (!cv::imencode(".png", image, bytes)) throwInputError(path.string(), "PNG encoding failed");
-  return bytes;
+  try {
+    return encodePng(image);
+  } catch (const std::runtime_error& error) {
+    throwInputError(path.string(), error.what());
+  }
 }
 
 void writePng(const std::filesystem::path& path, const cv::Mat& image) {

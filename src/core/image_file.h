@@ -10,8 +10,12 @@ namespace vsil {
 
 // Writes 8-bit or 16-bit grey, BGR or BGRA images as PNG. Throws InputError naming the path.
 void writePng(const std::filesystem::path& path, const cv::Mat& image);
-// The PNG file's bytes writePng writes (for an OutputBatch, core/atomic_file.h).
+// The PNG file's bytes writePng writes (for an OutputBatch, core/atomic_file.h); InputError
+// naming the path.
 std::vector<std::uint8_t> encodePng(const std::filesystem::path& path, const cv::Mat& image);
+// The same bytes with no file behind them (`vsil serve` sends them: the page's PNG is the
+// file's); std::runtime_error when they cannot be made.
+std::vector<std::uint8_t> encodePng(const cv::Mat& image);
 
 // Reads an image as stored (IMREAD_UNCHANGED). Throws InputError naming the path when it is
 // missing or not a decodable image.

@@ -1,0 +1,240 @@
+// vsil serve's endpoints over HTTP on loopback: the page, the option table, frames that are the
+// PNG of the command line they report, bad parameters answered 400 while the server goes on.
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "core/error.h"
+#include "serve/frame_server.h"
+#include "slicing/technique_table.h"
+#include "test_support.h"
+
+namespace vsil::serve {
+namespace {
+
+ServeOptions smallServer() {
+  ServeOptions options;
+  options.command.input = "gen:spheres:32";
+  options.command.flags = {{"size", {"96x80"}}};
+  options.port = 0;  // any free port on 127.0.0.1
+  return options;
+}
+
+// A server answering on its own thread for the test's length.
+class Running {
+ public:
+  explicit Running(ServeOptions options)
+      : server_(std::move(options)), thread_([this] { server_.listen(); }) {}
+  ~Running() {
+    // stop() ends a listen() that runs; wait (bounded) until it does.
+    for (int i = 0; i < 200 && client().Get("/api/state") == nullptr; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    server_.stop();
+    thread_.join();
+  }
+  httplib::Client client() {
+    httplib::Client client("127.0.0.1", server_.port());
+    client.set_read_timeout(120);
+    return client;
+  }
+  httplib::Result get(const std::string& path) { return client().Get(path); }
+
+ private:
+  FrameServer server_;
+  std::thread thread_;
+};
+
+TEST(FrameServer, ServesThePageAndTheOptionTableOfEveryTechnique) {
+  Running server(smallServer());
+  auto page = server.get("/");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("serve.js"), std::string::npos);
+  auto script = server.get("/serve.js");
+  ASSERT_TRUE(script);
+  EXPECT_EQ(script->status, 200);
+  EXPECT_NE(script->body.find("frameUrl"), std::string::npos);
+
+  auto options = server.get("/api/options");
+  ASSERT_TRUE(options);
+  const auto table = nlohmann::json::parse(options->body);
+  // Every technique and every option it declares, by the table: a new one appears by itself.
+  ASSERT_EQ(table["techniques"].size(), techniqueTable().size());
+  for (std::size_t i = 0; i < techniqueTable().size(); ++i) {
+    const auto& info = techniqueTable()[i];
+    const auto& json = table["techniques"][i];
+    EXPECT_EQ(json["name"], info.name);
+    ASSERT_EQ(json["options"].size(), info.options.size()) << info.name;
+    for (std::size_t j = 0; j < info.options.size(); ++j) {
+      EXPECT_EQ(json["options"][j]["key"], info.options[j].key());
+    }
+  }
+  bool widthNear = false, crop = false;
+  for (const auto& shared : table["shared"]) {
+    widthNear |= shared["key"] == "width_near";
+    crop |= shared["key"] == "crop";
+  }
+  EXPECT_TRUE(widthNear);
+  EXPECT_FALSE(crop) << "volume flags are the server's";
+
+  auto state = server.get("/api/state");
+  ASSERT_TRUE(state);
+  const auto facts = nlohmann::json::parse(state->body);
+  EXPECT_EQ(facts["input"], "gen:spheres:32");
+  EXPECT_EQ(facts["values"]["size"], "96x80");
+  EXPECT_EQ(facts["dims"][0], 32);
+}
+
+TEST(FrameServer, AFrameIsThePngItsCommandLineRenders) {
+  Running server(smallServer());
+  auto frame = server.get("/frame?width=3&view=40,10&technique=silhouette");
+  ASSERT_TRUE(frame);
+  ASSERT_EQ(frame->status, 200) << frame->body;
+  EXPECT_EQ(frame->get_header_value("Content-Type"), "image/png");
+  const std::string command = frame->get_header_value("X-Vsil-Command");
+  // In vsil render's order, whatever the query's.
+  EXPECT_EQ(command,
+            "vsil render gen:spheres:32 --technique silhouette --size 96x80 --view 40,10 --width 3 "
+            "--out view.png");
+  EXPECT_GT(std::stod(frame->get_header_value("X-Vsil-Render-Ms")), 0.0);
+  const cv::Mat image = cv::imdecode(
+      std::vector<std::uint8_t>(frame->body.begin(), frame->body.end()), cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(image.empty());
+  EXPECT_EQ(image.cols, 96);
+  EXPECT_EQ(image.rows, 80);
+
+  // The command line, run: the same bytes.
+  const auto out = test::scratchDir() / "view.png";
+  const std::string prefix = "vsil render ", suffix = " --out view.png";
+  ASSERT_EQ(command.rfind(prefix, 0), 0u);
+  const std::string flags = command.substr(prefix.size(), command.size() - prefix.size() - suffix.size());
+  const auto result = test::runVsil("render " + flags + " --out " + out.string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(test::readFileBytes(out), frame->body);
+}
+
+TEST(FrameServer, TheViewChangesTheFrameAndTheSameViewGivesTheSameBytes) {
+  Running server(smallServer());
+  auto a = server.get("/frame?view=30,20");
+  auto b = server.get("/frame?view=50,20");
+  auto c = server.get("/frame?view=30,20");
+  ASSERT_TRUE(a && b && c);
+  ASSERT_EQ(a->status, 200);
+  ASSERT_EQ(b->status, 200);
+  ASSERT_EQ(c->status, 200);
+  EXPECT_NE(a->body, b->body);
+  EXPECT_EQ(a->body, c->body);
+}
+
+TEST(FrameServer, TheSemanticCursorPixelMovesTheFocus) {
+  // The example rule base with the focus around the cursor's pixel (image_distance) rather than
+  // the 3D cursor; the file is the server's own flag, which the page cannot name.
+  std::string rules = test::readFileBytes(std::filesystem::path(VSIL_SOURCE_DIR) /
+                                          "src/core/rules/example.rules");
+  const std::string from = "attribute focus from cursor_distance";
+  ASSERT_NE(rules.find(from), std::string::npos);
+  rules.replace(rules.find(from), from.size(), "attribute focus from image_distance");
+  const auto path = test::scratchDir() / "focus.rules";
+  std::ofstream(path) << rules;
+  ServeOptions options = smallServer();
+  options.command.flags.push_back({"technique", {"semantic"}});
+  options.command.flags.push_back({"rules", {path.string()}});
+  Running server(std::move(options));
+
+  auto left = server.get("/frame?cursor_pixel=30,40");
+  auto right = server.get("/frame?cursor_pixel=66,40");
+  ASSERT_TRUE(left && right);
+  ASSERT_EQ(left->status, 200) << left->body;
+  ASSERT_EQ(right->status, 200) << right->body;
+  EXPECT_NE(left->body, right->body);
+  EXPECT_NE(left->get_header_value("X-Vsil-Command").find("--cursor-pixel 30,40"),
+            std::string::npos);
+  // The page sends the server's own file back as it was given: that is no new path.
+  auto same = server.get("/frame?rules=" + path.string());
+  ASSERT_TRUE(same);
+  EXPECT_EQ(same->status, 200) << same->body;
+}
+
+TEST(FrameServer, BadParametersAre400WithTheOneLineMessageAndTheServerGoesOn) {
+  Running server(smallServer());
+  const std::pair<const char*, const char*> bad[] = {
+      {"/frame?width_near=-3&width_far=2", "--width-near"},
+      {"/frame?width_near=-3", "--width-near"},
+      {"/frame?iso=abc", "--iso"},
+      {"/frame?zoom=0", "--zoom"},
+      {"/frame?technique=nosuch", "--technique"},
+      {"/frame?ra_exponent=8", "--ra-exponent"},  // not silhouette's
+      {"/frame?size=100000x100000", "--size"},
+      {"/frame?nosuch=1", "nosuch"},
+      {"/frame?crop=0:4,0:4,0:4", "crop"},       // the server's volume flags are fixed
+      {"/frame?gl=osmesa", "gl"},
+      {"/frame?input=%2Fetc%2Fpasswd", "input"},
+      {"/frame?technique=semantic&rules=%2Fetc%2Fpasswd", "--rules"},
+      {"/frame?technique=semantic&rules=my.rules", "--rules"},
+      {"/frame?technique=illustrate&style=..%2Fx.json", "--style"},
+      {"/frame?technique=mip&tf=tf.json", "--tf"},
+      {"/frame?ortho=maybe", "--ortho"},
+      {"/frame?line_color=red%0D%0AX-Evil:%201", "--line-color"},
+  };
+  for (const auto& [path, flag] : bad) {
+    auto answer = server.get(path);
+    ASSERT_TRUE(answer) << path;
+    EXPECT_EQ(answer->status, 400) << path << ": " << answer->body;
+    EXPECT_NE(answer->body.find(flag), std::string::npos) << path << ": " << answer->body;
+    EXPECT_EQ(answer->body.find('\n'), answer->body.size() - 1) << "one line: " << answer->body;
+  }
+  auto good = server.get("/frame?width_near=4&width_far=1");
+  ASSERT_TRUE(good);
+  EXPECT_EQ(good->status, 200) << good->body;
+  auto preset = server.get("/frame?technique=semantic&rules=example");
+  ASSERT_TRUE(preset);
+  EXPECT_EQ(preset->status, 200) << preset->body;
+}
+
+TEST(FrameServer, ATokenIsAskedOfEveryRequest) {
+  ServeOptions options = smallServer();
+  options.token = "a-long-secret";
+  Running server(std::move(options));
+  auto none = server.get("/api/state");
+  ASSERT_TRUE(none);
+  EXPECT_EQ(none->status, 403);
+  auto wrong = server.get("/frame?token=a-long-secreT");
+  ASSERT_TRUE(wrong);
+  EXPECT_EQ(wrong->status, 403);
+  auto given = server.get("/api/state?token=a-long-secret");
+  ASSERT_TRUE(given);
+  EXPECT_EQ(given->status, 200);
+  auto header = server.client().Get("/", {{"X-Vsil-Token", "a-long-secret"}});
+  ASSERT_TRUE(header);
+  EXPECT_EQ(header->status, 200);
+}
+
+TEST(FrameServer, BindingBeyondLoopbackNeedsAToken) {
+  ServeOptions options = smallServer();
+  options.bind = "0.0.0.0";
+  try {
+    FrameServer server(options);
+    FAIL() << "bound to 0.0.0.0 without a token";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--token"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(isLoopback("127.0.0.1"));
+  EXPECT_TRUE(isLoopback("::1"));
+  EXPECT_FALSE(isLoopback("0.0.0.0"));
+  EXPECT_FALSE(isLoopback("192.168.1.2"));
+}
+
+TEST(FrameServer, AServerCommandLineThatFailsItsChecksStartsNothing) {
+  ServeOptions options = smallServer();
+  options.command.flags.push_back({"width-near", {"-3"}});
+  EXPECT_THROW(FrameServer server(options), InputError);
+}
+
+}  // namespace
+}  // namespace vsil::serve
