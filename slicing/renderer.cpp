@@ -1,5 +1,6 @@
 #include "slicing/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -47,6 +48,13 @@ void validate(const RenderSettings& settings) {
   if (technique.checkValues) technique.checkValues(settings.options);
 }
 
+// Whether a frame with `given` options takes an iso value from the volume.
+bool leavesIsoUnset(const TechniqueInfo& info, const OptionValues& given) {
+  return std::any_of(info.options.begin(), info.options.end(), [&](const OptionSpec& spec) {
+    return spec.derived == OptionSpec::Derived::VolumeIso && !given.contains(spec.name);
+  });
+}
+
 }  // namespace
 
 void Renderer::validateSettings(const RenderSettings& settings) {
@@ -68,7 +76,7 @@ struct Renderer::Impl {
   glm::ivec3 dims{0};
   glm::dvec3 spacing{1.0};
   ValueRange valueRange;
-  DerivedDefaults derivedDefaults;
+  std::optional<float> defaultIso;  // computed on the first frame that needs it
   gl::BufferName sliceBuffer;
   gl::VertexArrayName sliceVertexArray;
   gl::VertexArrayName screenVertexArray;
@@ -135,7 +143,7 @@ void Renderer::setVolume(const Volume& volume, std::uint64_t maxTextureBytes) {
   impl_->dims = volume.dims;
   impl_->spacing = volume.spacing;
   impl_->valueRange = valueRange(volume);
-  impl_->derivedDefaults = derivedDefaults(volume);
+  impl_->defaultIso.reset();
 }
 
 RenderResult Renderer::render(const RenderSettings& settings) {
@@ -143,7 +151,21 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   validate(settings);
   const TechniqueInfo& info = findTechnique(settings.technique);
   Technique& technique = impl_->technique(info);
-  const OptionReader options(info.options, settings.options, impl_->derivedDefaults);
+  RenderResult result;
+  const OptionValues given =
+      optionsForBricks(info, settings.options, impl_->volumeTexture->brickCount());
+  // The default iso value takes a pass over every sample: only for frames that need it.
+  DerivedDefaults derived{.valueRangeWidth = double(impl_->valueRange.max) -
+                                             double(impl_->valueRange.min)};
+  if (leavesIsoUnset(info, given)) {
+    if (!impl_->defaultIso) {
+      StageClock clock;
+      impl_->defaultIso = defaultIso(*impl_->volume, impl_->valueRange);
+      result.timings.defaults = clock.lap();
+    }
+    derived.iso = *impl_->defaultIso;
+  }
+  const OptionReader options(info.options, given, derived);
   // Bricks the frame cannot follow: the volume in one texture when it fits (else the
   // technique refuses). It stays so for later frames (the same bytes either way).
   if (impl_->volumeTexture->brickCount() > 1 && impl_->bricking == BrickLayout::Bricking::Compact &&
@@ -155,7 +177,6 @@ RenderResult Renderer::render(const RenderSettings& settings) {
     }
   }
 
-  RenderResult result;
   result.view = makeView(settings.camera, impl_->dims, impl_->spacing, settings.size);
   result.options = options.toJson();
   const SlicePlan plan =
@@ -191,7 +212,8 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   }
 
   gl::ScopedState restoreState;
-  const auto start = std::chrono::steady_clock::now();
+  StageClock clock;
+  const StageTime programsBefore = gl::programBuildTime();
   VSIL_GL(glBindBuffer(GL_ARRAY_BUFFER, impl_->sliceBuffer.id()));
   VSIL_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec3)),
                        vertices.data(), GL_STREAM_DRAW));
@@ -242,11 +264,11 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   frame.sweep = sweeps - 1;
   technique.endFrame(frame);
   VSIL_GL(glFinish());
-  result.timings.renderMs = millisecondsSince(start);
+  result.timings.programs = gl::programBuildTime() - programsBefore;
+  result.timings.render = clock.lap() - result.timings.programs;
 
-  const auto readStart = std::chrono::steady_clock::now();
   result.frame = technique.readBack(frame);
-  result.timings.readbackMs = millisecondsSince(readStart);
+  result.timings.readback = clock.lap();
   gl::checkGlError("Renderer::render", __FILE__, __LINE__);
   return result;
 }

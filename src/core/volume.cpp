@@ -162,7 +162,10 @@ VolumeSubset planVolume(const std::string& where, glm::ivec3 fileDims, SampleTyp
 }
 
 float defaultIso(const Volume& volume) {
-  const ValueRange range = valueRange(volume);
+  return defaultIso(volume, valueRange(volume));
+}
+
+float defaultIso(const Volume& volume, ValueRange range) {
   const double span = double(range.max) - double(range.min);
   if (!(span > 0)) return range.min;
   // The samples quantized to 256 levels of the value range: every one up to 2^24, else a
@@ -194,7 +197,7 @@ float defaultIso(const Volume& volume) {
 
 DerivedDefaults derivedDefaults(const Volume& volume) {
   const ValueRange range = valueRange(volume);
-  return {.iso = defaultIso(volume), .valueRangeWidth = double(range.max) - double(range.min)};
+  return {.iso = defaultIso(volume, range), .valueRangeWidth = double(range.max) - double(range.min)};
 }
 
 }  // namespace vsil

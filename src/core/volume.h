@@ -210,6 +210,8 @@ ValueRange valueRange(const Volume& volume);
 // (OpenCV) over the samples in 256 levels of the value range, in the middle of the gap between
 // the two classes where there is one; the range's minimum for a constant volume.
 float defaultIso(const Volume& volume);
+// The same for a volume whose valueRange is known (a pass over the samples saved).
+float defaultIso(const Volume& volume, ValueRange range);
 
 // The facts option defaults are derived from (core/options.h), for this volume.
 DerivedDefaults derivedDefaults(const Volume& volume);

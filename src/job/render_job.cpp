@@ -52,7 +52,7 @@ nlohmann::json pixelCounts(const FrameBuffers& frame) {
 
 nlohmann::json metadata(const RenderRequest& request, const std::string& input,
                         const Volume& volume, const RenderResult& result,
-                        const gl::ContextInfo& glContext, double postfxMs) {
+                        const gl::ContextInfo& glContext, StageTime postfx) {
   const RenderSettings& settings = request.settings;
   const TechniqueInfo& technique = findTechnique(settings.technique);
   const ValueRange range = valueRange(volume);
@@ -103,9 +103,17 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
                     {"depth_range_eye", {result.view.nearEye, result.view.farEye}},
                     {"orthographic", result.view.orthographic}};
   meta["pixels"] = pixelCounts(result.frame);
-  meta["timings_ms"] = {{"render", result.timings.renderMs},
-                        {"readback", result.timings.readbackMs},
-                        {"postfx", postfxMs}};
+  // The frame's stages in wall time and in the process's CPU time; the caller adds its own
+  // (render_command.cpp: start-up, context, read, upload, write, total).
+  const RenderTimings& timings = result.timings;
+  for (const auto& [key, time] : {std::pair{"timings_ms", &StageTime::wallMs},
+                                  std::pair{"cpu_ms", &StageTime::cpuMs}}) {
+    meta[key] = {{"defaults", timings.defaults.*time},
+                 {"programs", timings.programs.*time},
+                 {"render", timings.render.*time},
+                 {"readback", timings.readback.*time},
+                 {"postfx", postfx.*time}};
+  }
   return meta;
 }
 
@@ -263,13 +271,13 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
 
   RenderOutput output;
   output.result = impl_->renderer->render(settingsFor(request));
-  const auto postStart = std::chrono::steady_clock::now();
+  StageClock postfxClock;
   PostfxOptions postfx = request.postfx;
   postfx.background = output.result.background;
   output.image = composeIllustration(output.result.frame, postfx, impl_->blur);
-  output.postfxMs = millisecondsSince(postStart);
+  output.postfx = postfxClock.lap();
   output.metadata = metadata(request, impl_->input, volume, output.result, impl_->context.info(),
-                             output.postfxMs);
+                             output.postfx);
   output.warnings = warnings(request, volume);
   return output;
 }

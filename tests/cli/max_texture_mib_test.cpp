@@ -3,6 +3,7 @@
 // gives the same PNG, state and depth bytes as in one texture; what cannot follow the bricks
 // (--pipeline tiles) refuses with one line, exit 2 and no output file; the flag's range is checked.
 #include <filesystem>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -14,9 +15,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The output bytes, and `--meta-out`'s volume_texture into `texture`.
+// The output bytes, and `--meta-out`'s volume_texture into `texture` and the pipeline used into
+// `pipeline` (null for techniques without one).
 std::string render(const fs::path& dir, const std::string& name, const std::string& flags,
-                   nlohmann::json& texture) {
+                   nlohmann::json& texture, nlohmann::json& pipeline) {
   const std::string base = (dir / name).string();
   const auto result = test::runVsil("render gen:spheres:128 " + flags +
                                     " --size 96x80 --view 37,-23 --sampling 0.9 --out " + base +
@@ -24,23 +26,30 @@ std::string render(const fs::path& dir, const std::string& name, const std::stri
                                     "-depth.png --meta-out " + base + ".json");
   EXPECT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.err, "");
-  texture = nlohmann::json::parse(test::readFileBytes(base + ".json"))["volume_texture"];
+  const auto meta = nlohmann::json::parse(test::readFileBytes(base + ".json"));
+  texture = meta["volume_texture"];
+  pipeline = meta["parameters"]["pipeline"];
   return test::readFileBytes(base + ".png") + "|" + test::readFileBytes(base + "-state.png") + "|" +
          test::readFileBytes(base + "-depth.png");
 }
 
+// The default silhouette pipeline, tiles, gives way to fast over the bricks (the same bytes).
 TEST(MaxTextureMib, BricksRenderTheBytesOfOneTextureAndTheMetadataSaysSo) {
   const fs::path dir = test::scratchDir();
-  for (const std::string technique : {"--technique silhouette --pipeline paper",
-                                      "--technique silhouette", "--technique rightangle"}) {
+  for (const auto& [technique, wholePipeline, brickedPipeline] :
+       {std::tuple{"--technique silhouette --pipeline paper", "paper", "paper"},
+        std::tuple{"--technique silhouette", "tiles", "fast"},
+        std::tuple{"--technique rightangle", "fast", "fast"}}) {
     SCOPED_TRACE(technique);
-    nlohmann::json wholeTexture, brickedTexture;
-    const std::string whole = render(dir, "whole", technique, wholeTexture);
-    const std::string bricked =
-        render(dir, "bricked", technique + " --max-texture-mib 1", brickedTexture);
+    nlohmann::json wholeTexture, brickedTexture, wholeUsed, brickedUsed;
+    const std::string whole = render(dir, "whole", technique, wholeTexture, wholeUsed);
+    const std::string bricked = render(dir, "bricked", std::string(technique) +
+                                       " --max-texture-mib 1", brickedTexture, brickedUsed);
     EXPECT_EQ(whole, bricked);
     EXPECT_EQ(wholeTexture, nlohmann::json({{"format", "R32F"}, {"bricks", {1, 1, 1}}}));
     EXPECT_EQ(brickedTexture, nlohmann::json({{"format", "R32F"}, {"bricks", {1, 1, 11}}}));
+    EXPECT_EQ(wholeUsed, wholePipeline);
+    EXPECT_EQ(brickedUsed, brickedPipeline);
   }
 }
 

@@ -12,7 +12,7 @@ TechniqueInfo rightAngleTechniqueInfo() {
                    .above(0),
                OptionSpec::number("ra-threshold", 0.3,
                                   "a first hit is a line pixel where (1 - |n.v|)^k exceeds this"),
-               pipelineOption()}),
+               pipelineOption(SlicingPipeline::Fast)}),
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<RightAngleTechnique>(); },
           /*usesGradients=*/false,
