@@ -1,7 +1,8 @@
 // `vsil render --max-texture-mib N` through the built binary: gen:spheres:128 (float32, an 8 MiB
 // R32F texture) in bricks of at most 1 MiB (11 bricks of 16x128x128 texels, the fewest texels)
 // gives the same PNG, state and depth bytes as in one texture; what cannot follow the bricks
-// (--pipeline tiles) refuses with one line, exit 2 and no output file; the flag's range is checked.
+// (--pipeline tiles, asked for by name) refuses with one line, exit 2 and no output file, while
+// silhouette's default tiles pipeline gives way to fast; the flag's range is checked.
 #include <filesystem>
 #include <tuple>
 
