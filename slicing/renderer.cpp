@@ -131,6 +131,10 @@ std::size_t Renderer::brickCount() const {
   return impl_->volumeTexture ? impl_->volumeTexture->brickCount() : 0;
 }
 
+ValueRange Renderer::valueRange() const {
+  return impl_->valueRange;
+}
+
 const gl::ProgramCache& Renderer::programs() const {
   return impl_->programs;
 }
@@ -142,7 +146,7 @@ void Renderer::setVolume(const Volume& volume, std::uint64_t maxTextureBytes) {
   impl_->brickRanges.emplace(volume);
   impl_->dims = volume.dims;
   impl_->spacing = volume.spacing;
-  impl_->valueRange = valueRange(volume);
+  impl_->valueRange = vsil::valueRange(volume);
   impl_->defaultIso.reset();
 }
 

@@ -104,6 +104,8 @@ class Renderer {
   void setVolume(const Volume& volume, std::uint64_t maxTextureBytes = limits::kMaxTextureBytes);
   // Bricks of the current volume's texture (0 before setVolume).
   std::size_t brickCount() const;
+  // The current volume's value range (valueRange, computed once in setVolume).
+  ValueRange valueRange() const;
   RenderResult render(const RenderSettings& settings);
 
   // The programs built so far (tests count recompiles).

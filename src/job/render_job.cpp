@@ -51,11 +51,10 @@ nlohmann::json pixelCounts(const FrameBuffers& frame) {
 }
 
 nlohmann::json metadata(const RenderRequest& request, const std::string& input,
-                        const Volume& volume, const RenderResult& result,
+                        const Volume& volume, ValueRange range, const RenderResult& result,
                         const gl::ContextInfo& glContext, StageTime postfx) {
   const RenderSettings& settings = request.settings;
   const TechniqueInfo& technique = findTechnique(settings.technique);
-  const ValueRange range = valueRange(volume);
   nlohmann::json parameters = {{"input", input},
                                {"technique", settings.technique},
                                {"empty_space_skipping", settings.emptySpaceSkipping},
@@ -152,6 +151,7 @@ std::vector<std::string> warnings(const RenderRequest& request, const Volume& vo
   const auto given = request.settings.options.find("iso");
   if (given == request.settings.options.end()) return found;
   const double iso = std::get<double>(given->second);
+  // The samples as they are now (Python may change an array in place after its upload).
   const ValueRange range = valueRange(volume);
   if (iso > range.max || iso < range.min) {
     std::ostringstream line;
@@ -276,7 +276,10 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
   postfx.background = output.result.background;
   output.image = composeIllustration(output.result.frame, postfx, impl_->blur);
   output.postfx = postfxClock.lap();
-  output.metadata = metadata(request, impl_->input, volume, output.result, impl_->context.info(),
+  // The value range of the samples the frame rendered, found once when they were uploaded.
+  const ValueRange range = impl_->renderer->valueRange();
+  output.metadata = metadata(request, impl_->input, volume, range, output.result,
+                             impl_->context.info(),
                              output.postfx);
   output.warnings = warnings(request, volume);
   return output;
