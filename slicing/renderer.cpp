@@ -1,5 +1,6 @@
 #include "slicing/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -47,6 +48,20 @@ void validate(const RenderSettings& settings) {
   if (technique.checkValues) technique.checkValues(settings.options);
 }
 
+// Whether a frame with `given` options takes an iso value from the volume.
+// Whether a frame needs the volume's histogram (derivedDefaults): a technique with an iso
+// option needs it only when the iso is left out; the others (the MIP family's default window,
+// illustrate's and semantic's classification above Otsu's threshold) always do.
+bool needsHistogram(const TechniqueInfo& info, const OptionValues& given) {
+  bool hasIso = false, leavesIsoUnset = false;
+  for (const OptionSpec& spec : info.options) {
+    if (spec.derived != OptionSpec::Derived::VolumeIso) continue;
+    hasIso = true;
+    leavesIsoUnset = leavesIsoUnset || !given.contains(spec.name);
+  }
+  return !hasIso || leavesIsoUnset;
+}
+
 }  // namespace
 
 void Renderer::validateSettings(const RenderSettings& settings) {
@@ -68,7 +83,7 @@ struct Renderer::Impl {
   glm::ivec3 dims{0};
   glm::dvec3 spacing{1.0};
   ValueRange valueRange;
-  DerivedDefaults derivedDefaults;
+  std::optional<DerivedDefaults> histogramDefaults;  // on the first frame that needs them
   gl::BufferName sliceBuffer;
   gl::VertexArrayName sliceVertexArray;
   gl::VertexArrayName screenVertexArray;
@@ -123,6 +138,10 @@ std::size_t Renderer::brickCount() const {
   return impl_->volumeTexture ? impl_->volumeTexture->brickCount() : 0;
 }
 
+ValueRange Renderer::valueRange() const {
+  return impl_->valueRange;
+}
+
 const gl::ProgramCache& Renderer::programs() const {
   return impl_->programs;
 }
@@ -134,8 +153,8 @@ void Renderer::setVolume(const Volume& volume, std::uint64_t maxTextureBytes) {
   impl_->brickRanges.emplace(volume);
   impl_->dims = volume.dims;
   impl_->spacing = volume.spacing;
-  impl_->valueRange = valueRange(volume);
-  impl_->derivedDefaults = derivedDefaults(volume);
+  impl_->valueRange = vsil::valueRange(volume);
+  impl_->histogramDefaults.reset();
 }
 
 RenderResult Renderer::render(const RenderSettings& settings) {
@@ -143,7 +162,22 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   validate(settings);
   const TechniqueInfo& info = findTechnique(settings.technique);
   Technique& technique = impl_->technique(info);
-  const OptionReader options(info.options, settings.options, impl_->derivedDefaults);
+  RenderResult result;
+  const OptionValues given =
+      optionsForBricks(info, settings.options, impl_->volumeTexture->brickCount());
+  // The histogram's defaults take a pass over every sample: only for frames that need them.
+  DerivedDefaults derived{.valueRangeWidth = double(impl_->valueRange.max) -
+                                             double(impl_->valueRange.min),
+                          .valueMin = impl_->valueRange.min};
+  if (needsHistogram(info, given)) {
+    if (!impl_->histogramDefaults) {
+      StageClock clock;
+      impl_->histogramDefaults = derivedDefaults(*impl_->volume, impl_->valueRange);
+      result.timings.defaults = clock.lap();
+    }
+    derived = *impl_->histogramDefaults;
+  }
+  const OptionReader options(info.options, given, derived);
   // Bricks the frame cannot follow: the volume in one texture when it fits (else the
   // technique refuses). It stays so for later frames (the same bytes either way).
   if (impl_->volumeTexture->brickCount() > 1 && impl_->bricking == BrickLayout::Bricking::Compact &&
@@ -155,7 +189,6 @@ RenderResult Renderer::render(const RenderSettings& settings) {
     }
   }
 
-  RenderResult result;
   result.view = makeView(settings.camera, impl_->dims, impl_->spacing, settings.size);
   result.options = options.toJson();
   const SlicePlan plan =
@@ -194,7 +227,8 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   }
 
   gl::ScopedState restoreState;
-  const auto start = std::chrono::steady_clock::now();
+  StageClock clock;
+  const StageTime programsBefore = gl::programBuildTime();
   VSIL_GL(glBindBuffer(GL_ARRAY_BUFFER, impl_->sliceBuffer.id()));
   VSIL_GL(glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(vertices.size() * sizeof(glm::vec3)),
                        vertices.data(), GL_STREAM_DRAW));
@@ -245,11 +279,11 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   frame.sweep = sweeps - 1;
   technique.endFrame(frame);
   VSIL_GL(glFinish());
-  result.timings.renderMs = millisecondsSince(start);
+  result.timings.programs = gl::programBuildTime() - programsBefore;
+  result.timings.render = clock.lap() - result.timings.programs;
 
-  const auto readStart = std::chrono::steady_clock::now();
   result.frame = technique.readBack(frame);
-  result.timings.readbackMs = millisecondsSince(readStart);
+  result.timings.readback = clock.lap();
   gl::checkGlError("Renderer::render", __FILE__, __LINE__);
   return result;
 }

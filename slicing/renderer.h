@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/camera.h"
+#include "core/clock.h"
 #include "core/color.h"
 #include "core/frame.h"
 #include "core/limits.h"
@@ -58,9 +59,14 @@ struct RenderSettings {
   OptionValues options;
 };
 
+// Where a frame's time went, in wall and process CPU time (core/clock.h).
 struct RenderTimings {
-  double renderMs = 0;    // slicing, ended by glFinish
-  double readbackMs = 0;  // GPU targets to CPU images
+  // The volume's default iso value (Otsu's threshold of a histogram of every sample), computed
+  // on the first frame that leaves an iso option unset and kept; zero for the others.
+  StageTime defaults;
+  StageTime programs;  // building the shader programs the frame was the first to use
+  StageTime render;    // slicing, ended by glFinish; program builds excluded
+  StageTime readback;  // GPU targets to CPU images
 };
 
 struct RenderResult {
@@ -98,6 +104,8 @@ class Renderer {
   void setVolume(const Volume& volume, std::uint64_t maxTextureBytes = limits::kMaxTextureBytes);
   // Bricks of the current volume's texture (0 before setVolume).
   std::size_t brickCount() const;
+  // The current volume's value range (valueRange, computed once in setVolume).
+  ValueRange valueRange() const;
   RenderResult render(const RenderSettings& settings);
 
   // The programs built so far (tests count recompiles).

@@ -135,7 +135,20 @@ ProgramSpec computeProgram(const std::vector<std::string>& shared, std::string c
   return {{}, {}, files(shared, std::move(computeFile)), std::move(defines)};
 }
 
+namespace {
+thread_local StageTime builtSoFar;  // programBuildTime()
+}  // namespace
+
+StageTime programBuildTime() {
+  return builtSoFar;
+}
+
 Program::Program(const ProgramSpec& spec) : label_(labelOf(spec)) {
+  StageClock clock;
+  struct CountOnExit {
+    StageClock& clock;
+    ~CountOnExit() { builtSoFar += clock.elapsed(); }
+  } countOnExit{clock};
   std::vector<GLuint> shaders;
   const auto deleteShaders = [&shaders] {
     for (GLuint shader : shaders) glDeleteShader(shader);  // freed with the program once attached

@@ -16,6 +16,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/clock.h"
 #include "slicing/gl_objects.h"
 
 namespace vsil::gl {
@@ -89,6 +90,11 @@ class Program {
   std::string label_;
   std::unordered_map<std::string, GLint> locations_;
 };
+
+// The time this thread spent building programs so far (compiling and linking, for timings;
+// llvmpipe compiles the machine code of a fragment program's state at its first draw, which
+// counts as drawing). Mesa's on-disk shader cache (~/.cache/mesa_shader_cache) serves repeats.
+StageTime programBuildTime();
 
 // Programs by ProgramSpec::key(), built on first use and kept for the context's lifetime.
 class ProgramCache {

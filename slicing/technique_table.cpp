@@ -58,16 +58,38 @@ OptionSpec isoOption() {
   return spec;
 }
 
-OptionSpec pipelineOption() {
-  return OptionSpec::choice(
-      "pipeline", "fast", {"fast", "paper", "tiles"},
+const char* pipelineName(SlicingPipeline pipeline) {
+  switch (pipeline) {
+    case SlicingPipeline::Paper: return "paper";
+    case SlicingPipeline::Tiles: return "tiles";
+    case SlicingPipeline::Fast: break;
+  }
+  return "fast";
+}
+
+OptionSpec pipelineOption(SlicingPipeline defaultPipeline) {
+  OptionSpec spec = OptionSpec::choice(
+      "pipeline", pipelineName(defaultPipeline), {"fast", "paper", "tiles"},
       "fast (passes per slice, skipping empty space and finished pixels), paper (the paper's "
       "passes per slice over every pixel of each slice polygon) or tiles (one compute dispatch "
       "marching screen tiles through the slices); the same pixels");
+  if (defaultPipeline == SlicingPipeline::Tiles) {
+    spec.defaultNote = "fast where the volume takes several bricks: tiles needs one texture";
+  }
+  return spec;
 }
 
 bool tilesNeedOneTexture(const OptionReader& options) {
-  return pipelineOf(options) == SlicingPipeline::Tiles;
+  return options.given("pipeline") && pipelineOf(options) == SlicingPipeline::Tiles;
+}
+
+OptionValues optionsForBricks(const TechniqueInfo& info, OptionValues given, std::size_t bricks) {
+  const OptionSpec* pipeline = info.option("pipeline");
+  if (bricks > 1 && pipeline && !given.contains("pipeline") &&
+      std::get<std::string>(*pipeline->defaultValue) == pipelineName(SlicingPipeline::Tiles)) {
+    given["pipeline"] = std::string(pipelineName(SlicingPipeline::Fast));
+  }
+  return given;
 }
 
 bool needsOneTexture(const std::string& technique, const OptionValues& given) {

@@ -4,6 +4,7 @@
 // it. The CLI's flags and help, the metadata, the benchmark, the names listed in errors and the
 // Python keywords all read this table. A new technique is a folder under slicing/techniques/
 // and one entry in technique_table.cpp.
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <string>
@@ -61,11 +62,20 @@ OptionSpec isoOption();
 //   fast:  a pass or two per slice, skipping empty space and pixels that can no longer change;
 //   paper: the papers' passes per slice over every pixel of each slice polygon, no skipping;
 //   tiles: one compute dispatch marching screen tiles through the slices (tile_march.h).
+// Each technique's default is its fastest pipeline (measured in the README's benchmark section).
 enum class SlicingPipeline { Fast, Paper, Tiles };
-OptionSpec pipelineOption();
+const char* pipelineName(SlicingPipeline pipeline);  // "fast", "paper", "tiles"
+OptionSpec pipelineOption(SlicingPipeline defaultPipeline);
 SlicingPipeline pipelineOf(const OptionReader& options);
-// needsOneTexture of the techniques with a pipeline: the tiles march.
+// needsOneTexture of the techniques with a pipeline: the tiles march when asked for by name.
+// A default tiles pipeline never needs one texture: over a volume in several bricks it gives way
+// to fast (optionsForBricks), so neither the memory check nor the upload counts a second copy.
 bool tilesNeedOneTexture(const OptionReader& options);
+// The options a frame of `info` runs with when the volume is held in `bricks` textures: `given`,
+// plus --pipeline fast where the technique's default pipeline is tiles, none was given, and the
+// volume takes several bricks (the tiles march needs one texture; uploading the volume again
+// would cost the time and memory the default is meant to save). The metadata then records fast.
+OptionValues optionsForBricks(const TechniqueInfo& info, OptionValues given, std::size_t bricks);
 // Whether a render of `technique` with `given` options needs one texture (derived defaults
 // do not matter to it).
 bool needsOneTexture(const std::string& technique, const OptionValues& given);

@@ -12,7 +12,8 @@ extern char** environ;
 
 namespace vsil::bench {
 
-ChildRun runVsilChild(const std::vector<std::string>& args, const std::filesystem::path& errFile) {
+ChildRun runVsilChild(const std::vector<std::string>& args, const std::filesystem::path& errFile,
+                      const std::vector<std::string>& environment) {
   const std::string binary = std::filesystem::read_symlink("/proc/self/exe").string();
   std::vector<std::string> all = {binary};
   all.insert(all.end(), args.begin(), args.end());
@@ -24,16 +25,23 @@ ChildRun runVsilChild(const std::vector<std::string>& args, const std::filesyste
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 2, errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
                                    0644);
+  std::vector<std::string> envText = environment;
+  std::vector<char*> envp;
+  for (auto& e : envText) envp.push_back(e.data());
+  for (char** e = environ; *e; ++e) envp.push_back(*e);
+  envp.push_back(nullptr);
   ChildRun run;
   const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ);
+  const int spawned = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   int status = 0;
   struct rusage usage {};
   if (spawned == 0 && ::wait4(pid, &status, 0, &usage) == pid) {
     run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     run.peakResidentBytes = double(usage.ru_maxrss) * 1024.0;  // Linux: KiB
+    const auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * t.tv_usec; };
+    run.cpuSeconds = seconds(usage.ru_utime) + seconds(usage.ru_stime);
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (run.exitCode != 0) {

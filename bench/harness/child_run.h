@@ -10,11 +10,14 @@ namespace vsil::bench {
 struct ChildRun {
   int exitCode = -1;  // 128 + the signal when one ended it
   double seconds = 0;
+  double cpuSeconds = 0;         // the child's user + system time, every thread (getrusage)
   double peakResidentBytes = 0;  // the child's peak resident set (getrusage's ru_maxrss)
   std::string error;             // "exit N: <the first line of its stderr>" when it failed
 };
 
-// Runs `vsil ARGS`, stdout to /dev/null, stderr to `errFile`, and waits for it.
-ChildRun runVsilChild(const std::vector<std::string>& args, const std::filesystem::path& errFile);
+// Runs `vsil ARGS`, stdout to /dev/null, stderr to `errFile`, and waits for it; `environment`
+// ("NAME=VALUE") is added to this process's.
+ChildRun runVsilChild(const std::vector<std::string>& args, const std::filesystem::path& errFile,
+                      const std::vector<std::string>& environment = {});
 
 }  // namespace vsil::bench

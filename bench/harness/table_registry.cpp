@@ -8,6 +8,7 @@
 #include "tables/large_table.h"
 #include "tables/nk3_table.h"
 #include "tables/semantic_table.h"
+#include "tables/startup_table.h"
 
 namespace vsil::bench {
 namespace {
@@ -28,6 +29,10 @@ std::vector<TableDefinition> makeRegistry() {
        "Rautek et al. semantic rendering: rule bases of 1 to 32 rules against the plain "
        "composite, a membership change against a rule change",
        semanticDatasetNames(), runSemanticTable, ""},
+      {"startup",
+       "a default vsil render from exec to exit, stage by stage, with Mesa's shader cache on "
+       "and off",
+       startupDatasetNames(), runStartupTable, ""},
       {"large",
        "volumes beyond one 3D texture (512³, 1024³, 2048²·1024 uint8): load + upload, "
        "silhouette frame, peak memory",

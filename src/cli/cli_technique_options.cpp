@@ -9,12 +9,22 @@ namespace vsil::cli {
 
 namespace {
 
-// "[silhouette, rightangle] iso value in the data's own units (default ...)".
-std::string helpText(const OptionSpec& spec, const std::vector<std::string>& users) {
+// "[silhouette, rightangle] iso value in the data's own units (default ...)"; where the
+// techniques' defaults differ, each one's: "(silhouette: default tiles, ...; rightangle: ...)".
+std::string helpText(const std::vector<const OptionSpec*>& specs,
+                     const std::vector<std::string>& users) {
   std::string owners;
   for (const auto& name : users) owners += (owners.empty() ? "" : ", ") + name;
-  const std::string details = spec.describe();
-  return "[" + owners + "] " + spec.help + (details.empty() ? "" : " (" + details + ")");
+  std::string details = specs.front()->describe();
+  for (const OptionSpec* spec : specs) {
+    if (spec->describe() == details) continue;
+    details.clear();
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      details += (i ? "; " : "") + users[i] + ": " + specs[i]->describe();
+    }
+    break;
+  }
+  return "[" + owners + "] " + specs.front()->help + (details.empty() ? "" : " (" + details + ")");
 }
 
 // The value's name in the help, in OptionKind's order (a Switch takes none).
@@ -31,20 +41,24 @@ void addTechniqueOptions(CLI::App& command, std::string& technique, OptionValues
   command.add_option("--technique", technique, names)->capture_default_str();
 
   // Each option once, by name, with the techniques that read it; a name two techniques declare
-  // must mean the same (tests/cli checks the table for that).
-  std::map<std::string, std::pair<const OptionSpec*, std::vector<std::string>>> options;
+  // must mean the same, up to its default (tests/cli checks the table for that). A value is
+  // parsed and checked by the first declaration, the technique's own when it renders.
+  std::map<std::string, std::pair<std::vector<const OptionSpec*>, std::vector<std::string>>>
+      options;
   std::vector<std::string> order;
   for (const auto& info : techniqueTable()) {
     for (const auto& spec : info.options) {
-      auto [it, added] = options.try_emplace(spec.name, &spec, std::vector<std::string>{});
+      auto [it, added] = options.try_emplace(spec.name);
       if (added) order.push_back(spec.name);
+      it->second.first.push_back(&spec);
       it->second.second.push_back(info.name);
     }
   }
   const std::string group = "Technique options";
   for (const auto& name : order) {
-    const auto& [spec, users] = options.at(name);
-    const std::string help = helpText(*spec, users);
+    const auto& [specs, users] = options.at(name);
+    const OptionSpec* spec = specs.front();
+    const std::string help = helpText(specs, users);
     CLI::Option* option = nullptr;
     switch (spec->kind) {
       case OptionKind::Switch:

@@ -1,6 +1,7 @@
 // vsil render: one frame of a technique to PNG, with optional state, depth and metadata files.
 // The work is the library's render job (job/render_job.h); this file reads flags and writes files.
-#include <chrono>
+#include <utility>
+#include <vector>
 #include <iostream>
 #include <memory>
 
@@ -11,6 +12,7 @@
 #include "cli/cli_render_options.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
+#include "core/clock.h"
 #include "core/error.h"
 #include "core/image_file.h"
 #include "job/render_job.h"
@@ -41,8 +43,18 @@ void checkOutputs(const RenderFlags& flags, const RenderOutputs& outputs, Output
   }
 }
 
+// timings_ms and cpu_ms (--meta-out): the frame's stages (render_job.cpp) and the command's own.
+void addTimings(nlohmann::json& meta, const std::vector<std::pair<const char*, StageTime>>& stages) {
+  for (const auto& [name, time] : stages) {
+    meta["timings_ms"][name] = time.wallMs;
+    meta["cpu_ms"][name] = time.cpuMs;
+  }
+}
+
 void run(const RenderFlags& flags, const RenderOutputs& outputs) {
-  const auto start = std::chrono::steady_clock::now();
+  // Start-up: exec to here (loading the shared libraries, static initialisers, parsing flags).
+  const StageTime startup{millisecondsSinceProcessStart().value_or(0.0), processCpuMilliseconds()};
+  StageClock whole, clock;
   const LoadOptions loadOptions = toLoadOptions(flags.volume);
   RenderRequest request = toRenderRequest(flags);
   request.settings.readDepth = !outputs.depthOut.empty();
@@ -56,14 +68,19 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   LoadOptions load = RenderJob::loadOptionsFor(request, loadOptions);
   ProgressLine progress("reading " + flags.input);
   load.progress = progress.callback();
+  clock.restart();
   RenderJob job(glOptions);
+  const StageTime context = clock.lap();
   Volume loaded = loadVolume(flags.input, load);
   printVolumeWarnings(loaded);
+  const StageTime read = clock.lap();
   progress.step("uploading the volume");
   const Volume& volume = job.setVolume(std::move(loaded), flags.input, load.limits.maxTextureBytes);
   progress.finish();
+  const StageTime upload = clock.lap();
   RenderOutput output = job.render(request, loadOptions.limits);
   for (const auto& warning : output.warnings) std::cerr << "vsil: warning: " << warning << "\n";
+  clock.restart();
 
   // Every output is complete before any replaces its target (core/atomic_file.h OutputBatch).
   batch.add(outputs.out, encodePng(outputs.out, output.image));
@@ -73,17 +90,24 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   if (!outputs.depthOut.empty()) {
     batch.add(outputs.depthOut, encodePng(outputs.depthOut, depthImage(output.result.frame)));
   }
+  const StageTime write = clock.lap();  // encoding: the files are renamed at the end
   if (!outputs.metaOut.empty()) {
     nlohmann::json& meta = output.metadata;
     meta["parameters"]["out"] = outputs.out;
-    if (auto read = describeRead<nlohmann::json>(volume); !read.is_null()) {
-      meta["dataset"]["read"] = read;
+    if (auto howRead = describeRead<nlohmann::json>(volume); !howRead.is_null()) {
+      meta["dataset"]["read"] = howRead;
     }
     if (auto file = describeFile<nlohmann::json>(volume); !file.is_null()) {
       meta["dataset"]["file"] = file;
     }
-    meta["timings_ms"]["total"] =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    StageTime total = startup;
+    total += whole.elapsed();
+    addTimings(meta, {{"startup", startup},
+                      {"context", context},
+                      {"read", read},
+                      {"upload", upload},
+                      {"write", write},
+                      {"total", total}});
     batch.add(outputs.metaOut, meta.dump(2) + "\n");
   }
   batch.commit();

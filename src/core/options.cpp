@@ -253,7 +253,8 @@ void OptionSpec::check(const OptionValue& value) const {
 std::string OptionSpec::describe() const {
   std::vector<std::string> parts;
   if (defaultValue) {
-    parts.push_back("default " + valueText(*defaultValue));
+    parts.push_back("default " + valueText(*defaultValue) +
+                    (defaultNote.empty() ? "" : " (" + defaultNote + ")"));
   } else if (!defaultNote.empty()) {
     parts.push_back("default " + defaultNote);
   }

@@ -40,6 +40,7 @@ struct OptionSpec {
   enum class Derived { None, VolumeIso, RangeFraction };
   Derived derived = Derived::None;
   double rangeFraction = 0.0;
+  // How a derived default is found, for the help; beside a declared default, where it gives way.
   std::string defaultNote;
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();

@@ -176,9 +176,9 @@ struct LevelHistogram {
   float valueAt(double level) const { return float(double(range.min) + level * span / kLevels); }
 };
 
-LevelHistogram levelHistogram(const Volume& volume) {
+LevelHistogram levelHistogram(const Volume& volume, ValueRange range) {
   LevelHistogram h;
-  h.range = valueRange(volume);
+  h.range = range;
   h.span = double(h.range.max) - double(h.range.min);
   if (!(h.span > 0)) return h;
   const std::size_t count = volume.sampleCount();
@@ -229,12 +229,18 @@ float quantileAbove(const LevelHistogram& h, float low, double fraction) {
 
 }  // namespace
 
-float defaultIso(const Volume& volume) {
-  return otsuThreshold(levelHistogram(volume));
+float defaultIso(const Volume& volume) { return defaultIso(volume, valueRange(volume)); }
+
+float defaultIso(const Volume& volume, ValueRange range) {
+  return otsuThreshold(levelHistogram(volume, range));
 }
 
 DerivedDefaults derivedDefaults(const Volume& volume) {
-  const LevelHistogram h = levelHistogram(volume);
+  return derivedDefaults(volume, valueRange(volume));
+}
+
+DerivedDefaults derivedDefaults(const Volume& volume, ValueRange range) {
+  const LevelHistogram h = levelHistogram(volume, range);
   const float iso = otsuThreshold(h);
   return {.iso = iso,
           .valueRangeWidth = h.span,

@@ -210,6 +210,8 @@ ValueRange valueRange(const Volume& volume);
 // (OpenCV) over the samples in 256 levels of the value range, in the middle of the gap between
 // the two classes where there is one; the range's minimum for a constant volume.
 float defaultIso(const Volume& volume);
+// The same for a volume whose valueRange is known (a pass over the samples saved).
+float defaultIso(const Volume& volume, ValueRange range);
 
 // The facts option defaults are derived from (core/options.h), for this volume, from one pass
 // over its samples: defaultIso, and the high end of the default grey window of the MIP family
@@ -219,6 +221,8 @@ float defaultIso(const Volume& volume);
 // percentile's level). Low == high only where nothing lies above the threshold (a constant one).
 inline constexpr double kDefaultWindowQuantile = 0.995;
 DerivedDefaults derivedDefaults(const Volume& volume);
+// The same for a volume whose valueRange is known (a pass over the samples saved).
+DerivedDefaults derivedDefaults(const Volume& volume, ValueRange range);
 
 // Limits checked before a reader allocates or reads any payload. maxBytes bounds the memory of
 // the whole task the volume is read for (default: half the physical memory, core/limits.h);

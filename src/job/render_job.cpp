@@ -53,11 +53,10 @@ nlohmann::json pixelCounts(const FrameBuffers& frame) {
 }
 
 nlohmann::json metadata(const RenderRequest& request, const std::string& input,
-                        const Volume& volume, const RenderResult& result,
-                        const gl::ContextInfo& glContext, double postfxMs) {
+                        const Volume& volume, ValueRange range, const RenderResult& result,
+                        const gl::ContextInfo& glContext, StageTime postfx) {
   const RenderSettings& settings = request.settings;
   const TechniqueInfo& technique = findTechnique(settings.technique);
-  const ValueRange range = valueRange(volume);
   nlohmann::json parameters = {{"input", input},
                                {"technique", settings.technique},
                                {"empty_space_skipping", settings.emptySpaceSkipping},
@@ -105,9 +104,17 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
                     {"depth_range_eye", {result.view.nearEye, result.view.farEye}},
                     {"orthographic", result.view.orthographic}};
   meta["pixels"] = pixelCounts(result.frame);
-  meta["timings_ms"] = {{"render", result.timings.renderMs},
-                        {"readback", result.timings.readbackMs},
-                        {"postfx", postfxMs}};
+  // The frame's stages in wall time and in the process's CPU time; the caller adds its own
+  // (render_command.cpp: start-up, context, read, upload, write, total).
+  const RenderTimings& timings = result.timings;
+  for (const auto& [key, time] : {std::pair{"timings_ms", &StageTime::wallMs},
+                                  std::pair{"cpu_ms", &StageTime::cpuMs}}) {
+    meta[key] = {{"defaults", timings.defaults.*time},
+                 {"programs", timings.programs.*time},
+                 {"render", timings.render.*time},
+                 {"readback", timings.readback.*time},
+                 {"postfx", postfx.*time}};
+  }
   return meta;
 }
 
@@ -176,6 +183,7 @@ std::vector<std::string> warnings(const RenderRequest& request, const Volume& vo
   const auto given = request.settings.options.find("iso");
   if (given == request.settings.options.end()) return found;
   const double iso = std::get<double>(given->second);
+  // The samples as they are now (Python may change an array in place after its upload).
   const ValueRange range = valueRange(volume);
   if (iso > range.max || iso < range.min) {
     std::ostringstream line;
@@ -295,13 +303,16 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
 
   RenderOutput output;
   output.result = impl_->renderer->render(settingsFor(request));
-  const auto postStart = std::chrono::steady_clock::now();
+  StageClock postfxClock;
   PostfxOptions postfx = request.postfx;
   postfx.background = output.result.background;
   output.image = composeIllustration(output.result.frame, postfx, impl_->blur);
-  output.postfxMs = millisecondsSince(postStart);
-  output.metadata = metadata(request, impl_->input, volume, output.result, impl_->context.info(),
-                             output.postfxMs);
+  output.postfx = postfxClock.lap();
+  // The value range of the samples the frame rendered, found once when they were uploaded.
+  const ValueRange range = impl_->renderer->valueRange();
+  output.metadata = metadata(request, impl_->input, volume, range, output.result,
+                             impl_->context.info(),
+                             output.postfx);
   output.warnings = warnings(request, volume);
   return output;
 }

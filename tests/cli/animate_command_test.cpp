@@ -81,6 +81,7 @@ TEST(AnimateCommand, WritesNumberedFramesAndTheirJson) {
     EXPECT_DOUBLE_EQ(frame["parameters"]["view"][1].get<double>(), 20);
     EXPECT_DOUBLE_EQ(frame["swept"]["iso"].get<double>(), 0.3 + 0.1 * i);
     EXPECT_EQ(frame["swept"]["iso"], frame["parameters"]["iso"]);
+    EXPECT_EQ(frame["parameters"]["pipeline"], "tiles") << "render's default, from one table";
     for (const char* key : {"render", "readback", "postfx", "write", "total"}) {
       EXPECT_TRUE(frame["timings_ms"][key].is_number()) << key;
     }

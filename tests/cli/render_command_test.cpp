@@ -98,6 +98,37 @@ TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
   EXPECT_NEAR(depthSum / silhouettes, centreDepth, 0.02);
 }
 
+// --meta-out times every stage of the process, in wall and CPU time; the stages fit in the
+// total; the default iso value's histogram is computed only when --iso is not given.
+TEST(RenderCommand, MetadataTimesEveryStageAndSkipsTheHistogramWhenIsoIsGiven) {
+  const auto dir = test::scratchDir();
+  const char* stages[] = {"startup", "context",  "read",     "upload", "defaults",
+                          "programs", "render", "readback", "postfx", "write"};
+  for (const std::string iso : {"", " --iso 0.5"}) {
+    const auto meta = dir / "meta.json";
+    const auto result = test::runVsil("render gen:blobs:96 --size 64x64" + iso + " --out " +
+                                      (dir / "out.png").string() + " --meta-out " + meta.string());
+    ASSERT_EQ(result.exitCode, 0) << result.err;
+    const auto json = nlohmann::json::parse(test::readFileBytes(meta));
+    for (const char* key : {"timings_ms", "cpu_ms"}) {
+      double sum = 0;
+      for (const char* stage : stages) {
+        ASSERT_TRUE(json[key][stage].is_number()) << key << " " << stage;
+        EXPECT_GE(json[key][stage].get<double>(), 0.0) << key << " " << stage;
+        sum += json[key][stage].get<double>();
+      }
+      // The stages are disjoint; CPU time is counted in clock ticks of at most a few ms.
+      EXPECT_LE(sum, json[key]["total"].get<double>() + 20.0) << key;
+    }
+    EXPECT_GT(json["cpu_ms"]["startup"].get<double>(), 0.0);
+    if (iso.empty()) {
+      EXPECT_GT(json["timings_ms"]["defaults"].get<double>(), 0.0) << "the histogram";
+    } else {
+      EXPECT_EQ(json["timings_ms"]["defaults"].get<double>(), 0.0) << "no histogram with --iso";
+    }
+  }
+}
+
 TEST(RenderCommand, WarnsWhenTheIsoValueLiesOutsideTheData) {
   const auto dir = test::scratchDir();
   const auto out = (dir / "empty.png").string();
@@ -111,23 +142,33 @@ TEST(RenderCommand, WarnsWhenTheIsoValueLiesOutsideTheData) {
   EXPECT_EQ(inside.err, "") << "no warning inside the range";
 }
 
+// Every pipeline, and the default (no --pipeline: each technique's own, which the metadata
+// records), gives the same state and depth bytes.
 TEST(RenderCommand, EveryPipelineGivesIdenticalImages) {
   const auto dir = test::scratchDir();
-  for (const char* technique : {"silhouette", "rightangle"}) {
-    std::string images[3];
-    const char* pipelines[3] = {"fast", "paper", "tiles"};
-    for (int i = 0; i < 3; ++i) {
-      const auto state = dir / (std::string(pipelines[i]) + ".png");
-      const auto depth = dir / (std::string(pipelines[i]) + ".depth.png");
+  for (const auto& [technique, defaultPipeline] :
+       {std::pair{"silhouette", "tiles"}, std::pair{"rightangle", "fast"}}) {
+    std::string images[4];
+    const char* pipelines[4] = {"fast", "paper", "tiles", ""};
+    for (int i = 0; i < 4; ++i) {
+      const std::string name = *pipelines[i] ? pipelines[i] : "default";
+      const auto state = dir / (name + ".png");
+      const auto depth = dir / (name + ".depth.png");
+      const auto meta = dir / (name + ".json");
       const auto result = test::runVsil(
           "render gen:spheres:64 --size 120x100 --technique " + std::string(technique) +
-          " --pipeline " + std::string(pipelines[i]) + " --out " + (dir / "out.png").string() +
-          " --state-out " + state.string() + " --depth-out " + depth.string());
+          (*pipelines[i] ? " --pipeline " + std::string(pipelines[i]) : "") + " --out " +
+          (dir / "out.png").string() + " --state-out " + state.string() + " --depth-out " +
+          depth.string() + " --meta-out " + meta.string());
       ASSERT_EQ(result.exitCode, 0) << result.err;
       images[i] = test::readFileBytes(state) + test::readFileBytes(depth);
+      EXPECT_EQ(nlohmann::json::parse(test::readFileBytes(meta))["parameters"]["pipeline"],
+                *pipelines[i] ? pipelines[i] : defaultPipeline)
+          << technique << " " << name;
     }
     EXPECT_EQ(images[0], images[1]) << technique << ": paper";
     EXPECT_EQ(images[0], images[2]) << technique << ": tiles";
+    EXPECT_EQ(images[0], images[3]) << technique << ": the default";
   }
 }
 

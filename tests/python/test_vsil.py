@@ -163,6 +163,9 @@ def test_a_volume_takes_the_renders_max_texture_mib(renderer):
     whole = renderer.render(volume, size=(96, 80), view=(37, -23))
     bricked = renderer.render(volume, size=(96, 80), view=(37, -23), max_texture_mib=1)
     assert np.array_equal(whole.image, bricked.image) and np.array_equal(whole.state, bricked.state)
+    # silhouette's default pipeline, tiles, gives way to fast over bricks (the CLI's default too)
+    assert whole.metadata["parameters"]["pipeline"] == "tiles"
+    assert bricked.metadata["parameters"]["pipeline"] == "fast"
     with pytest.raises(ValueError, match="takes 11 bricks"):
         renderer.render(volume, size=(32, 32), pipeline="tiles", max_texture_mib=1)
     assert renderer.render(volume, size=(32, 32), pipeline="tiles").state.any()

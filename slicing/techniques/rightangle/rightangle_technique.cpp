@@ -20,7 +20,7 @@ TechniqueInfo rightAngleTechniqueInfo() {
                OptionSpec::number("ra-threshold", 0.04,
                                   "a first hit is a line pixel where (1 - |n.v|)^k exceeds this "
                                   "(the defaults draw |n.v| < 0.33)"),
-               pipelineOption()}),
+               pipelineOption(SlicingPipeline::Fast)}),
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<RightAngleTechnique>(); },
           /*usesGradients=*/false,

@@ -37,7 +37,7 @@ constexpr MarchShape kMarchShape{{32, 1}, {30, 30}};
 TechniqueInfo silhouetteTechniqueInfo() {
   return {"silhouette",
           "Nagy–Klein one-pixel iso-surface silhouettes (OPS), broadened to --width",
-          withToneFillOptions({isoOption(), pipelineOption()}),
+          withToneFillOptions({isoOption(), pipelineOption(SlicingPipeline::Tiles)}),
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<SilhouetteTechnique>(); },
           /*usesGradients=*/false,
@@ -83,17 +83,21 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
   const std::vector<std::string> variant = pipeline_ == SlicingPipeline::Paper
                                                ? std::vector<std::string>{"PAPER_PIPELINE"}
                                                : std::vector<std::string>{};
+  // Only the programs this pipeline draws with: each costs a compile on a cold start.
   gl::ProgramCache& cache = *frame.programs;
   programs_.footprint =
       &cache.get(gl::slicePassProgram(sources(), "techniques/silhouette/footprint.frag", variant));
-  programs_.contour =
-      &cache.get(gl::screenPassProgram(sources(), "techniques/silhouette/contour.frag", variant));
-  programs_.decision =
-      &cache.get(gl::screenPassProgram(sources(), "techniques/silhouette/decision.frag", variant));
-  programs_.emptySliceDecision = &cache.get(gl::screenPassProgram(
-      sources(), "techniques/silhouette/decision.frag", {"PAPER_PIPELINE", "EMPTY_SLICE"}));
-  programs_.decisionInPlace = &cache.get(
-      gl::slicePassProgram(sources(), "techniques/silhouette/decision_inplace.frag", variant));
+  if (pipeline_ == SlicingPipeline::Paper) {
+    programs_.contour =
+        &cache.get(gl::screenPassProgram(sources(), "techniques/silhouette/contour.frag", variant));
+    programs_.decision = &cache.get(
+        gl::screenPassProgram(sources(), "techniques/silhouette/decision.frag", variant));
+    programs_.emptySliceDecision = &cache.get(gl::screenPassProgram(
+        sources(), "techniques/silhouette/decision.frag", {"PAPER_PIPELINE", "EMPTY_SLICE"}));
+  } else {
+    programs_.decisionInPlace = &cache.get(
+        gl::slicePassProgram(sources(), "techniques/silhouette/decision_inplace.frag", variant));
+  }
   programs_.footprint->use();
   programs_.footprint->set("isoValue", iso);
 
