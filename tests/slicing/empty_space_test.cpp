@@ -371,8 +371,9 @@ TEST_P(SkippingChangesNoPixel, OnSpikesAtBrickBorders) {
 
   EXPECT_EQ(test::differingPixels(all.frame, skipped.frame), 0);
   // The defaults from the histogram (Otsu's threshold: the MIP family's window, illustrate's
-  // opacity, the default rule base) leave the spikes' cores: 19 pixels in the orthographic view.
-  EXPECT_GT(test::shownPixels(all.frame), 12)
+  // opacity, the default rule base) leave the spikes' cores: 19 pixels in the orthographic view,
+  // 8 in semantic's zoomed-in one (its samples start half a step into the box).
+  EXPECT_GT(test::shownPixels(all.frame), 5)
       << "the spikes must show, or the comparison says nothing";
 }
 

@@ -51,6 +51,24 @@ std::string sphereTransferFunction(double scale = 1.0) {
   return file.string();
 }
 
+// The power opacity v² in ivory over values 0 .. 1, written as a transfer function: the tests
+// of each effect at its defaults classify the analytic balls so, whatever the default
+// classification does with their soft fringes (it starts at Otsu's threshold, which leaves the
+// fringe a silhouette or halo acts on transparent).
+std::string fullRangePowerOpacity() {
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("vsil_illustrate_power_" + std::to_string(::getpid()) + ".json");
+  std::ofstream out(file);
+  out << "[";
+  for (int i = 0; i <= 16; ++i) {
+    const double v = i / 16.0;
+    out << (i ? ", " : "") << R"({"color": "#fffff0", "value": )" << v
+        << R"(, "opacity": )" << v * v << "}";
+  }
+  out << "]";
+  return file.string();
+}
+
 // gen:sphere in 8 bits, round(255·f): small integers, so the volume texture is R16F and the
 // gradient texture holds the values too (gradient_texture.h), the path the classic datasets take;
 // gen:sphere itself takes the other (R32F, values sampled from the volume texture).
@@ -412,6 +430,7 @@ TEST_F(IllustrateTest, BoundaryAtItsDefaultsFadesAFlatInsideAndLeavesTheBackgrou
 TEST_F(IllustrateTest, SilhouetteAtItsDefaultsMakesTheOutlineMoreOpaque) {
   const Volume volume = test::ballsVolume({64, 64, 64}, {{{31.5, 31.5, 31.5}, 20.0}}, 8.0);
   RenderSettings settings = headOn("silhouette");
+  settings.options["tf"] = fullRangePowerOpacity();
   const RenderResult enhanced = test::renderOnce(volume, settings);
   settings.options.erase("effects");
   const RenderResult plain = test::renderOnce(volume, settings);
@@ -431,6 +450,7 @@ TEST_F(IllustrateTest, HalosAtTheirDefaultsDarkenJustOutsideTheOutlineAndNeverBr
   const Volume volume = generateVolume("sphere:48");
   for (const Rgba background : {Rgba{255, 255, 255, 255}, Rgba{0, 0, 0, 255}}) {
     RenderSettings settings = headOn("halo");
+    settings.options["tf"] = fullRangePowerOpacity();
     settings.background = background;
     const float b = background.r / 255.0f;
     const RenderResult halo = test::renderOnce(volume, settings);
