@@ -60,7 +60,9 @@ const CommandRegistration registerServeCommand(
       command->add_option("--token", flags->token,
                           "a secret every request must carry (?token=...); needed to bind "
                           "beyond loopback");
-      command->callback([command, flags] { run(*command, *flags); });
+      // The callback owns renderFlags too: addRenderOptions bound the options to its members
+      // (run reads the given flags from the command, but CLI11 still stores into them).
+      command->callback([command, flags, renderFlags] { run(*command, *flags); });
     });
 
 }  // namespace
