@@ -166,9 +166,9 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   const OptionValues given =
       optionsForBricks(info, settings.options, impl_->volumeTexture->brickCount());
   // The histogram's defaults take a pass over every sample: only for frames that need them.
-  DerivedDefaults derived{.valueRangeWidth = double(impl_->valueRange.max) -
-                                             double(impl_->valueRange.min),
-                          .valueMin = impl_->valueRange.min};
+  DerivedDefaults derived{
+      .valueRangeWidth = double(impl_->valueRange.max) - double(impl_->valueRange.min),
+      .valueMin = impl_->valueRange.min};
   if (needsHistogram(info, given)) {
     if (!impl_->histogramDefaults) {
       StageClock clock;

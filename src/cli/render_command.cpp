@@ -1,9 +1,9 @@
 // vsil render: one frame of a technique to PNG, with optional state, depth and metadata files.
 // The work is the library's render job (job/render_job.h); this file reads flags and writes files.
-#include <utility>
-#include <vector>
 #include <iostream>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -44,7 +44,8 @@ void checkOutputs(const RenderFlags& flags, const RenderOutputs& outputs, Output
 }
 
 // timings_ms and cpu_ms (--meta-out): the frame's stages (render_job.cpp) and the command's own.
-void addTimings(nlohmann::json& meta, const std::vector<std::pair<const char*, StageTime>>& stages) {
+void addTimings(nlohmann::json& meta,
+                const std::vector<std::pair<const char*, StageTime>>& stages) {
   for (const auto& [name, time] : stages) {
     meta["timings_ms"][name] = time.wallMs;
     meta["cpu_ms"][name] = time.cpuMs;

@@ -43,27 +43,27 @@ void run(const CLI::App& command, const ServeFlags& flags) {
   runningServer = nullptr;
 }
 
-const CommandRegistration registerServeCommand(
-    50, [](CLI::App& app) {
-      auto renderFlags = std::make_shared<RenderFlags>();
-      auto flags = std::make_shared<ServeFlags>();
-      CLI::App* command = app.add_subcommand(
-          "serve",
-          "Serve a page that renders interactively: drag to orbit, wheel to zoom, the "
-          "technique's options as controls; the frames are rendered here");
-      addRenderOptions(*command, *renderFlags);
-      command->add_option("--port", flags->port, "TCP port (0: any free one, printed)")
-          ->capture_default_str();
-      command->add_option("--bind", flags->bind,
-                          "address to listen on; other than loopback only with --token")
-          ->capture_default_str();
-      command->add_option("--token", flags->token,
-                          "a secret every request must carry (?token=...); needed to bind "
-                          "beyond loopback");
-      // The callback owns renderFlags too: addRenderOptions bound the options to its members
-      // (run reads the given flags from the command, but CLI11 still stores into them).
-      command->callback([command, flags, renderFlags] { run(*command, *flags); });
-    });
+const CommandRegistration registerServeCommand(50, [](CLI::App& app) {
+  auto renderFlags = std::make_shared<RenderFlags>();
+  auto flags = std::make_shared<ServeFlags>();
+  CLI::App* command = app.add_subcommand(
+      "serve",
+      "Serve a page that renders interactively: drag to orbit, wheel to zoom, the "
+      "technique's options as controls; the frames are rendered here");
+  addRenderOptions(*command, *renderFlags);
+  command->add_option("--port", flags->port, "TCP port (0: any free one, printed)")
+      ->capture_default_str();
+  command
+      ->add_option("--bind", flags->bind,
+                   "address to listen on; other than loopback only with --token")
+      ->capture_default_str();
+  command->add_option("--token", flags->token,
+                      "a secret every request must carry (?token=...); needed to bind "
+                      "beyond loopback");
+  // The callback owns renderFlags too: addRenderOptions bound the options to its members
+  // (run reads the given flags from the command, but CLI11 still stores into them).
+  command->callback([command, flags, renderFlags] { run(*command, *flags); });
+});
 
 }  // namespace
 }  // namespace vsil::cli

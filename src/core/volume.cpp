@@ -229,7 +229,9 @@ float quantileAbove(const LevelHistogram& h, float low, double fraction) {
 
 }  // namespace
 
-float defaultIso(const Volume& volume) { return defaultIso(volume, valueRange(volume)); }
+float defaultIso(const Volume& volume) {
+  return defaultIso(volume, valueRange(volume));
+}
 
 float defaultIso(const Volume& volume, ValueRange range) {
   return otsuThreshold(levelHistogram(volume, range));
