@@ -131,6 +131,21 @@ vsil_import_library(vsil::gdcm "GDCM (DICOM series)" libgdcm-dev HEADER gdcmImag
 
 find_package(Threads REQUIRED)
 
+# MPI (Open MPI from Debian: libopenmpi-dev, openmpi-bin), optional: slab-parallel rendering
+# under `mpirun` and `vsil sweep` (src/mpi). Without it vsil builds and renders as before, and
+# what needs MPI says so in one line. -DVSIL_MPI=OFF builds without it even where it is found.
+option(VSIL_MPI "Build MPI support (slab-parallel render, vsil sweep) where MPI is found" ON)
+set(VSIL_HAVE_MPI OFF)
+if(VSIL_MPI)
+  find_package(MPI QUIET COMPONENTS CXX)
+  if(MPI_CXX_FOUND)
+    set(VSIL_HAVE_MPI ON)
+  else()
+    message(STATUS "vsil: MPI not found (apt-get install libopenmpi-dev openmpi-bin): "
+                   "building without slab-parallel rendering and vsil sweep")
+  endif()
+endif()
+
 if(VSIL_BUILD_TESTS)
   find_package(GTest QUIET)
   vsil_require(GTest_FOUND "GoogleTest" libgtest-dev)

@@ -30,6 +30,7 @@ packages=(
   python3-nibabel python3-pydicom  # reference writers for the NIfTI and DICOM round trips
   libcpp-httplib-dev             # vsil serve's HTTP server
   chromium chromium-driver python3-selenium  # vsil serve's browser test drives the page headless
+  libopenmpi-dev openmpi-bin     # MPI: slab-parallel render under mpirun, vsil sweep (optional)
   ${VSIL_EXTRA_PACKAGES:-}
 )
 # vsil needs one GL back end (EGL or OSMesa) and builds each one that is there; where Debian no

@@ -8,8 +8,11 @@
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "mpi/mpi_world.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   // Ctrl-C, SIGTERM, SIGHUP: remove the temporary file of an output being written, then die
   // of the signal as usual (core/atomic_file.h). Targets are only ever replaced by rename().
   vsil::installOutputCleanupOnSignals();
@@ -25,19 +28,28 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "vsil: " << e.what() << " (see vsil --help)\n";
+    std::cerr << vsil::mpi::errorPrefix() << e.what() << " (see vsil --help)\n";
     return 2;
   } catch (const vsil::InputError& e) {
-    std::cerr << "vsil: " << e.what() << "\n";
+    std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
     return 2;
   } catch (const vsil::UnavailableError& e) {
-    std::cerr << "vsil: " << e.what() << "\n";
+    std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
     return 1;
   } catch (const std::bad_alloc&) {
-    std::cerr << "vsil: internal error: out of memory (lower --size or --max-memory)\n";
+    std::cerr << vsil::mpi::errorPrefix()
+              << "internal error: out of memory (lower --size or --max-memory)\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "vsil: internal error: " << e.what() << "\n";
+    std::cerr << vsil::mpi::errorPrefix() << "internal error: " << e.what() << "\n";
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Under mpirun or srun every rank runs this same command (src/mpi/mpi_world.h).
+  vsil::mpi::initIfLaunched(&argc, &argv);
+  return vsil::mpi::finish(run(argc, argv));
 }

@@ -1,0 +1,107 @@
+#include "mpi/mpi_world.h"
+
+#include <cstdlib>
+
+#include "core/error.h"
+
+#ifdef VSIL_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace vsil::mpi {
+
+namespace {
+bool hasEnv(const char* name) {
+  const char* value = std::getenv(name);
+  return value != nullptr && *value != '\0';
+}
+}  // namespace
+
+bool built() {
+#ifdef VSIL_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
+
+bool launched() {
+  if (const char* forced = std::getenv("VSIL_MPI"); forced != nullptr && *forced != '\0')
+    return std::string(forced) == "1";
+  return hasEnv("OMPI_COMM_WORLD_SIZE") || hasEnv("PMIX_RANK") || hasEnv("PMI_RANK");
+}
+
+#ifdef VSIL_HAVE_MPI
+
+bool active() {
+  int initialized = 0;
+  int finalized = 0;
+  MPI_Initialized(&initialized);
+  MPI_Finalized(&finalized);
+  return initialized && !finalized;
+}
+
+void initIfLaunched(int* argc, char*** argv) {
+  if (!launched() || active()) return;
+  int provided = 0;
+  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+  // Errors come back as codes, so that they become vsil errors naming what failed.
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+}
+
+int rank() {
+  if (!active()) return 0;
+  int value = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &value);
+  return value;
+}
+
+int size() {
+  if (!active()) return 1;
+  int value = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &value);
+  return value;
+}
+
+int finish(int exitCode) {
+  if (!active()) return exitCode;
+  if (exitCode != 0 && size() > 1) MPI_Abort(MPI_COMM_WORLD, exitCode);
+  MPI_Finalize();
+  return exitCode;
+}
+
+#else
+
+bool active() {
+  return false;
+}
+void initIfLaunched(int*, char***) {}
+int rank() {
+  return 0;
+}
+int size() {
+  return 1;
+}
+int finish(int exitCode) {
+  return exitCode;
+}
+
+#endif
+
+void require(const std::string& what) {
+  if (!built())
+    throw UnavailableError(what +
+                           " needs MPI: this vsil was built without it (install "
+                           "libopenmpi-dev and openmpi-bin, then configure again)");
+  if (!active())
+    throw UnavailableError(what +
+                           " needs an MPI launcher: run it as mpirun -np N vsil ... "
+                           "(or srun under Slurm)");
+}
+
+std::string errorPrefix() {
+  if (size() <= 1) return "vsil: ";
+  return "vsil (rank " + std::to_string(rank()) + "): ";
+}
+
+}  // namespace vsil::mpi

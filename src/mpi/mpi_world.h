@@ -1,0 +1,34 @@
+#pragma once
+// The MPI world vsil runs in (Open MPI from Debian, optional at build time). vsil initializes
+// MPI only when an MPI launcher (mpirun, srun) started the process: a plain `vsil render` pays
+// nothing for MPI, and a build without MPI renders as before. Code that needs MPI includes
+// <mpi.h> itself, in files built only with VSIL_HAVE_MPI (src/mpi/CMakeLists.txt).
+#include <string>
+
+namespace vsil::mpi {
+
+// Whether this build has MPI.
+bool built();
+// Whether an MPI launcher started this process: Open MPI's mpirun (OMPI_COMM_WORLD_SIZE),
+// a PMIx or PMI launcher such as Slurm's srun (PMIX_RANK, PMI_RANK), or VSIL_MPI=1.
+bool launched();
+// First thing in main(): MPI_Init_thread (MPI_THREAD_FUNNELED: only the main thread calls MPI)
+// when launched() and built(); nothing otherwise.
+void initIfLaunched(int* argc, char*** argv);
+// Whether MPI is initialized and not yet finalized.
+bool active();
+// This process's rank in MPI_COMM_WORLD and the world's size: 0 and 1 when MPI is not active.
+int rank();
+int size();
+// The end of a process that initialized MPI: MPI_Finalize when `exitCode` is 0; otherwise, in
+// a world of several ranks, MPI_Abort with it, so that no rank waits forever in a collective
+// for one that failed. Returns exitCode.
+int finish(int exitCode);
+// Throws UnavailableError "<what> needs MPI: this vsil was built without it (...)" in a build
+// without MPI, and "<what> needs an MPI launcher (mpirun -np N vsil ...)" when not launched.
+void require(const std::string& what);
+// How an error line starts on this rank: "vsil: " on rank 0 and without MPI, "vsil (rank R): "
+// on the others, so that a failure on one rank of many says which.
+std::string errorPrefix();
+
+}  // namespace vsil::mpi
