@@ -84,6 +84,10 @@ std::optional<std::vector<double>> parseNumberList(std::string_view text, int co
   return numbers;
 }
 
+bool isInlineSource(std::string_view text) {
+  return text.find('{') != std::string_view::npos;
+}
+
 std::string formatNumber(double number) {
   char buffer[32];
   const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, number);

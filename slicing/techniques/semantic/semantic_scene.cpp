@@ -11,8 +11,9 @@ namespace vsil {
 const std::vector<OptionSpec>& semanticOptions() {
   static const std::vector<OptionSpec> options{
       OptionSpec::text("rules",
-                       "fuzzy rule base: a .rules file or a preset (default, example, fig6-cube, "
-                       "tooth-focus-context; README, semantic); default: default")
+                       "fuzzy rule base: a .rules file, a preset (default, example, fig6-cube, "
+                       "tooth-focus-context; README, semantic) or the rule text itself; "
+                       "default: default")
           .validatedBy([](const OptionValue& value) {
             const std::string& text = std::get<std::string>(value);
             // The sphere files too: every error before any GL work.
