@@ -34,14 +34,17 @@
 #include "cli/volume_summary.h"
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/number_pair.h"
 #include "core/version.h"
 #include "core/volume.h"
 #include "io/sample_sink.h"
 #include "io/volume_loader.h"
+#include "job/animation.h"
 #include "job/render_job.h"
 #include "postfx/broaden.h"
 #include "postfx/line_width.h"
 #include "slicing/technique_table.h"
+#include "video/video_file.h"
 
 namespace py = pybind11;
 
@@ -797,78 +800,171 @@ class PythonRenderer {
   std::uint64_t uploads() const { return uploads_; }
 
   Frame render(const py::object& input, const py::kwargs& kwargs) {
+    const Request request = prepare(input, kwargs, "vsil.Renderer.render");
+    std::shared_ptr<Slot> resident = request.volume ? residentSlot(request.volume) : nullptr;
+    Slot& slot = resident ? *resident : main_;
+    RenderOutput output;
+    Held held;
+    {
+      // Upload (or load) and render in one turn: another thread's turn in between could
+      // replace the volume this Renderer holds.
+      GlTurn turn(slot.job.get());
+      held = holdVolume(slot, request);
+      output = slot.job->render(request.render, request.load.limits);
+    }
+    Frame frame = makeFrame(output, request.render, held);
+    release(resident);
+    return frame;
+  }
+
+  // `vsil animate`'s frames (job/animation.h's AnimationPlan, the same code path): an orbit,
+  // a view moving from view_from to view_to, sweeps {"iso": (0.3, 0.6)} or ["iso=0.3:0.6"];
+  // a video file as --video writes it (video/video_file.h); the frames as Frames (keep_frames).
+  py::list animate(const py::object& input, long long frames, double orbit,
+                   const py::object& viewFrom, const py::object& viewTo, const py::object& sweep,
+                   const py::object& video, double fps, bool keepFrames, const py::kwargs& kwargs) {
+    const std::string function = "vsil.Renderer.animate";
+    Request request = prepare(input, kwargs, function);
+    request.render.settings.readDepth = false;  // as vsil animate: frames are images only
+    AnimationSpec spec;
+    spec.frames = frames;
+    spec.orbitDeg = orbit;
+    const Keyword pair{.key = "view_from", .kind = "text"};
+    if (viewFrom.is_none() != viewTo.is_none()) {
+      throw InputError(function + ": give view_from and view_to together");
+    }
+    if (!viewFrom.is_none()) {
+      spec.viewFrom = parseNumberPair("--view-from", valueText(pair, viewFrom, function));
+      spec.viewTo = parseNumberPair("--view-to", valueText(pair, viewTo, function));
+    }
+    for (const std::string& text : sweepTexts(sweep, function)) {
+      spec.sweeps.push_back(parseSweep(text));
+    }
+    const AnimationPlan plan(request.render, spec, request.load.limits);
+    std::string videoPath;
+    if (!video.is_none()) {
+      videoPath = valueText(Keyword{.key = "video", .kind = "text"}, video, function);
+      VideoFile::checkTarget("--video", videoPath, request.render.settings.size, fps);
+    }
+    std::shared_ptr<Slot> resident = request.volume ? residentSlot(request.volume) : nullptr;
+    Slot& slot = resident ? *resident : main_;
+    std::vector<RenderOutput> outputs;
+    Held held;
+    {
+      GlTurn turn(slot.job.get());
+      held = holdVolume(slot, request);
+      std::optional<VideoFile> file;
+      if (!videoPath.empty()) file.emplace(videoPath, request.render.settings.size, fps);
+      for (int i = 0; i < plan.frames(); ++i) {
+        RenderOutput output = slot.job->render(plan.request(i), request.load.limits);
+        if (file) file->write(output.image);
+        output.metadata["swept"] = plan.sweptValues(i);
+        if (keepFrames) outputs.push_back(std::move(output));
+      }
+      if (file) file->finish();
+    }
+    py::list result;
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+      result.append(makeFrame(outputs[i], plan.request(int(i)), i == 0 ? held : Held{}));
+    }
+    release(resident);
+    return result;
+  }
+
+ private:
+  // A render's request as the flags give it, and what it renders.
+  struct Request {
+    RenderRequest render;
+    LoadOptions load;
+    std::string spec;                // a path or gen: spec read in the turn, or ""
+    std::shared_ptr<Volume> volume;  // a Volume, or null
+  };
+  // What holding the volume took and what it is, for the metadata.
+  struct Held {
+    nlohmann::json dataset = nlohmann::json::object();  // read, file (as --meta-out)
+    StageTime read, upload;
+  };
+
+  Request prepare(const py::object& input, const py::kwargs& kwargs, const std::string& function) {
     job();
     // Flags that choose what render does not own here: the context is the Renderer's, and a
     // Volume is read already.
     const bool isPath = py::isinstance<py::str>(input);
     for (const char* key : {"gl", "gl_device"}) {
       if (kwargs.contains(key)) {
-        throw InputError("vsil.Renderer.render: " + std::string(key) +
+        throw InputError(function + ": " + std::string(key) +
                          " is chosen when the Renderer is made: vsil.Renderer(" + key + "=...)");
       }
     }
     for (const char* key : {"dims", "type", "spacing", "endian", "crop", "stride", "series"}) {
       if (!isPath && kwargs.contains(key)) {
-        throw InputError("vsil.Renderer.render: " + std::string(key) +
+        throw InputError(function + ": " + std::string(key) +
                          " applies when a file is read: vsil.load(path, " + key + "=...)");
       }
     }
     CLI::App app;
     cli::RenderFlags flags;
     cli::addRenderOptions(app, flags);
-    parseKeywords(app, kwargs, "vsil.Renderer.render");
-    const RenderRequest request = cli::toRenderRequest(flags);
-    const LoadOptions loadOptions = cli::toLoadOptions(flags.volume);
-    RenderJob::checkRequest(request, loadOptions.limits);
-    const std::string spec = isPath ? input.cast<std::string>() : std::string();
+    parseKeywords(app, kwargs, function);
+    Request request;
+    request.render = cli::toRenderRequest(flags);
+    request.load = cli::toLoadOptions(flags.volume);
+    RenderJob::checkRequest(request.render, request.load.limits);
     if (!isPath && !py::isinstance<PyVolume>(input)) {
-      throw PythonTypeError(
-          "vsil.Renderer.render: volume must be a vsil.Volume, a path or a "
-          "gen: spec, not " +
-          typeNameOf(input));
+      throw PythonTypeError(function +
+                            ": volume must be a vsil.Volume, a path or a gen: spec, "
+                            "not " +
+                            typeNameOf(input));
     }
-    const std::shared_ptr<Volume> volume = isPath ? nullptr : input.cast<const PyVolume&>().volume;
-    // A resident volume's slot stays alive through the render (remove_volume may run between).
-    std::shared_ptr<Slot> resident = isPath ? nullptr : residentSlot(volume);
-    Slot& slot = resident ? *resident : main_;
-    RenderJob& job = *slot.job;
+    if (isPath) {
+      request.spec = input.cast<std::string>();
+    } else {
+      request.volume = input.cast<const PyVolume&>().volume;
+    }
+    return request;
+  }
 
-    RenderOutput output;
-    nlohmann::json held;  // dataset.read and dataset.file, as --meta-out writes them
-    StageTime read, upload;
-    {
-      // Upload (or load) and render in one turn: another thread's turn in between could
-      // replace the volume this Renderer holds.
-      GlTurn turn(&job);
-      StageClock clock;
-      const std::uint64_t textureBytes = loadOptions.limits.maxTextureBytes;
-      if (isPath) {
-        // Read on every call (the file may have changed); a sweep loads once with vsil.load.
-        Volume loaded = loadOrNotFound(
-            [&] { return loadVolume(spec, RenderJob::loadOptionsFor(request, loadOptions)); },
-            spec);
-        read = clock.lap();
-        job.setVolume(std::move(loaded), spec, textureBytes);
-        upload = clock.lap();
-        ++uploads_;
-        slot.uploaded.reset();
-      } else if (volume != slot.uploaded || textureBytes != slot.uploadedTextureBytes) {
-        uploadInBricks(slot, volume, textureBytes);
-        upload = clock.lap();
-      }
-      output = job.render(request, loadOptions.limits);
-      held["read"] = cli::describeRead<nlohmann::json>(job.volume());
-      held["file"] = cli::describeFile<nlohmann::json>(job.volume());
+  // During a turn: reads the path (on every call: the file may have changed; a sweep loads
+  // once with vsil.load) or uploads the Volume unless the slot's texture holds it.
+  Held holdVolume(Slot& slot, const Request& request) {
+    Held held;
+    RenderJob& job = *slot.job;
+    StageClock clock;
+    const std::uint64_t textureBytes = request.load.limits.maxTextureBytes;
+    if (!request.spec.empty()) {
+      Volume loaded = loadOrNotFound(
+          [&] {
+            return loadVolume(request.spec,
+                              RenderJob::loadOptionsFor(request.render, request.load));
+          },
+          request.spec);
+      held.read = clock.lap();
+      job.setVolume(std::move(loaded), request.spec, textureBytes);
+      held.upload = clock.lap();
+      ++uploads_;
+      slot.uploaded.reset();
+    } else if (request.volume != slot.uploaded || textureBytes != slot.uploadedTextureBytes) {
+      uploadInBricks(slot, request.volume, textureBytes);
+      held.upload = clock.lap();
     }
+    if (auto read = cli::describeRead<nlohmann::json>(job.volume()); !read.is_null()) {
+      held.dataset["read"] = read;
+    }
+    if (auto file = cli::describeFile<nlohmann::json>(job.volume()); !file.is_null()) {
+      held.dataset["file"] = file;
+    }
+    return held;
+  }
+
+  // The Frame of an output, with the GIL: the metadata as --meta-out writes it.
+  static Frame makeFrame(RenderOutput& output, const RenderRequest& request, const Held& held) {
     nlohmann::json& meta = output.metadata;
-    for (const char* key : {"read", "file"}) {
-      if (!held[key].is_null()) meta["dataset"][key] = held[key];
-    }
+    for (const auto& [key, value] : held.dataset.items()) meta["dataset"][key] = value;
     // The stages of this call before the frame's own (0 where the texture was resident).
-    meta["timings_ms"]["read"] = read.wallMs;
-    meta["cpu_ms"]["read"] = read.cpuMs;
-    meta["timings_ms"]["upload"] = upload.wallMs;
-    meta["cpu_ms"]["upload"] = upload.cpuMs;
+    meta["timings_ms"]["read"] = held.read.wallMs;
+    meta["cpu_ms"]["read"] = held.read.cpuMs;
+    meta["timings_ms"]["upload"] = held.upload.wallMs;
+    meta["cpu_ms"]["upload"] = held.upload.cpuMs;
     cv::Mat rgba;
     cv::cvtColor(output.image, rgba,
                  output.image.channels() == 4 ? cv::COLOR_BGRA2RGBA : cv::COLOR_BGR2RGBA);
@@ -885,13 +981,44 @@ class PythonRenderer {
                       : py::none();
     frame.metadata = jsonToPython(meta);
     frame.warnings = output.warnings;
-    release(resident);
     const py::object warn = py::module_::import("warnings").attr("warn");
     for (const std::string& warning : output.warnings) warn("vsil: " + warning);
     return frame;
   }
 
- private:
+  // sweep={"iso": (0.3, 0.6), "cursor": ((0, 0, 0), (9, 9, 9))} or ["iso=0.3:0.6", ...]: the
+  // texts --sweep takes.
+  static std::vector<std::string> sweepTexts(const py::object& sweep, const std::string& function) {
+    std::vector<std::string> texts;
+    if (sweep.is_none()) return texts;
+    if (py::isinstance<py::str>(sweep)) return {sweep.cast<std::string>()};
+    if (py::isinstance<py::dict>(sweep)) {
+      const Keyword ends{.key = "sweep", .kind = "text"};
+      for (const auto& [name, range] : py::reinterpret_borrow<py::dict>(sweep)) {
+        if (!isSequence(range) || py::len(range) != 2) {
+          throw PythonTypeError(function + ": sweep takes {name: (from, to)}, not " +
+                                typeNameOf(range) + " for " + std::string(py::str(name)));
+        }
+        const py::sequence pair = py::reinterpret_borrow<py::sequence>(range);
+        texts.push_back(std::string(py::str(name)) + "=" + valueText(ends, pair[0], function) +
+                        ":" + valueText(ends, pair[1], function));
+      }
+      return texts;
+    }
+    if (isSequence(sweep)) {
+      for (const py::handle item : sweep) {
+        if (!py::isinstance<py::str>(item)) {
+          throw PythonTypeError(function + ": sweep takes a dict or texts NAME=A:B, not " +
+                                typeNameOf(item) + " items");
+        }
+        texts.push_back(item.cast<std::string>());
+      }
+      return texts;
+    }
+    throw PythonTypeError(function + ": sweep takes a dict or texts NAME=A:B, not " +
+                          typeNameOf(sweep));
+  }
+
   RenderJob& job() const {
     if (!main_.job) throw InputError("vsil.Renderer: this renderer is closed");
     return *main_.job;
@@ -1166,6 +1293,13 @@ PYBIND11_MODULE(_vsil, m) {
       .def("render", &PythonRenderer::render, py::arg("volume"),
            "Renders a Volume (or a path or gen: spec); keywords: every flag of `vsil render` "
            "by its name with _ for - (iso=40, width_near=4, view=(30, 20), size=(640, 480))")
+      .def("animate", &PythonRenderer::animate, py::arg("volume"), py::kw_only(), py::arg("frames"),
+           py::arg("orbit") = 0.0, py::arg("view_from") = py::none(),
+           py::arg("view_to") = py::none(), py::arg("sweep") = py::none(),
+           py::arg("video") = py::none(), py::arg("fps") = 25.0, py::arg("keep_frames") = true,
+           "vsil animate's frames in one turn: orbit degrees over the sequence, view_from/"
+           "view_to, sweep={name: (from, to)}; video= writes the file as --video does; returns "
+           "the Frames (none with keep_frames=False)")
       .def("upload", &PythonRenderer::upload, py::arg("volume"),
            "Uploads the volume again (after its samples changed in place)")
       .def("add_volume", &PythonRenderer::addVolume, py::arg("volume"),

@@ -785,3 +785,36 @@ def test_resident_volumes_switch_without_upload():
         for i in range(4):
             renderer.render((first, second)[i % 2], iso=0.5, size=(40, 32))
         assert renderer.uploads == before + 4 - 1  # first is already in the main texture
+
+
+# ---- animate: vsil animate's frames and video from one call ----
+
+@pytest.mark.parametrize("container", ["avi", "mp4"])
+def test_animate_writes_the_video_vsil_animate_writes(tmp_path, renderer, container):
+    frames = renderer.animate("gen:spheres:32", frames=4, orbit=90, sweep={"iso": (0.3, 0.6)},
+                              video=tmp_path / f"py.{container}", size=(48, 40))
+    run_cli("animate", "gen:spheres:32", "--frames", "4", "--orbit", "90", "--sweep",
+            "iso=0.3:0.6", "--video", str(tmp_path / f"cli.{container}"), "--out-dir",
+            str(tmp_path / "frames"), "--size", "48x40", "--quiet")
+    assert (tmp_path / f"py.{container}").read_bytes() == (tmp_path / f"cli.{container}").read_bytes()
+    assert len(frames) == 4 and frames[1].metadata["swept"] == {"iso": pytest.approx(0.4)}
+    for i, frame in enumerate(frames):
+        png = np.asarray(Image.open(tmp_path / "frames" / f"frame_{i:04d}.png").convert("RGBA"))
+        assert np.array_equal(frame.image, png), i
+    assert len({f.image.tobytes() for f in frames}) == 4
+
+
+def test_animate_moves_the_view_and_checks_its_input(tmp_path, renderer):
+    volume = vsil.generate("spheres", 32)
+    frames = renderer.animate(volume, frames=3, view_from=(0, 0), view_to=(90, 30), size=(32, 32))
+    # Each frame the render of its view: the middle one at (45, 15).
+    for frame, view in zip(frames, [(0, 0), (45, 15), (90, 30)]):
+        assert np.array_equal(frame.image, renderer.render(volume, view=view, size=(32, 32)).image)
+    assert renderer.animate(volume, frames=2, size=(32, 32), keep_frames=False) == []
+    with pytest.raises(ValueError, match="--video"):
+        renderer.animate(volume, frames=2, size=(33, 32), video=tmp_path / "odd.avi")
+    assert not (tmp_path / "odd.avi").exists()
+    with pytest.raises(ValueError, match="no_such"):
+        renderer.animate(volume, frames=2, sweep=["no_such=1:2"])
+    with pytest.raises(ValueError, match="together"):
+        renderer.animate(volume, frames=2, view_from=(0, 0))
