@@ -33,7 +33,9 @@ struct OptionSpec {
   OptionKind kind = OptionKind::Number;
   std::string help;
   // The value when none is given. Unset: derived (see `derived`; defaultNote says how for the
-  // help), or empty for Text and List.
+  // help), or empty for Text and List; for a Number neither declared nor derived, nothing:
+  // leaving it out is its own behaviour (defaultNote says which; semantic's flatness), read
+  // only where OptionReader::given, null in toJson, None in Python.
   std::optional<OptionValue> defaultValue;
   // VolumeIso: the volume's default iso value. RangeFraction: `rangeFraction` of the width of
   // the volume's value range (a tolerance in data units that scales with the data).

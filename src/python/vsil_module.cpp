@@ -288,8 +288,7 @@ Keyword describeKeyword(const CLI::Option& option) {
                                          ? py::object(py::int_(std::lround(value)))
                                          : py::object(py::float_(value));
             } else if constexpr (std::is_same_v<T, std::string>) {
-              keyword.defaultValue =
-                  spec->numberCount > 0 ? defaultFromText(value, "text") : py::str(value);
+              keyword.defaultValue = defaultFromText(value, "text");
             }
           },
           *spec->defaultValue);

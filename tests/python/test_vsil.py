@@ -407,11 +407,10 @@ def test_the_signature_lists_every_keyword_with_a_default_that_renders_as_none_g
               and k["group"] != "Raw volume layout (headerless files)"}
     for technique in table[0]["choices"]:
         given = dict(shared, technique=technique, size=(40, 32))
-        # Less semantic's flatness: the table declares 0, but not giving it lets the rules
-        # decide per sample (semantic_scene.cpp reads options.given("flatness")): the table's
-        # default says what flatness=0 does, not what leaving it out does.
+        # semantic's flatness included: it declares no default (leaving it out lets the rules
+        # decide per sample, which no value says), so None; it once declared 0, which differs.
         given.update({k["key"]: k["default"] for k in table if k["default"] is not None
-                      and technique in (_technique_users(k) or []) and k["key"] != "flatness"})
+                      and technique in (_technique_users(k) or [])})
         plain = renderer.render(volume, technique=technique, size=(40, 32))
         explicit = renderer.render(volume, **given)
         assert np.array_equal(plain.image, explicit.image), (technique, given)
@@ -818,3 +817,42 @@ def test_animate_moves_the_view_and_checks_its_input(tmp_path, renderer):
         renderer.animate(volume, frames=2, sweep=["no_such=1:2"])
     with pytest.raises(ValueError, match="together"):
         renderer.animate(volume, frames=2, view_from=(0, 0))
+
+
+def test_every_technique_options_default_is_the_one_the_command_line_states(renderer):
+    """The CLI's --help "(default X" against inspect.signature, for every option of every
+    technique: numbers equal, 'off' is False, a word is the keyword's default or, where the
+    signature says None, renders what leaving it out renders; prose (derived) is None."""
+    help_text = run_cli("render", "--help").stdout
+    signature = inspect.signature(vsil.Renderer.render).parameters
+    table = vsil._vsil._keywords("render")
+    checked = 0
+    for keyword in table:
+        users = _technique_users(keyword)
+        if not users:
+            continue
+        line = next(l for l in help_text.splitlines() if l.strip().startswith(keyword["flag"] + " "))
+        match = re.search(r"\(default ((?:[^,()]|,(?! ))*)", line)  # to ", " or a parenthesis
+        if not match:
+            continue  # pipeline: a default per technique, in words
+        stated, default = match.group(1).strip(), signature[keyword["key"]].default
+        numbers = re.fullmatch(r"-?[0-9.]+(,-?[0-9.]+)*", stated)
+        if numbers:
+            values = tuple(float(v) for v in stated.split(","))
+            got = default if isinstance(default, tuple) else (default,)
+            assert tuple(float(v) for v in got) == values, keyword["key"]
+        elif stated == "off":
+            assert default is False, keyword["key"]
+        elif re.fullmatch(r"[a-z-]+", stated):
+            if default is None:  # the word, given, renders what leaving it out renders
+                plain = renderer.render("gen:spheres:16", technique=users[0], size=(24, 24))
+                given = renderer.render("gen:spheres:16", technique=users[0], size=(24, 24),
+                                        **{keyword["key"]: stated})
+                assert np.array_equal(plain.image, given.image), keyword["key"]
+            else:
+                assert default == stated, keyword["key"]
+        else:
+            assert default is None, (keyword["key"], stated, default)
+        checked += 1
+    assert checked >= 15
+    assert signature["flatness"].default is None

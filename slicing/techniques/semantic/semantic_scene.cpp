@@ -8,6 +8,25 @@
 
 namespace vsil {
 
+namespace {
+
+// Not given, the flatness rules decide per sample; given, one flatness everywhere. No value
+// stands for "not given" (0 is ordinary compositing everywhere, which ignores the rules), so
+// the option declares none: the help, the metadata (null) and Python's default (None) say so.
+OptionSpec flatnessOption() {
+  OptionSpec spec = OptionSpec::number("flatness", 0.0,
+                                       "flat rendering mode everywhere with this flatness p_f "
+                                       "(0: ordinary compositing, 1: the top priority always "
+                                       "shows)")
+                        .atLeast(0)
+                        .atMost(1);
+  spec.defaultValue.reset();
+  spec.defaultNote = "none: the flatness rules decide per sample";
+  return spec;
+}
+
+}  // namespace
+
 const std::vector<OptionSpec>& semanticOptions() {
   static const std::vector<OptionSpec> options{
       OptionSpec::text("rules",
@@ -19,12 +38,7 @@ const std::vector<OptionSpec>& semanticOptions() {
             // The sphere files too: every error before any GL work.
             if (!text.empty()) buildSphereAtlas(loadRulesPreset(text), 2);
           }),
-      OptionSpec::number("flatness", 0.0,
-                         "flat rendering mode everywhere with this flatness p_f (0: ordinary "
-                         "compositing, 1: the top priority always shows); not given: the "
-                         "flatness rules decide per sample")
-          .atLeast(0)
-          .atMost(1),
+      flatnessOption(),
       OptionSpec::text("cursor",
                        "the 3D cursor X,Y,Z in voxel coordinates (cursor_distance); default the "
                        "volume's centre")
