@@ -16,7 +16,6 @@
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -40,6 +39,7 @@
 #include "io/sample_sink.h"
 #include "io/volume_loader.h"
 #include "job/animation.h"
+#include "job/gl_turn.h"
 #include "job/render_job.h"
 #include "postfx/broaden.h"
 #include "postfx/line_width.h"
@@ -228,6 +228,14 @@ struct Keyword {
   std::vector<std::string> choices;
   int numberCount = 0;  // text holding this many numbers ("AZ,EL": 2); 0 otherwise
 };
+
+// A text keyword of the module's own (not a flag): animate's view_from, video, sweep ends.
+Keyword textKeyword(std::string key) {
+  Keyword keyword;
+  keyword.key = std::move(key);
+  keyword.kind = "text";
+  return keyword;
+}
 
 const OptionSpec* techniqueSpec(const std::string& name) {
   static const std::map<std::string, const OptionSpec*> specs = [] {
@@ -683,31 +691,19 @@ py::array arrayFromMat(const cv::Mat& mat, int channels) {
 
 // ---- GL turns ----
 
-// GL state is process-wide (the function pointers of slicing/gl.h; a context current on one
-// thread only), so every GL call of the module, from any thread and any Renderer, happens under
-// this one lock: renders from several threads wait their turn (llvmpipe uses every core for
-// each frame anyway). A turn ends by releasing its context, so that the next turn may make any
-// context current on any thread.
-std::mutex& glMutex() {
-  static std::mutex mutex;
-  return mutex;
-}
-
-// One turn: releases the GIL first, then waits for the lock. Never the other way round: a thread
-// holding the lock may need the GIL (the last reference to a numpy array a volume borrowed), so
-// a thread holding the GIL must not wait for the lock.
+// One turn (job/gl_turn.h: every GL call of the module, from any thread and any Renderer, under
+// one lock; renders from several threads wait their turn, llvmpipe uses every core for each
+// frame anyway). It releases the GIL first, then waits for the lock. Never the other way round:
+// a thread holding the lock may need the GIL (the last reference to a numpy array a volume
+// borrowed), so a thread holding the GIL must not wait for the lock.
 class GlTurn {
  public:
-  explicit GlTurn(RenderJob* job) : job_(job), lock_(glMutex()) {}
-  ~GlTurn() {
-    if (job_) job_->context().releaseCurrent();
-  }
-  void setJob(RenderJob* job) { job_ = job; }  // a job made during the turn
+  explicit GlTurn(RenderJob* job) : turn_(job) {}
+  void setJob(RenderJob* job) { turn_.setJob(job); }  // a job made during the turn
 
  private:
   py::gil_scoped_release release_;  // destroyed last: the GIL comes back after the unlock
-  RenderJob* job_;
-  std::unique_lock<std::mutex> lock_;
+  vsil::GlTurn turn_;
 };
 
 // A RenderJob and what its textures hold: the volume, when given as a Volume, and its bricks'
@@ -828,7 +824,7 @@ class PythonRenderer {
     AnimationSpec spec;
     spec.frames = frames;
     spec.orbitDeg = orbit;
-    const Keyword pair{.key = "view_from", .kind = "text"};
+    const Keyword pair = textKeyword("view_from");
     if (viewFrom.is_none() != viewTo.is_none()) {
       throw InputError(function + ": give view_from and view_to together");
     }
@@ -842,7 +838,7 @@ class PythonRenderer {
     const AnimationPlan plan(request.render, spec, request.load.limits);
     std::string videoPath;
     if (!video.is_none()) {
-      videoPath = valueText(Keyword{.key = "video", .kind = "text"}, video, function);
+      videoPath = valueText(textKeyword("video"), video, function);
       VideoFile::checkTarget("--video", videoPath, request.render.settings.size, fps);
     }
     std::shared_ptr<Slot> resident = request.volume ? residentSlot(request.volume) : nullptr;
@@ -992,7 +988,7 @@ class PythonRenderer {
     if (sweep.is_none()) return texts;
     if (py::isinstance<py::str>(sweep)) return {sweep.cast<std::string>()};
     if (py::isinstance<py::dict>(sweep)) {
-      const Keyword ends{.key = "sweep", .kind = "text"};
+      const Keyword ends = textKeyword("sweep");
       for (const auto& [name, range] : py::reinterpret_borrow<py::dict>(sweep)) {
         if (!isSequence(range) || py::len(range) != 2) {
           throw PythonTypeError(function + ": sweep takes {name: (from, to)}, not " +
