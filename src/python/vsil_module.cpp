@@ -9,6 +9,7 @@
 //
 // Keyword arguments become the command line's flags (width_near=4 -> --width-near 4) and are
 // parsed by the CLI's own table (cli/cli_render_options.h), so the two cannot drift apart.
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -1047,7 +1048,8 @@ class PythonRenderer {
   Slot main_;
   // Read and changed with the GIL held; a slot's job used during turns only.
   std::map<std::shared_ptr<Volume>, std::shared_ptr<Slot>> resident_;
-  std::uint64_t uploads_ = 0;  // textures filled, for tests and users who count
+  // Textures filled, for tests and users who count; written in turns (no GIL), read with it.
+  std::atomic<std::uint64_t> uploads_ = 0;
 };
 
 // ---- postfx on arrays ----

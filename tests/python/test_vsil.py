@@ -47,6 +47,8 @@ def test_the_package_is_the_one_asked_for_and_has_the_project_version():
     cmake = open(os.path.join(os.path.dirname(__file__), "..", "..", "CMakeLists.txt")).read()
     assert re.search(r"project\(vsil VERSION ([0-9.]+)", cmake).group(1) == vsil.__version__
     assert vsil.__version__ in run_cli("--version").stdout
+    # Renderer.animate(video=...) loads the video plugin the package carries beside the extension.
+    assert (pathlib.Path(vsil.__file__).parent / "libvsil_video.so").exists()
 
 
 # ---- the CLI's bytes ----
