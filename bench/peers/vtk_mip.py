@@ -27,12 +27,12 @@ Both sides render on Mesa's llvmpipe with LP_NUM_THREADS threads (2 unless alrea
   the unit view direction d (1 voxel for the isotropic volumes; for the teddybear, 2.8 × 2.8 × 5
   mm, between 2.8 and 5 mm as the view turns), no automatic adjustment, image sample distance 1.
   Along the central ray both take the same number of samples; vsil's off-centre rays cross the
-  planes slightly farther apart (up to 1/cos 15°-ish ≈ 1.04 at a 30° field of view's corner),
-  VTK's keep their distance: vsil takes up to ~4% fewer samples on those rays.
-- What differs by design: vsil skips the parts of each ray that lie in bricks (8³ voxels) whose
-  values cannot reach the window's low end (empty-space skipping) and stops a MIP ray where its
-  maximum reaches the window's top (the byte there is white whatever follows); VTK's mapper
-  samples every ray from box entry to exit.
+  planes slightly farther apart (1/cos of the ray's angle to the view axis: up to about 1.07
+  in the corners of a 30° field of view), VTK's keep their distance: vsil takes up to ~7% fewer
+  samples on those rays.
+- What differs by design: vsil's march starts each ray where it first enters a brick (8³
+  voxels) whose values can reach the window's low end and stops it where it leaves such bricks
+  for good (empty-space skipping); VTK's mapper samples every ray from box entry to exit.
 - Timed per frame. VTK: Render() and a readback of the RGBA pixels (the readback waits for the
   frame to finish). vsil: `vsil bench --table dv1 --only DATASET`, whose columns (MIP, DEMIP,
   DEMIP with the colour sphere, DVR) take turns frame by frame; timed in-process:
@@ -291,7 +291,7 @@ def vsil_render(vsil, path, size, out_png, meta_json):
         return json.load(f)
 
 
-def vsil_window(vsil, path, size):
+def vsil_window(vsil, path):
     """vsil's default window for the volume (from the histogram), [LO, HI] in data units."""
     with tempfile.TemporaryDirectory() as tmp:
         meta = vsil_render(vsil, path, 64, os.path.join(tmp, "w.png"),
@@ -336,7 +336,7 @@ def main():
     rows = []
     for name in names:
         path = os.path.join(args.datasets, DATASETS[name])
-        window = vsil_window(args.vsil, path, args.size)
+        window = vsil_window(args.vsil, path)
         frame, write_vtk_png, facts, gl = vtk_pipeline(path, args.size, window)
         machine["vtk_gl"] = gl
         blocks = {"vtk": [], "mip": [], "demip": []}
