@@ -37,7 +37,9 @@ std::vector<gl::Backend> backendsHere() {
 
 std::unique_ptr<RenderJob> makeJob(gl::Backend backend, const std::shared_ptr<Volume>& volume) {
   GlTurn turn(nullptr);
-  auto job = std::make_unique<RenderJob>(gl::ContextOptions{.backend = backend});
+  gl::ContextOptions options;
+  options.backend = backend;
+  auto job = std::make_unique<RenderJob>(options);
   turn.setJob(job.get());
   job->setVolume(Volume::sharing(volume));
   return job;
