@@ -439,7 +439,7 @@ void run(const SweepFlags& flags) {
   TaskRunner runner(plan, flags);
   std::vector<Json> rows(static_cast<std::size_t>(count));
   int done = 0, failed = 0, milestone = 0;
-  ProgressLine progress(std::cerr, isatty(STDERR_FILENO) == 1);
+  vsil::ProgressLine progress(std::cerr, isatty(STDERR_FILENO) == 1);
   const auto loopStart = Clock::now();
   mpi::runTaskFarm(
       count, [&](int task) { return runner.run(task).dump(); },
