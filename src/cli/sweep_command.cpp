@@ -131,8 +131,9 @@ void setFlag(serve::RenderCommandLine& line, const std::string& key, const Json&
 void checkFixedPerRank(const std::string& key, const std::string& where) {
   const std::string name = flagName(key);
   if (name == "gl" || name == "gl-device") {
-    throwInputError(where, "--" + name + " is the same for every task (one GL context per rank): "
-                           "set it in \"render\"");
+    throwInputError(where, "--" + name +
+                               " is the same for every task (one GL context per rank): "
+                               "set it in \"render\"");
   }
 }
 
@@ -249,7 +250,8 @@ class TaskRunner {
     row["swept"] = task.swept;
     const int count = int(plan_.tasks.size());
     const fs::path outDir = flags_.outDir;
-    const std::string image = outDir.empty() ? "" : (outDir / taskFileName(index, count, "")).string();
+    const std::string image =
+        outDir.empty() ? "" : (outDir / taskFileName(index, count, "")).string();
     row["command"] = task.line.shellText(image.empty() ? "task.png" : image);
     try {
       serve::CheckedRender checked = serve::checkRenderCommandLine(task.line);
@@ -341,8 +343,8 @@ class TaskRunner {
     for (const auto& sample : measureLineWidths(mask)) widths.push_back(sample.width);
     if (widths.empty()) return nullptr;
     const WidthStatistics stats = summarizeWidths(widths);
-    return {{"count", stats.count}, {"mean", stats.mean},   {"median", stats.median},
-            {"p05", stats.p05},     {"p95", stats.p95},     {"min", stats.min},
+    return {{"count", stats.count}, {"mean", stats.mean}, {"median", stats.median},
+            {"p05", stats.p05},     {"p95", stats.p95},   {"min", stats.min},
             {"max", stats.max}};
   }
 
@@ -477,8 +479,8 @@ void run(const SweepFlags& flags) {
     if (!path.empty()) std::cout << path << "\n";
   }
   char summary[160];
-  std::snprintf(summary, sizeof summary, "%d tasks on %d rank%s in %.2f s: %d ok, %d failed",
-                count, mpi::size(), mpi::size() == 1 ? "" : "s", seconds, count - failed, failed);
+  std::snprintf(summary, sizeof summary, "%d tasks on %d rank%s in %.2f s: %d ok, %d failed", count,
+                mpi::size(), mpi::size() == 1 ? "" : "s", seconds, count - failed, failed);
   std::cout << summary << "\n";
   if (failed) {
     int listed = 0;

@@ -29,8 +29,8 @@ void check(int code, const char* call) {
   char text[MPI_MAX_ERROR_STRING];
   int length = 0;
   MPI_Error_string(code, text, &length);
-  throw std::runtime_error(std::string("task farm: ") + call + " failed: " +
-                           std::string(text, std::size_t(length)));
+  throw std::runtime_error(std::string("task farm: ") + call +
+                           " failed: " + std::string(text, std::size_t(length)));
 }
 
 void waitGently(MPI_Request& request, const char* what) {

@@ -148,14 +148,8 @@ const std::vector<WorkingCase>& workingCases() {
          std::ofstream(out / "sweep.json")
              << R"({"render": {"input": "gen:spheres:32", "size": "32x32"},)"
              << R"( "axes": {"width": [1, 2]}})";
-         return {"sweep",
-                 (out / "sweep.json").string(),
-                 "--json",
-                 (out / "rows.json").string(),
-                 "--csv",
-                 (out / "rows.csv").string(),
-                 "--out-dir",
-                 (out / "images").string()};
+         return {"sweep", (out / "sweep.json").string(), "--json",    (out / "rows.json").string(),
+                 "--csv", (out / "rows.csv").string(),   "--out-dir", (out / "images").string()};
        }},
       // If serve ever ran here, it would listen: the test would hang until ctest's timeout.
       {"serve",
