@@ -51,7 +51,9 @@ struct FrameServer::Impl {
   nlohmann::json volumeFacts;
 
   explicit Impl(ServeOptions given)
-      : options(std::move(given)), page(options.command), base(checkRenderCommandLine(options.command)) {}
+      : options(std::move(given)),
+        page(options.command),
+        base(checkRenderCommandLine(options.command)) {}
 
   void startRenderer() {
     std::promise<void> ready;
@@ -123,26 +125,25 @@ struct FrameServer::Impl {
     for (const auto& warning : warnings) warningText += (warningText.empty() ? "" : "; ") + warning;
     response.set_header("X-Vsil-Command", line.shellText(kCommandOut));
     response.set_header("X-Vsil-Render-Ms", std::to_string(renderMs));
-    response.set_header(
-        "X-Vsil-Total-Ms",
-        std::to_string(std::chrono::duration<double, std::milli>(
-                           std::chrono::steady_clock::now() - received)
-                           .count()));
+    response.set_header("X-Vsil-Total-Ms",
+                        std::to_string(std::chrono::duration<double, std::milli>(
+                                           std::chrono::steady_clock::now() - received)
+                                           .count()));
     if (!warningText.empty()) response.set_header("X-Vsil-Warnings", warningText);
     response.set_header("Cache-Control", "no-store");
     response.set_content(std::string(png.begin(), png.end()), "image/png");
   }
 
   void routes() {
-    http.set_pre_routing_handler([this](const httplib::Request& request,
-                                        httplib::Response& response) {
-      if (options.token.empty()) return httplib::Server::HandlerResponse::Unhandled;
-      std::string given = request.get_param_value("token");
-      if (given.empty()) given = request.get_header_value("X-Vsil-Token");
-      if (sameToken(given, options.token)) return httplib::Server::HandlerResponse::Unhandled;
-      answerText(response, 403, "missing or wrong token (?token=...)");
-      return httplib::Server::HandlerResponse::Handled;
-    });
+    http.set_pre_routing_handler(
+        [this](const httplib::Request& request, httplib::Response& response) {
+          if (options.token.empty()) return httplib::Server::HandlerResponse::Unhandled;
+          std::string given = request.get_param_value("token");
+          if (given.empty()) given = request.get_header_value("X-Vsil-Token");
+          if (sameToken(given, options.token)) return httplib::Server::HandlerResponse::Unhandled;
+          answerText(response, 403, "missing or wrong token (?token=...)");
+          return httplib::Server::HandlerResponse::Handled;
+        });
     const auto file = [](const char* path, const char* type) {
       return [path, type](const httplib::Request&, httplib::Response& response) {
         const std::string_view text = embeddedPageFile(path);

@@ -63,7 +63,8 @@ nlohmann::json optionJson(const OptionSpec& spec) {
                       {"max_exclusive", spec.maxExclusive},
                       {"choices", spec.choices},
                       {"number_count", spec.numberCount}};
-  if (spec.defaultValue) std::visit([&](const auto& v) { json["default"] = v; }, *spec.defaultValue);
+  if (spec.defaultValue)
+    std::visit([&](const auto& v) { json["default"] = v; }, *spec.defaultValue);
   if (std::isfinite(spec.min)) json["min"] = spec.min;
   if (std::isfinite(spec.max)) json["max"] = spec.max;
   return json;
@@ -187,11 +188,13 @@ RenderCommandLine PageParameters::apply(
     const auto settable = settable_.find(name);
     if (settable == settable_.end()) {
       if (std::find(fixed_.begin(), fixed_.end(), name) != fixed_.end()) {
-        throwInputError(key, "fixed by the server (the input, the volume and the GL flags are "
-                             "vsil serve's own)");
+        throwInputError(key,
+                        "fixed by the server (the input, the volume and the GL flags are "
+                        "vsil serve's own)");
       }
-      throwInputError(key, "unknown parameter (the page's are vsil render's flags by key, e.g. "
-                           "width_near for --width-near)");
+      throwInputError(key,
+                      "unknown parameter (the page's are vsil render's flags by key, e.g. "
+                      "width_near for --width-near)");
     }
     std::vector<std::string> values;
     for (auto [first, last] = parameters.equal_range(key); first != last; ++first) {
@@ -225,7 +228,7 @@ RenderCommandLine PageParameters::apply(
       }
     }
     line.flags.erase(std::remove_if(line.flags.begin(), line.flags.end(),
-                                     [&](const GivenFlag& given) { return given.name == name; }),
+                                    [&](const GivenFlag& given) { return given.name == name; }),
                      line.flags.end());
     if (settable->second.isSwitch) {
       if (values.size() > 1) throwInputError(key, "given more than once");

@@ -58,8 +58,8 @@ class PageParameters {
   // `base` with the page's parameters (by key: width_near for --width-near; a List key may
   // repeat) put in: a value replaces the base's, an empty value (or "off" for a switch) removes
   // the flag. The flags come out in `vsil render`'s order (--technique first), whatever the
-  // order of the query. Throws InputError naming the parameter for an unknown or fixed one, or a value
-  // that names a file.
+  // order of the query. Throws InputError naming the parameter for an unknown or fixed one, or a
+  // value that names a file.
   RenderCommandLine apply(const std::multimap<std::string, std::string>& parameters) const;
 
   // The page's starting values: {key: text, or [texts] for a List; "on" for a switch}.

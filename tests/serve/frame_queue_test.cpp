@@ -36,7 +36,8 @@ TEST(LatestOnlyQueue, ATaskNotStartedIsReplacedByTheNewerOne) {
     });
   });
   ASSERT_TRUE(eventually([&] { return firstRunning.load(); }));
-  auto second = std::async(std::launch::async, [&] { return queue.run([&] { secondRan = true; }); });
+  auto second =
+      std::async(std::launch::async, [&] { return queue.run([&] { secondRan = true; }); });
   ASSERT_TRUE(eventually([&] { return queue.taskWaiting(); }));
   auto third = std::async(std::launch::async, [&] { return queue.run([&] { thirdRan = true; }); });
 

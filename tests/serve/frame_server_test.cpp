@@ -113,7 +113,8 @@ TEST(FrameServer, AFrameIsThePngItsCommandLineRenders) {
   const auto out = test::scratchDir() / "view.png";
   const std::string prefix = "vsil render ", suffix = " --out view.png";
   ASSERT_EQ(command.rfind(prefix, 0), 0u);
-  const std::string flags = command.substr(prefix.size(), command.size() - prefix.size() - suffix.size());
+  const std::string flags =
+      command.substr(prefix.size(), command.size() - prefix.size() - suffix.size());
   const auto result = test::runVsil("render " + flags + " --out " + out.string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(test::readFileBytes(out), frame->body);
@@ -135,8 +136,8 @@ TEST(FrameServer, TheViewChangesTheFrameAndTheSameViewGivesTheSameBytes) {
 TEST(FrameServer, TheSemanticCursorPixelMovesTheFocus) {
   // The example rule base with the focus around the cursor's pixel (image_distance) rather than
   // the 3D cursor; the file is the server's own flag, which the page cannot name.
-  std::string rules = test::readFileBytes(std::filesystem::path(VSIL_SOURCE_DIR) /
-                                          "src/core/rules/example.rules");
+  std::string rules =
+      test::readFileBytes(std::filesystem::path(VSIL_SOURCE_DIR) / "src/core/rules/example.rules");
   const std::string from = "attribute focus from cursor_distance";
   ASSERT_NE(rules.find(from), std::string::npos);
   rules.replace(rules.find(from), from.size(), "attribute focus from image_distance");
@@ -172,7 +173,7 @@ TEST(FrameServer, BadParametersAre400WithTheOneLineMessageAndTheServerGoesOn) {
       {"/frame?ra_exponent=8", "--ra-exponent"},  // not silhouette's
       {"/frame?size=100000x100000", "--size"},
       {"/frame?nosuch=1", "nosuch"},
-      {"/frame?crop=0:4,0:4,0:4", "crop"},       // the server's volume flags are fixed
+      {"/frame?crop=0:4,0:4,0:4", "crop"},  // the server's volume flags are fixed
       {"/frame?gl=osmesa", "gl"},
       {"/frame?input=%2Fetc%2Fpasswd", "input"},
       {"/frame?technique=semantic&rules=%2Fetc%2Fpasswd", "--rules"},
