@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/image_file.h"
 #include "job/render_job.h"
+#include "mpi/mpi_world.h"
 #include "slicing/technique_table.h"
 
 namespace vsil::cli {
@@ -60,6 +61,13 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   RenderRequest request = toRenderRequest(flags);
   request.settings.readDepth = !outputs.depthOut.empty();
   RenderJob::checkRequest(request, loadOptions.limits);
+  // Under mpirun with several ranks: the slab-parallel render is not wired in yet (issue 35);
+  // every rank refuses alike, before reading anything.
+  try {
+    requireSplittable(findTechnique(request.settings.technique), mpi::size());
+  } catch (const UnavailableError& e) {
+    throw mpi::EveryRankError(e.what());
+  }
   OutputBatch batch;
   checkOutputs(flags, outputs, batch);
   const gl::ContextOptions glOptions = toContextOptions(flags.gl);
