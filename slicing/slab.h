@@ -30,6 +30,9 @@ class SlabRelay {
   virtual void send(const std::vector<const gl::RenderTarget*>& targets) = 0;
   // The last process's `targets` to every process.
   virtual void shareLast(const std::vector<const gl::RenderTarget*>& targets) = 0;
+  // Replaces every float of `target` by its maximum over all processes (Composition::MaxReduce:
+  // float max is exact and commutative, so the order does not matter).
+  virtual void maxReduce(const gl::RenderTarget& target) = 0;
 };
 
 struct SlabPart {

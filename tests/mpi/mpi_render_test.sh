@@ -2,8 +2,11 @@
 # `mpirun -np N vsil render` (issue 35) against the single-process render:
 #  - one rank: every technique's PNG, state and depth images are the single process's bytes
 #    (odd view angles, perspective with the eye close);
-#  - several ranks: until the slab renderer is wired in (slicing/slab.h), every technique refuses
-#    with one line, printed once, a non-zero exit and no output file.
+#  - several ranks (2, 3, 4) for mip, the technique wired into the slab renderer: the same bytes,
+#    on one texture, on a bricked volume, perspective close to the volume; a volume over one
+#    rank's --max-memory renders across three; the --meta-out "mpi" object;
+#  - several ranks for the other techniques: one refusal line, printed once, a non-zero exit and
+#    no output file.
 # Usage: mpi_render_test.sh VSIL MPIEXEC
 set -euo pipefail
 vsil=$1
@@ -46,8 +49,34 @@ for technique in silhouette rightangle firsthit illustrate mip demip lmip semant
 done
 echo "one rank: 8 techniques byte-identical"
 
+for args in "gen:spheres:64 --view 37,-23 --zoom 1.6" \
+  "gen:spheres:128 --view 200,55 --zoom 2.5 --max-texture-mib 1"; do
+  # shellcheck disable=SC2086
+  "$vsil" render $args --technique mip --size 128x128 --out "$work/single.png" >/dev/null
+  for n in 2 3 4; do
+    # shellcheck disable=SC2086
+    "$mpiexec" --oversubscribe -np "$n" "$vsil" render $args --technique mip --size 128x128 \
+      --out "$work/many.png" --meta-out "$work/many.json" >/dev/null
+    cmp -s "$work/single.png" "$work/many.png" || fail "mip $args: -np $n differs"
+    grep -q '"compose": "max-reduce"' "$work/many.json" || fail "mip: no mpi metadata"
+    grep -q "\"ranks\": $n" "$work/many.json" || fail "mip: mpi.ranks is not $n"
+    rm -f "$work/many.png"
+  done
+done
+echo "mip: -np 2, 3, 4 byte-identical, one texture and bricked"
+
+big=(gen:spheres:128 --technique mip --size 128x128 --max-memory 30)
+if "$vsil" render "${big[@]}" --out "$work/big1.png" 2>/dev/null; then
+  fail "the volume should be over one process's --max-memory 30"
+fi
+"$mpiexec" --oversubscribe -np 3 "$vsil" render "${big[@]}" --out "$work/big3.png" >/dev/null ||
+  fail "three ranks should each fit --max-memory 30"
+"$vsil" render gen:spheres:128 --technique mip --size 128x128 --out "$work/big.png" >/dev/null
+cmp -s "$work/big.png" "$work/big3.png" || fail "--max-memory across 3 ranks differs"
+echo "over one rank's --max-memory: renders across 3"
+
 for n in 2 3; do
-  if "$mpiexec" --oversubscribe -np "$n" "$vsil" render "$volume" --technique mip \
+  if "$mpiexec" --oversubscribe -np "$n" "$vsil" render "$volume" --technique silhouette \
     "${common[@]}" --out "$work/many.png" >"$work/out" 2>"$work/err"; then
     fail "-np $n: expected a refusal"
   fi
