@@ -74,6 +74,8 @@ class CMakeBuild(build_ext):
             sys.exit(f"setup.py: expected one _vsil*.so in {package}, found {built}")
         shutil.copyfile(built[0], target)
         shutil.copyfile(package / "__init__.pyi", target.parent / "__init__.pyi")
+        # The video plugin Renderer.animate(video=...) loads from beside the extension.
+        shutil.copyfile(package / "libvsil_video.so", target.parent / "libvsil_video.so")
 
 
 setup(

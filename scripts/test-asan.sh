@@ -5,7 +5,9 @@
 # LeakSanitizer ignores only the Mesa/LLVM allocations in tests/sanitizers/lsan.supp, and is off
 # in the GL suites, where its tracer crashes at exit (tests/CMakeLists.txt says more).
 # The Python module is left out: a sanitized extension loads only into an interpreter started
-# with the sanitizer runtime preloaded; its C++ below is the library the other suites test.
+# with the sanitizer runtime preloaded; its C++ below is the library the other suites test, and
+# its threads' GL lock (job/gl_turn.h) is driven from 8 threads on every back end here by
+# tests/gl_backends/gl_turn_test.cpp (the Python thread test's C++ twin).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 VSIL_BUILD_DIR=build-asan \

@@ -64,12 +64,14 @@ OptionSpec effectsOption() {
 
 OptionSpec styleOption() {
   OptionSpec spec =
-      OptionSpec::text("style",
-                       "an illustration style: a preset name (README) or a .json file of effects, "
-                       "parameters, transfer function, colours and lights; flags beside it win")
+      OptionSpec::text(
+          "style",
+          "an illustration style: a preset name (README) or a .json file of effects, "
+          "parameters, transfer function, colours and lights (or that JSON itself); flags "
+          "beside it win")
           .validatedBy([](const OptionValue& value) {
             const std::string& text = textOf(value);
-            if (text.empty() || isStyleFile(text)) return;
+            if (text.empty() || (isStyleFile(text) && !isInlineSource(text))) return;
             const auto names = stylePresetNames();
             if (std::find(names.begin(), names.end(), text) == names.end()) loadStyle(text);
           });
@@ -78,11 +80,13 @@ OptionSpec styleOption() {
 
 OptionSpec transferFunctionOption() {
   return OptionSpec::text(
-             "tf", "transfer function: a preset (" + joinedNames(transferFunctionPresetNames()) +
-                       "; README 'Transfer-function presets') or a FILE.json list of {\"value\" "
-                       "(data units), \"color\", \"opacity\"} points, linearly interpolated "
-                       "(illustrate: instead of the power opacity k_os*v^k_oe over --color; mip, "
-                       "lmip, demip: instead of --window's grey ramp)")
+             "tf",
+             "transfer function: a preset (" + joinedNames(transferFunctionPresetNames()) +
+                 "; README 'Transfer-function presets') or a FILE.json list of {\"value\" "
+                 "(data units), \"color\", \"opacity\"} points (or that JSON itself), linearly "
+                 "interpolated "
+                 "(illustrate: instead of the power opacity k_os*v^k_oe over --color; mip, "
+                 "lmip, demip: instead of --window's grey ramp)")
       .validatedBy([](const OptionValue& value) {
         if (!textOf(value).empty()) checkTransferFunctionOption(textOf(value));
       });

@@ -1,36 +1,50 @@
 #!/usr/bin/python3
 """Peer measurement: VTK's GPU volume mapper in MIP mode beside vsil's MIP, in one run.
 
-Issue 11 (Benchmark) asks for VTK's GPU ray caster in maximum-intensity mode measured beside
-vsil's `mip` once, on the Bonsai (256³) at 512², on the same machine and in the same run.
-This script times both and prints a table and JSON like the `vsil bench` tables.
+Issue 11 asked for VTK's GPU ray caster in maximum-intensity mode measured beside vsil's `mip`
+on the Bonsai at 512²; issue 36 asks for vsil's MIP ahead of it on at least 4 of the 5 classic
+datasets of the dv1 table (aneurism, bonsai, engine, teddybear, tooth), with DEMIP within 1.15×
+MIP. This script times both renderers on each dataset, alternating, and prints a table and JSON.
 
-It is a one-off peer measurement, not part of CI or bootstrap. Needs Debian's VTK bindings and
-a virtual X server (VTK 9.1 in bookworm renders through GLX):
+It is a peer measurement, not part of CI or bootstrap. Needs Debian's VTK bindings and a virtual
+X server (VTK 9.1 in bookworm renders through GLX):
 
-    apt-get install -y python3-vtk9 xvfb xauth
+    apt-get install -y --no-install-recommends python3-vtk9 xvfb xauth
     xvfb-run -a -s "-screen 0 1024x768x24" /usr/bin/python3 bench/peers/vtk_mip.py \
-        --vsil build/vsil --json vtk_mip.json --images .
+        --vsil build/vsil --json vtk_mip.json --images /tmp/vtk_mip
 
 Both sides render on Mesa's llvmpipe with LP_NUM_THREADS threads (2 unless already set; on a
-2-core machine that is llvmpipe's default, one thread per core). What is compared:
+2-core machine that is llvmpipe's default, one thread per core). Both show the same picture:
 
-- VTK: vtkGPUVolumeRayCastMapper, MaximumIntensityBlend, a grey ramp over the value range
-  (black..white; opacity 0 at the minimum, 1 just above it, so values at the minimum show
-  nothing, as vsil's default --window), one sample per voxel (sample distance = the smallest
-  spacing, no automatic adjustment), image sample distance 1, 512×512 offscreen window.
-  Timed per frame: Render() and a readback of the RGBA pixels (the readback waits for the
-  frame to finish).
-- vsil: `vsil bench --table dv1 --only bonsai` (its MIP column; the table's other columns take
-  turns with it frame by frame). Timed per frame in-process: Renderer::render (slicing,
-  glFinish, readback).
+- The window: vsil's default for the dataset (Otsu's threshold to the 99.5th percentile above
+  it), read from `vsil render --meta-out` (parameters.window). VTK maps it the same way: a grey
+  ramp black at LO to white at HI, opacity 0 at or below LO and 1 above it (VTK's MIP takes each
+  ray's maximum, then classifies it, as vsil's finishing pass does).
+- Sampling: vsil puts one slice per voxel along the view direction (anisotropic spacing
+  counted: slicer.cpp planSlices) and samples each pixel's ray where it crosses the slices; VTK
+  samples each ray every SampleDistance world units from where it enters the box. VTK's sample
+  distance is set per frame to vsil's step between slices in world units, 1 / |d / spacing| for
+  the unit view direction d (1 voxel for the isotropic volumes; for the teddybear, 2.8 × 2.8 × 5
+  mm, between 2.8 and 5 mm as the view turns), no automatic adjustment, image sample distance 1.
+  Along the central ray both take the same number of samples; vsil's off-centre rays cross the
+  planes slightly farther apart (1/cos of the ray's angle to the view axis: up to about 1.07
+  in the corners of a 30° field of view), VTK's keep their distance: vsil takes up to ~7% fewer
+  samples on those rays.
+- What differs by design: vsil's march starts each ray where it first enters a brick (8³
+  voxels) whose values can reach the window's low end and stops it where it leaves such bricks
+  for good (empty-space skipping); VTK's mapper samples every ray from box entry to exit.
+- Timed per frame. VTK: Render() and a readback of the RGBA pixels (the readback waits for the
+  frame to finish). vsil: `vsil bench --table dv1 --only DATASET`, whose columns (MIP, DEMIP,
+  DEMIP with the colour sphere, DVR) take turns frame by frame; timed in-process:
+  Renderer::render (slicing, glFinish, readback). The MIP and DEMIP columns are reported, and
+  DEMIP/MIP from the same frames.
 - The same orbit as the dv1 table: warm-up frames from azimuth 30°, elevation 20°; timed frame
   i from azimuth 30° + 3.6°·i, elevation 20°; perspective, 30° vertical field of view, the
   volume's bounding sphere filling the window (vsil's default camera, src/core/camera.cpp).
-- VTK and vsil blocks (warm-up + timed frames each) alternate --rounds times, so that load from
-  other processes falls on both alike. Reported: per renderer the median of its blocks' median
-  frame times, fps = 1000 / that, each block's median, min and max, and VTK/vsil in frame time;
-  the load average at the start and after every block.
+- Per dataset, VTK and vsil blocks (warm-up + timed frames each) alternate --rounds times, so
+  that load from other processes falls on both alike. Reported: per renderer the median of its
+  blocks' median frame times, each block's median, and VTK/vsil in frame time (> 1: vsil is
+  faster); the load average at the start and after every block.
 """
 
 import argparse
@@ -38,6 +52,7 @@ import json
 import math
 import os
 import platform
+import re
 import statistics
 import subprocess
 import sys
@@ -46,20 +61,84 @@ import time
 
 os.environ.setdefault("LP_NUM_THREADS", "2")  # before VTK loads Mesa
 
+import numpy  # noqa: E402
 import vtk  # noqa: E402  (Debian: python3-vtk9)
-from vtk.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtk.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
 
 ORBIT_START_DEG, ORBIT_STEP_DEG, ELEVATION_DEG = 30.0, 3.6, 20.0  # dv1's orbit
 FOV_Y_DEG = 30.0  # vsil's default perspective
+# The dv1 table's datasets (bench/tables/dv1_table.cpp kDatasets): name -> file.
+DATASETS = {
+    "aneurism": "aneurism.vti",
+    "bonsai": "bonsai.vti",
+    "engine": "engine.vti",
+    "teddybear": "teddybear_128x128x62_uint8.nhdr",
+    "tooth": "tooth.nrrd",
+}
 
 
 def load_average():
     return " ".join(f"{x:.2f}" for x in os.getloadavg())
 
 
+def read_nrrd(path):
+    """uint8 raw NRRD, attached or detached (.nhdr): the datasets here (VTK 9.1's Debian
+    vtkNrrdReader is the MPI one and fails without a controller)."""
+    with open(path, "rb") as f:
+        raw = f.read()
+    end = raw.index(b"\n\n") if b"\n\n" in raw else len(raw)
+    fields = {}
+    for line in raw[:end].decode("latin-1").splitlines()[1:]:
+        if line.startswith("#") or ":" not in line:
+            continue
+        key, value = line.split(":", 1)
+        fields[key.strip()] = value.strip()
+    if fields.get("type") not in ("uint8", "uint8_t", "uchar", "unsigned char"):
+        raise SystemExit(f"{path}: only uint8 NRRD is read here, not {fields.get('type')}")
+    if fields.get("encoding") != "raw":
+        raise SystemExit(f"{path}: only raw NRRD is read here")
+    dims = [int(v) for v in fields["sizes"].split()]
+    spacing = [1.0, 1.0, 1.0]
+    if "spacings" in fields:
+        spacing = [float(v) for v in fields["spacings"].split()]
+    elif "space directions" in fields:
+        vectors = [[float(x) for x in v.split(",")]
+                   for v in re.findall(r"\(([^)]*)\)", fields["space directions"])]
+        spacing = [math.sqrt(sum(x * x for x in v)) for v in vectors]  # axis-aligned here
+    count = dims[0] * dims[1] * dims[2]
+    if "data file" in fields:
+        with open(os.path.join(os.path.dirname(path), fields["data file"]), "rb") as f:
+            payload = f.read()
+    else:
+        payload = raw[end + 2:]
+    voxels = numpy.frombuffer(payload[:count], dtype=numpy.uint8)
+    image = vtk.vtkImageData()
+    image.SetDimensions(*dims)
+    image.SetSpacing(*spacing)
+    array = numpy_to_vtk(voxels, deep=True, array_type=vtk.VTK_UNSIGNED_CHAR)
+    array.SetName("scalars")
+    image.GetPointData().SetScalars(array)
+    return image
+
+
+def read_volume(path):
+    if path.endswith(".vti"):
+        reader = vtk.vtkXMLImageDataReader()
+        reader.SetFileName(path)
+        reader.Update()
+        return reader.GetOutput()
+    return read_nrrd(path)
+
+
+def view_direction(azimuth_deg):
+    """From the volume's centre to the eye (vsil's default camera, src/core/camera.cpp: the eye
+    orbits the box centre at rotY(az)·rotX(-el)·(0, 0, d), +y up)."""
+    az, el = math.radians(azimuth_deg), math.radians(ELEVATION_DEG)
+    return (math.cos(el) * math.sin(az), math.sin(el), math.cos(el) * math.cos(az))
+
+
 def place_camera(camera, image, azimuth_deg):
-    """vsil's default view (src/core/camera.cpp): the eye orbits the box centre at
-    rotY(az)·rotX(-el)·(0, 0, d), d = bounding-sphere radius / sin(fov/2), +y up."""
+    """vsil's default view: d = bounding-sphere radius / sin(fov/2)."""
     dims = image.GetDimensions()
     spacing = image.GetSpacing()
     origin = image.GetOrigin()
@@ -67,12 +146,20 @@ def place_camera(camera, image, azimuth_deg):
     radius = 0.5 * math.sqrt(sum((dims[a] * spacing[a]) ** 2 for a in range(3)))
     distance = radius / math.sin(math.radians(FOV_Y_DEG) / 2)
     az, el = math.radians(azimuth_deg), math.radians(ELEVATION_DEG)
-    direction = (math.cos(el) * math.sin(az), math.sin(el), math.cos(el) * math.cos(az))
+    direction = view_direction(azimuth_deg)
     up = (-math.sin(el) * math.sin(az), math.cos(el), -math.sin(el) * math.cos(az))
     camera.SetFocalPoint(*centre)
     camera.SetPosition(*[centre[a] + distance * direction[a] for a in range(3)])
     camera.SetViewUp(*up)
     camera.SetViewAngle(FOV_Y_DEG)
+
+
+def vsil_step_world(image, azimuth_deg):
+    """vsil's distance between slices in world units: one voxel along the view direction,
+    anisotropic spacing counted (slicer.cpp planSlices: 1 / |d / spacing|)."""
+    d = view_direction(azimuth_deg)
+    spacing = image.GetSpacing()
+    return 1.0 / math.sqrt(sum((d[a] / spacing[a]) ** 2 for a in range(3)))
 
 
 def summary(ms):
@@ -86,28 +173,29 @@ def summary(ms):
     }
 
 
-def vtk_pipeline(volume_path, size):
+def vtk_pipeline(volume_path, size, window):
     """The VTK scene; returns frame(azimuth_deg) -> RGBA pixels, a PNG writer and facts."""
-    reader = vtk.vtkXMLImageDataReader()
-    reader.SetFileName(volume_path)
-    reader.Update()
-    image = reader.GetOutput()
+    image = read_volume(volume_path)
     lo, hi = image.GetScalarRange()
+    low, high = window
 
     mapper = vtk.vtkGPUVolumeRayCastMapper()
     mapper.SetInputData(image)
     mapper.SetBlendModeToMaximumIntensity()
     mapper.SetAutoAdjustSampleDistances(False)
-    mapper.SetSampleDistance(min(image.GetSpacing()))  # one sample per voxel, like vsil's 1 slice
     mapper.SetImageSampleDistance(1.0)
 
+    # vsil's window: black at LO, white from HI on; nothing at or below LO.
     colour = vtk.vtkColorTransferFunction()
-    colour.AddRGBPoint(lo, 0.0, 0.0, 0.0)
-    colour.AddRGBPoint(hi, 1.0, 1.0, 1.0)
+    colour.AddRGBPoint(min(lo, low), 0.0, 0.0, 0.0)
+    colour.AddRGBPoint(low, 0.0, 0.0, 0.0)
+    colour.AddRGBPoint(high, 1.0, 1.0, 1.0)
+    colour.AddRGBPoint(max(hi, high), 1.0, 1.0, 1.0)
     opacity = vtk.vtkPiecewiseFunction()
-    opacity.AddPoint(lo, 0.0)
-    opacity.AddPoint(lo + 1e-3 * (hi - lo), 1.0)
-    opacity.AddPoint(hi, 1.0)
+    opacity.AddPoint(min(lo, low), 0.0)
+    opacity.AddPoint(low, 0.0)
+    opacity.AddPoint(low + 1e-3 * (high - low), 1.0)
+    opacity.AddPoint(max(hi, high), 1.0)
     prop = vtk.vtkVolumeProperty()
     prop.SetColor(colour)
     prop.SetScalarOpacity(opacity)
@@ -120,23 +208,24 @@ def vtk_pipeline(volume_path, size):
     renderer = vtk.vtkRenderer()
     renderer.AddVolume(volume)
     renderer.SetBackground(0, 0, 0)
-    window = vtk.vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(size, size)
-    window.AddRenderer(renderer)
+    window_ = vtk.vtkRenderWindow()
+    window_.SetOffScreenRendering(1)
+    window_.SetSize(size, size)
+    window_.AddRenderer(renderer)
 
     def frame(azimuth_deg):
+        mapper.SetSampleDistance(vsil_step_world(image, azimuth_deg))
         place_camera(renderer.GetActiveCamera(), image, azimuth_deg)
         renderer.ResetCameraClippingRange()
-        window.Render()
+        window_.Render()
         pixels = vtk.vtkUnsignedCharArray()
-        window.GetRGBACharPixelData(0, 0, size - 1, size - 1, 0, pixels)  # waits for the frame
+        window_.GetRGBACharPixelData(0, 0, size - 1, size - 1, 0, pixels)  # waits for the frame
         return pixels
 
     def write_png(path):  # the first timed view, outside any timed region
         frame(ORBIT_START_DEG)
         grab = vtk.vtkWindowToImageFilter()
-        grab.SetInput(window)
+        grab.SetInput(window_)
         grab.ReadFrontBufferOff()
         grab.Update()
         writer = vtk.vtkPNGWriter()
@@ -146,12 +235,14 @@ def vtk_pipeline(volume_path, size):
 
     frame(ORBIT_START_DEG)  # creates the context, so that it can report itself
     gl = {}
-    for line in window.ReportCapabilities().splitlines():
+    for line in window_.ReportCapabilities().splitlines():
         for key in ("OpenGL vendor string", "OpenGL renderer string", "OpenGL version string"):
             if line.startswith(key):
                 gl[key.split()[1]] = line.split(":", 1)[1].strip()
-    facts = {"gl": gl, "value_range": [lo, hi], "sample_distance": mapper.GetSampleDistance()}
-    return frame, write_png, facts
+    facts = {"value_range": [lo, hi], "dims": list(image.GetDimensions()),
+             "spacing": list(image.GetSpacing()),
+             "sample_distance_first_view": vsil_step_world(image, ORBIT_START_DEG)}
+    return frame, write_png, facts, gl
 
 
 def measure_vtk(frame, frames, warmup):
@@ -170,41 +261,69 @@ def measure_vtk(frame, frames, warmup):
     return row
 
 
-def measure_vsil(vsil, datasets, size, frames, warmup):
+def measure_vsil(vsil, datasets, name, size, frames, warmup):
+    """vsil's MIP and DEMIP rows of one dv1 run (the columns take turns frame by frame)."""
     with tempfile.TemporaryDirectory() as tmp:
         json_path = os.path.join(tmp, "dv1.json")
-        command = [vsil, "bench", "--table", "dv1", "--only", "bonsai", "--datasets", datasets,
+        command = [vsil, "bench", "--table", "dv1", "--only", name, "--datasets", datasets,
                    "--sizes", str(size), "--frames", str(frames), "--warmup", str(warmup),
                    "--json", json_path]
         subprocess.run(command, check=True, stdout=sys.stderr)
         with open(json_path) as f:
             document = json.load(f)
-    mip = [r for r in document["rows"] if r.get("technique") == "mip" and "missing" not in r]
-    if len(mip) != 1 or mip[0].get("check") != "ok":
-        raise SystemExit(f"vsil bench gave no checked MIP row for bonsai: {document['rows']}")
-    row = {k: mip[0][k] for k in ("frames", "ms_median", "ms_min", "ms_max", "fps", "check")}
-    return row, document.get("machine")
+    rows = {}
+    for technique in ("mip", "demip"):
+        found = [r for r in document["rows"]
+                 if r.get("technique") == technique and "missing" not in r]
+        if len(found) != 1 or found[0].get("check") != "ok":
+            raise SystemExit(f"vsil bench gave no checked {technique} row for {name}: "
+                             f"{document['rows']}")
+        rows[technique] = {k: found[0][k] for k in
+                           ("frames", "ms_median", "ms_min", "ms_max", "fps", "slices", "check")}
+    return rows, document.get("machine")
 
 
-def write_vsil_png(vsil, datasets, size, path):
-    subprocess.run([vsil, "render", os.path.join(datasets, "bonsai.vti"), "--technique", "mip",
+def vsil_render(vsil, path, size, out_png, meta_json):
+    subprocess.run([vsil, "render", path, "--technique", "mip", "--background", "#000000",
                     "--size", f"{size}x{size}", "--view", f"{ORBIT_START_DEG:g},{ELEVATION_DEG:g}",
-                    "--out", path], check=True, stdout=sys.stderr)
+                    "--out", out_png, "--meta-out", meta_json], check=True, stdout=sys.stderr)
+    with open(meta_json) as f:
+        return json.load(f)
+
+
+def vsil_window(vsil, path):
+    """vsil's default window for the volume (from the histogram), [LO, HI] in data units."""
+    with tempfile.TemporaryDirectory() as tmp:
+        meta = vsil_render(vsil, path, 64, os.path.join(tmp, "w.png"),
+                           os.path.join(tmp, "w.json"))
+    window = meta["parameters"]["window"]
+    if isinstance(window, str):
+        window = [float(v) for v in window.split(",")]
+    return [float(window[0]), float(window[1])]
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--vsil", default="build/vsil", help="the vsil binary (default build/vsil)")
     parser.add_argument("--datasets", default="../shared/datasets")
+    parser.add_argument("--only", default=",".join(DATASETS),
+                        help="comma-separated dataset names (default: all five of dv1)")
     parser.add_argument("--size", type=int, default=512, help="square window side (default 512)")
     parser.add_argument("--frames", type=int, default=10, help="timed frames per block (default 10)")
     parser.add_argument("--warmup", type=int, default=2, help="untimed frames per block (default 2)")
     parser.add_argument("--rounds", type=int, default=3,
-                        help="VTK and vsil blocks alternate this many times, so that load from "
-                             "other processes falls on both alike (default 3)")
+                        help="VTK and vsil blocks alternate this many times per dataset, so that "
+                             "load from other processes falls on both alike (default 3)")
     parser.add_argument("--json", help="write the rows and the machine here")
-    parser.add_argument("--images", help="folder for vtk_mip_bonsai.png and vsil_mip_bonsai.png")
+    parser.add_argument("--images", help="folder for vtk_mip_NAME.png and vsil_mip_NAME.png "
+                                         "(the first timed view, both over black)")
     args = parser.parse_args()
+    names = [n for n in args.only.split(",") if n]
+    for n in names:
+        if n not in DATASETS:
+            raise SystemExit(f"--only: unknown dataset '{n}' (known: {', '.join(DATASETS)})")
+    if args.images:
+        os.makedirs(args.images, exist_ok=True)
 
     machine = {
         "cores": os.cpu_count(),
@@ -214,47 +333,63 @@ def main():
         "date": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
         "load_average": [load_average()],
     }
-    frame, write_vtk_png, facts = vtk_pipeline(os.path.join(args.datasets, "bonsai.vti"), args.size)
-    machine["vtk_gl"] = facts.pop("gl")
-    rounds = {"vtk": [], "vsil": []}
-    for r in range(args.rounds):
-        print(f"round {r + 1}/{args.rounds}: VTK", file=sys.stderr)
-        rounds["vtk"].append(measure_vtk(frame, args.frames, args.warmup))
-        machine["load_average"].append(load_average())
-        print(f"round {r + 1}/{args.rounds}: vsil", file=sys.stderr)
-        row, machine["vsil"] = measure_vsil(args.vsil, args.datasets, args.size, args.frames,
-                                            args.warmup)
-        rounds["vsil"].append(row)
-        machine["load_average"].append(load_average())
-    if args.images:
-        write_vtk_png(os.path.join(args.images, "vtk_mip_bonsai.png"))
-        write_vsil_png(args.vsil, args.datasets, args.size,
-                       os.path.join(args.images, "vsil_mip_bonsai.png"))
-
     rows = []
-    for name in ("vtk", "vsil"):
-        medians = [b["ms_median"] for b in rounds[name]]
-        median = statistics.median(medians)
-        rows.append({"table": "vtk-peer", "dataset": "bonsai", "width": args.size,
-                     "height": args.size, "technique": "mip", "renderer": name,
-                     "frames": sum(b["frames"] for b in rounds[name]), "ms_median": median,
-                     "fps": 1000.0 / median, "round_ms_medians": medians,
-                     "rounds": rounds[name], **(facts if name == "vtk" else {})})
-    ratio = rows[0]["ms_median"] / rows[1]["ms_median"]
+    for name in names:
+        path = os.path.join(args.datasets, DATASETS[name])
+        window = vsil_window(args.vsil, path)
+        frame, write_vtk_png, facts, gl = vtk_pipeline(path, args.size, window)
+        machine["vtk_gl"] = gl
+        blocks = {"vtk": [], "mip": [], "demip": []}
+        for r in range(args.rounds):
+            print(f"{name} round {r + 1}/{args.rounds}: VTK", file=sys.stderr)
+            blocks["vtk"].append(measure_vtk(frame, args.frames, args.warmup))
+            machine["load_average"].append(load_average())
+            print(f"{name} round {r + 1}/{args.rounds}: vsil", file=sys.stderr)
+            vsil_rows, machine["vsil"] = measure_vsil(args.vsil, args.datasets, name, args.size,
+                                                      args.frames, args.warmup)
+            blocks["mip"].append(vsil_rows["mip"])
+            blocks["demip"].append(vsil_rows["demip"])
+            machine["load_average"].append(load_average())
+        if args.images:
+            write_vtk_png(os.path.join(args.images, f"vtk_mip_{name}.png"))
+            with tempfile.TemporaryDirectory() as tmp:
+                vsil_render(args.vsil, path, args.size,
+                            os.path.join(args.images, f"vsil_mip_{name}.png"),
+                            os.path.join(tmp, "meta.json"))
+        row = {"table": "vtk-peer", "dataset": name, "width": args.size, "height": args.size,
+               "window": window, **facts}
+        for key, block in blocks.items():
+            medians = [b["ms_median"] for b in block]
+            row[key] = {"ms_median": statistics.median(medians), "round_ms_medians": medians,
+                        "frames": sum(b["frames"] for b in block), "rounds": block}
+        row["vtk_over_vsil_mip"] = row["vtk"]["ms_median"] / row["mip"]["ms_median"]
+        row["demip_over_mip"] = row["demip"]["ms_median"] / row["mip"]["ms_median"]
+        # Per round, from the same dv1 frames: the ratio of the round's medians.
+        row["demip_over_mip_rounds"] = [d["ms_median"] / m["ms_median"]
+                                        for d, m in zip(blocks["demip"], blocks["mip"])]
+        rows.append(row)
+        del frame, write_vtk_png
 
-    print(f"VTK {machine['vtk']} ({machine['vtk_gl'].get('renderer', '?')}), "
+    wins = sum(1 for r in rows if r["vtk_over_vsil_mip"] > 1.0)
+    print(f"VTK {machine['vtk']} ({machine.get('vtk_gl', {}).get('renderer', '?')}), "
           f"LP_NUM_THREADS={machine['LP_NUM_THREADS']}, {machine['cores']} cores, "
           f"{machine['date']}; load average (1, 5, 15 min) at start and after each block: "
           + " | ".join(machine["load_average"]))
-    print("| dataset | window | renderer | frames | ms/frame (median of rounds) | "
-          "round medians (ms) | fps |")
+    print("| dataset | window | VTK MIP ms (round medians) | vsil MIP ms (round medians) | "
+          "VTK/vsil | vsil DEMIP ms | DEMIP/MIP (rounds) |")
     print("| --- | --- | --- | --- | --- | --- | --- |")
     for r in rows:
-        round_ms = ", ".join(f"{m:.0f}" for m in r["round_ms_medians"])
-        print(f"| bonsai 256³ | {args.size}² | {r['renderer']} MIP | {r['frames']} | "
-              f"{r['ms_median']:.0f} | {round_ms} | {r['fps']:.2f} |")
-    print(f"VTK/vsil frame time: {ratio:.2f} ({'vsil' if ratio > 1 else 'VTK'} is faster)")
-    document = {"machine": machine, "rows": rows, "vtk_over_vsil_ms": ratio}
+        def cell(key):
+            rounds_ = ", ".join(f"{m:.0f}" for m in r[key]["round_ms_medians"])
+            return f"{r[key]['ms_median']:.0f} ({rounds_})"
+        dims = "×".join(str(d) for d in r["dims"])
+        ratios = ", ".join(f"{x:.2f}" for x in r["demip_over_mip_rounds"])
+        print(f"| {r['dataset']} {dims} | {r['window'][0]:g}..{r['window'][1]:g} | "
+              f"{cell('vtk')} | {cell('mip')} | {r['vtk_over_vsil_mip']:.2f} | "
+              f"{r['demip']['ms_median']:.0f} | {r['demip_over_mip']:.2f} ({ratios}) |")
+    print(f"vsil's MIP faster than VTK's on {wins} of {len(rows)} datasets "
+          f"(VTK/vsil > 1 in frame time); {args.size}², {args.frames} timed frames per block")
+    document = {"machine": machine, "rows": rows, "vsil_faster_on": wins}
     if args.json:
         with open(args.json, "w") as f:
             json.dump(document, f, indent=2)

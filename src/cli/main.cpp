@@ -1,6 +1,7 @@
 // vsil: volume silhouette illustration. Only this file turns errors into exit statuses:
 // 2 for bad input (files, flags, parameters), 1 for internal failures and for what this machine
-// lacks (UnavailableError: no usable OpenGL back end, a driver without a needed feature).
+// lacks (UnavailableError: no usable OpenGL back end, a driver without a needed feature), 3 when
+// a command finished with some of its parts failed (PartialFailure: tasks of `vsil sweep`).
 #include <exception>
 #include <iostream>
 #include <new>
@@ -11,6 +12,8 @@
 #include "mpi/mpi_world.h"
 
 namespace {
+
+constexpr int kPartialFailureStatus = 3;
 
 int run(int argc, char** argv) {
   // Ctrl-C, SIGTERM, SIGHUP: remove the temporary file of an output being written, then die
@@ -37,6 +40,9 @@ int run(int argc, char** argv) {
     if (vsil::mpi::rank() == 0) std::cerr << "vsil: " << e.what() << "\n";
     vsil::mpi::failAlike();
     return 1;
+  } catch (const vsil::PartialFailure& e) {
+    std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
+    return kPartialFailureStatus;
   } catch (const vsil::UnavailableError& e) {
     std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
     return 1;
@@ -55,5 +61,12 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   // Under mpirun or srun every rank runs this same command (src/mpi/mpi_world.h).
   vsil::mpi::initIfLaunched(&argc, &argv);
-  return vsil::mpi::finish(run(argc, argv));
+  const int status = run(argc, argv);
+  // A partial failure is an orderly end: every rank finished and the results were gathered, so
+  // MPI finalizes as usual (no MPI_Abort) and the status still says that some parts failed.
+  if (status == kPartialFailureStatus) {
+    vsil::mpi::finish(0);
+    return status;
+  }
+  return vsil::mpi::finish(status);
 }

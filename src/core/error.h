@@ -1,6 +1,7 @@
 #pragma once
 // Errors. Library code throws; only main() turns an error into an exit status:
-// InputError (bad files, flags, parameters: the user can fix it) exits 2, everything else 1.
+// InputError (bad files, flags, parameters: the user can fix it) exits 2, PartialFailure 3,
+// everything else 1.
 #include <stdexcept>
 #include <string>
 
@@ -17,6 +18,15 @@ class InputError : public std::runtime_error {
 // names what is missing and what to try instead, on one line, e.g. "--gl egl: no EGL device or
 // surfaceless platform (libEGL.so.1 not found); try --gl osmesa". Exits 1, printed as it is.
 class UnavailableError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The command did its work and wrote its results, but some parts of it failed, each reported
+// where its result is (`vsil sweep`: a task's row holds its error). Exits 3; under MPI every rank
+// ends in order (MPI_Finalize, not MPI_Abort), since the results were gathered. The message is
+// one line, e.g. "1 of 100 tasks failed (their rows in sweep.json say why)".
+class PartialFailure : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };

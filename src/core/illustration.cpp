@@ -394,6 +394,7 @@ bool isStyleFile(std::string_view text) {
 }
 
 IllustrationStyle loadStyle(const std::string& nameOrFile) {
+  if (isInlineSource(nameOrFile)) return parseStyleText(nameOrFile, "--style", {});
   if (isStyleFile(nameOrFile)) {
     const std::filesystem::path path(nameOrFile);
     return parseStyle(readJsonFile(nameOrFile), nameOrFile, path.parent_path());

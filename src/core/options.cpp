@@ -84,6 +84,10 @@ std::optional<std::vector<double>> parseNumberList(std::string_view text, int co
   return numbers;
 }
 
+bool isInlineSource(std::string_view text) {
+  return text.find('{') != std::string_view::npos;
+}
+
 std::string formatNumber(double number) {
   char buffer[32];
   const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, number);
@@ -300,6 +304,8 @@ OptionReader::OptionReader(const std::vector<OptionSpec>& specs, const OptionVal
       resolved_.emplace(spec.name, std::vector<std::string>{});
     } else if (spec.kind == OptionKind::Text) {
       resolved_.emplace(spec.name, std::string());
+    } else if (spec.kind == OptionKind::Number && !spec.defaultNote.empty()) {
+      // Not given, and no value stands for that (OptionSpec::defaultValue).
     } else {
       throw std::logic_error("option --" + spec.name + " has no default and none is derived");
     }
@@ -309,7 +315,8 @@ OptionReader::OptionReader(const std::vector<OptionSpec>& specs, const OptionVal
 const OptionValue& OptionReader::value(std::string_view name) const {
   const auto it = resolved_.find(name);
   if (it == resolved_.end()) {
-    throw std::logic_error("OptionReader: --" + std::string(name) + " is not declared");
+    throw std::logic_error("OptionReader: --" + std::string(name) +
+                           " is not declared, or has no value when not given (check given())");
   }
   return it->second;
 }
@@ -336,7 +343,12 @@ bool OptionReader::given(std::string_view name) const {
 nlohmann::json OptionReader::toJson() const {
   nlohmann::json json = nlohmann::json::object();
   for (const auto& spec : specs_) {
-    std::visit([&](const auto& v) { json[spec.key()] = v; }, resolved_.at(spec.name));
+    const auto it = resolved_.find(spec.name);
+    if (it == resolved_.end()) {
+      json[spec.key()] = nullptr;  // an option whose absence is its default
+      continue;
+    }
+    std::visit([&](const auto& v) { json[spec.key()] = v; }, it->second);
   }
   return json;
 }

@@ -33,7 +33,9 @@ struct OptionSpec {
   OptionKind kind = OptionKind::Number;
   std::string help;
   // The value when none is given. Unset: derived (see `derived`; defaultNote says how for the
-  // help), or empty for Text and List.
+  // help), or empty for Text and List; for a Number neither declared nor derived, nothing:
+  // leaving it out is its own behaviour (defaultNote says which; semantic's flatness), read
+  // only where OptionReader::given, null in toJson, None in Python.
   std::optional<OptionValue> defaultValue;
   // VolumeIso: the volume's default iso value. RangeFraction: `rangeFraction` of the width of
   // the volume's value range (a tolerance in data units that scales with the data).
@@ -88,6 +90,11 @@ std::optional<std::vector<double>> parseNumberList(std::string_view text, int co
 std::string formatNumberList(const std::vector<double>& numbers);
 // The shortest text that reads back to the same double (what error messages quote).
 std::string formatNumber(double number);
+// Whether a --tf, --style or --rules value is the content itself (a JSON list or object, rule
+// text) rather than a preset name or a file: it holds '{', which no preset name holds and every
+// transfer function, style and rule base does (a point, an object, an attribute block). The
+// Python package passes tf=[{...}], style={...} and rule text this way.
+bool isInlineSource(std::string_view text);
 
 // Option values by name, as given (defaults are not stored here).
 using OptionValues = std::map<std::string, OptionValue, std::less<>>;

@@ -920,6 +920,9 @@ bool isRulesFile(std::string_view text) {
 }
 
 RuleBase loadRulesPreset(const std::string& nameOrFile) {
+  // Rule text itself (it holds an attribute block's '{'); a spheres PNG it names is read from
+  // the working directory.
+  if (isInlineSource(nameOrFile)) return parseRulesText(nameOrFile, "--rules", {});
   if (isRulesFile(nameOrFile)) return loadRules(nameOrFile);
   const auto names = rulePresetNames();
   if (std::find(names.begin(), names.end(), nameOrFile) == names.end()) {

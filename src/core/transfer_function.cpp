@@ -156,12 +156,15 @@ TransferFunction transferFunctionPreset(const std::string& name, const DerivedDe
 
 TransferFunction transferFunctionOption(const std::string& nameOrFile,
                                         const DerivedDefaults& volume) {
+  if (isInlineSource(nameOrFile)) return parseTransferFunctionText(nameOrFile, "--tf");
   if (isTransferFunctionFile(nameOrFile)) return loadTransferFunction(nameOrFile);
   return transferFunctionPreset(nameOrFile, volume);
 }
 
 void checkTransferFunctionOption(const std::string& nameOrFile) {
-  if (isTransferFunctionFile(nameOrFile)) {
+  if (isInlineSource(nameOrFile)) {
+    parseTransferFunctionText(nameOrFile, "--tf");
+  } else if (isTransferFunctionFile(nameOrFile)) {
     loadTransferFunction(nameOrFile);  // InputError naming the file
   } else {
     checkPresetName(nameOrFile);

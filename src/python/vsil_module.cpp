@@ -9,13 +9,14 @@
 //
 // Keyword arguments become the command line's flags (width_near=4 -> --width-near 4) and are
 // parsed by the CLI's own table (cli/cli_render_options.h), so the two cannot drift apart.
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -33,14 +34,18 @@
 #include "cli/volume_summary.h"
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/number_pair.h"
 #include "core/version.h"
 #include "core/volume.h"
 #include "io/sample_sink.h"
 #include "io/volume_loader.h"
+#include "job/animation.h"
+#include "job/gl_turn.h"
 #include "job/render_job.h"
 #include "postfx/broaden.h"
 #include "postfx/line_width.h"
 #include "slicing/technique_table.h"
+#include "video/video_file.h"
 
 namespace py = pybind11;
 
@@ -79,7 +84,8 @@ struct PyVolume {
 
 template <typename C>
 bool borrowIfType(Volume& volume, const py::array& array, std::shared_ptr<void> keepAlive) {
-  if (!py::isinstance<py::array_t<C>>(array) || !array.dtype().is(py::dtype::of<C>())) {
+  // By equality: a native dtype may be another object than numpy's canonical one ('=f4').
+  if (!array.dtype().equal(py::dtype::of<C>())) {
     return false;
   }
   // vsil never writes a volume's samples once it is made, so read-only arrays (memory maps,
@@ -100,25 +106,69 @@ void requireFiniteSamples(const Volume& volume) {
   });
 }
 
-PyVolume wrapArray(const py::array& array, std::vector<double> spacing, std::string name) {
-  if (array.ndim() != 3) {
-    throw InputError("vsil.Volume: expected a 3-dimensional array (z, y, x), got " +
-                     std::to_string(array.ndim()) + " dimensions");
+// The supported dtype nearest to an array's: float64 and float16 -> float32, integers wider
+// than 16 bits -> float32 (exact while |v| <= 2^24), bool -> uint8; supported ones as they are
+// (in native byte order). None for dtypes no number converts from (complex, object, str).
+std::optional<py::dtype> supportedDtype(const py::dtype& dtype) {
+  const char kind = py::str(dtype.attr("kind")).cast<std::string>()[0];
+  const py::ssize_t size = dtype.itemsize();
+  if (kind == 'b') return py::dtype::of<std::uint8_t>();
+  if (kind == 'f') return py::dtype::of<float>();
+  if (kind == 'i' && size == 1) return py::dtype::of<std::int8_t>();
+  if (kind == 'i' && size == 2) return py::dtype::of<std::int16_t>();
+  if (kind == 'u' && size == 1) return py::dtype::of<std::uint8_t>();
+  if (kind == 'u' && size == 2) return py::dtype::of<std::uint16_t>();
+  if (kind == 'i' || kind == 'u') return py::dtype::of<float>();
+  return std::nullopt;
+}
+
+// The array as vsil reads it: shared when it is C-contiguous, of a supported dtype and in native
+// byte order; otherwise copied once into one (numpy.ascontiguousarray), with a UserWarning that
+// says why (the dtype converted, the bytes swapped, the strides).
+py::array samplesArray(const py::array& array) {
+  const py::dtype dtype = array.dtype();
+  const std::optional<py::dtype> target = supportedDtype(dtype);
+  const std::string from = py::str(dtype.attr("name"));
+  if (!target) {
+    throw InputError("vsil.Volume: samples of dtype " + from +
+                     " are not supported (uint8, int8, uint16, int16, float32, or a real or "
+                     "boolean dtype that converts to one)");
   }
+  std::vector<std::string> why;
+  if (from != std::string(py::str(target->attr("name")))) {
+    why.push_back(from + " samples converted to " + std::string(py::str(target->attr("name"))) +
+                  (from.find("int") != std::string::npos ? " (exact while |v| <= 2^24)" : ""));
+  }
+  if (!dtype.attr("isnative").cast<bool>()) why.push_back("big-endian samples byte-swapped");
   if (!(array.flags() & py::array::c_style)) {
-    throw InputError(
-        "vsil.Volume: the array is not C-contiguous; pass numpy.ascontiguousarray(a) (a copy)");
+    why.push_back("a non-C-contiguous array (strides " +
+                  std::string(py::str(array.attr("strides"))) + ") copied into C order");
+  }
+  if (why.empty()) return array;
+  std::string message = "vsil.Volume: ";
+  for (std::size_t i = 0; i < why.size(); ++i) message += (i ? "; " : "") + why[i];
+  message += ": one copy of " + std::to_string(array.size() * target->itemsize()) +
+             " bytes (the Volume reads the copy, not the array)";
+  if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+  return py::module_::import("numpy").attr("ascontiguousarray")(array, *target);
+}
+
+PyVolume wrapArray(const py::array& given, std::vector<double> spacing, std::string name) {
+  if (given.ndim() != 3) {
+    throw InputError("vsil.Volume: expected a 3-dimensional array (z, y, x), got " +
+                     std::to_string(given.ndim()) + " dimensions");
   }
   if (spacing.size() != 3 || !(spacing[0] > 0 && spacing[1] > 0 && spacing[2] > 0)) {
     throw InputError("vsil.Volume: spacing must be three positive numbers (x, y, z)");
   }
   for (int axis = 0; axis < 3; ++axis) {
-    if (array.shape(axis) < 1 || array.shape(axis) > limits::kMaxVolumeSide) {
+    if (given.shape(axis) < 1 || given.shape(axis) > limits::kMaxVolumeSide) {
       throw InputError("vsil.Volume: each axis must have 1 .. " +
                        std::to_string(limits::kMaxVolumeSide) + " samples, not " +
-                       std::to_string(array.shape(axis)));
+                       std::to_string(given.shape(axis)));
     }
   }
+  const py::array array = samplesArray(given);
   auto volume = std::make_shared<Volume>();
   volume->name = name;
   volume->source = "<numpy array>";
@@ -134,9 +184,7 @@ PyVolume wrapArray(const py::array& array, std::vector<double> spacing, std::str
       !borrowIfType<std::uint16_t>(*volume, array, keepAlive) &&
       !borrowIfType<std::int16_t>(*volume, array, keepAlive) &&
       !borrowIfType<float>(*volume, array, keepAlive)) {
-    throw InputError("vsil.Volume: samples of dtype " + std::string(py::str(array.dtype())) +
-                     " are not supported (uint8, int8, uint16, int16, float32; convert with "
-                     "a.astype(numpy.float32))");
+    throw std::logic_error("vsil.Volume: samplesArray gave an unsupported dtype");
   }
   requireFiniteSamples(*volume);
   return {volume, array};
@@ -182,6 +230,14 @@ struct Keyword {
   int numberCount = 0;  // text holding this many numbers ("AZ,EL": 2); 0 otherwise
 };
 
+// A text keyword of the module's own (not a flag): animate's view_from, video, sweep ends.
+Keyword textKeyword(std::string key) {
+  Keyword keyword;
+  keyword.key = std::move(key);
+  keyword.kind = "text";
+  return keyword;
+}
+
 const OptionSpec* techniqueSpec(const std::string& name) {
   static const std::map<std::string, const OptionSpec*> specs = [] {
     std::map<std::string, const OptionSpec*> all;
@@ -210,7 +266,7 @@ py::object defaultFromText(const std::string& text, std::string_view kind) {
       for (std::size_t i = 0; i < numbers->size(); ++i) {
         const double n = (*numbers)[i];
         tuple[i] = n == std::floor(n) && std::abs(n) < 1e15 ? py::object(py::int_(std::llround(n)))
-                                                             : py::object(py::float_(n));
+                                                            : py::object(py::float_(n));
       }
       return tuple;
     }
@@ -241,8 +297,7 @@ Keyword describeKeyword(const CLI::Option& option) {
                                          ? py::object(py::int_(std::lround(value)))
                                          : py::object(py::float_(value));
             } else if constexpr (std::is_same_v<T, std::string>) {
-              keyword.defaultValue =
-                  spec->numberCount > 0 ? defaultFromText(value, "text") : py::str(value);
+              keyword.defaultValue = defaultFromText(value, "text");
             }
           },
           *spec->defaultValue);
@@ -262,8 +317,9 @@ Keyword describeKeyword(const CLI::Option& option) {
   }
   // CLI11's type names: FLOAT, INT, INT:NONNEGATIVE, TEXT, TEXT:{a,b,c}.
   const std::string type = option.get_type_name();
-  keyword.kind = type.rfind("FLOAT", 0) == 0 ? "number" : type.rfind("INT", 0) == 0 ? "integer"
-                                                                                    : "text";
+  keyword.kind = type.rfind("FLOAT", 0) == 0 ? "number"
+                 : type.rfind("INT", 0) == 0 ? "integer"
+                                             : "text";
   if (const auto open = type.find(":{"); open != std::string::npos) {
     keyword.kind = "choice";
     std::string list = type.substr(open + 2, type.size() - open - 3);
@@ -295,15 +351,135 @@ std::string typeNameOf(const py::handle& value) {
 
 bool isNumber(const py::handle& value) {
   return !py::isinstance<py::bool_>(value) && !py::isinstance<py::str>(value) &&
-         (PyLong_Check(value.ptr()) || PyFloat_Check(value.ptr()) ||
-          PyIndex_Check(value.ptr()) || py::hasattr(value, "__float__"));
+         (PyLong_Check(value.ptr()) || PyFloat_Check(value.ptr()) || PyIndex_Check(value.ptr()) ||
+          py::hasattr(value, "__float__"));
 }
 
-// One value as the command line writes it: str as it is, os.PathLike by os.fspath, a number by
-// Python's shortest round-trip text, a sequence of numbers or texts joined ("30,20"; "640x480"
-// for size, "8x7x6" for dims). Anything else is a TypeError naming the keyword.
-std::string valueText(const Keyword& keyword, const py::handle& value, const std::string& function) {
+// ---- native values: each converted here, once, into the text its flag takes ----
+
+bool isSequence(const py::handle& value) {
+  return py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value);
+}
+
+// The colour flags (--background, --line-color, --fill-color, --color, --sketch-color).
+bool isColourKeyword(const Keyword& keyword) {
+  return keyword.key == "background" || keyword.key.ends_with("color");
+}
+
+// (r, g, b) or (r, g, b, a) in [0, 1], matplotlib's convention -> "#rrggbb[aa]", each channel
+// round(255 v): the text parseColor reads back to the same 8-bit channels.
+std::string colourText(const Keyword& keyword, const py::handle& value,
+                       const std::string& function) {
+  const py::sequence channels = py::reinterpret_borrow<py::sequence>(value);
+  if (channels.size() != 3 && channels.size() != 4) {
+    throw InputError(function + ": " + keyword.key + " takes 3 or 4 numbers (r, g, b[, a]) in " +
+                     "[0, 1], not " + std::to_string(channels.size()));
+  }
+  std::string text = "#";
+  for (const py::handle channel : channels) {
+    if (!isNumber(channel)) {
+      throw PythonTypeError(function + ": " + keyword.key + " takes numbers in [0, 1], not " +
+                            typeNameOf(channel) + " items");
+    }
+    const double v = py::float_(py::reinterpret_borrow<py::object>(channel));
+    if (!(v >= 0 && v <= 1)) {
+      throw InputError(function + ": " + keyword.key + " takes channels in [0, 1], not " +
+                       std::string(py::str(channel)) + " (for 0 .. 255 values divide by 255)");
+    }
+    char hex[3];
+    std::snprintf(hex, sizeof hex, "%02x", int(std::lround(v * 255)));
+    text += hex;
+  }
+  return text;
+}
+
+bool isSliceOrSlices(const py::handle& value) {
+  if (py::isinstance<py::slice>(value)) return true;
+  if (!py::isinstance<py::tuple>(value) || py::len(value) == 0) return false;
+  for (const py::handle item : value) {
+    if (!py::isinstance<py::slice>(item)) return false;
+  }
+  return true;
+}
+
+// A slice or a tuple of up to 3 slices in numpy's axis order (z, y, x), as they index
+// Volume.data (missing trailing axes whole, as numpy's a[s]) -> --crop "X0:X1,Y0:Y1,Z0:Z1":
+// load(path, crop=numpy.s_[2:5, :, 1:4]).data == load(path).data[2:5, :, 1:4]. Negative
+// bounds are not resolved against the size (the flag refuses them), and a step is stride's.
+std::string cropText(const py::handle& value, const std::string& function) {
+  std::vector<py::object> slices;
+  if (py::isinstance<py::slice>(value)) {
+    slices.push_back(py::reinterpret_borrow<py::object>(value));
+  } else {
+    for (const py::handle item : value) slices.push_back(py::reinterpret_borrow<py::object>(item));
+  }
+  if (slices.size() > 3) {
+    throw InputError(function + ": crop takes up to 3 slices (z, y, x), not " +
+                     std::to_string(slices.size()));
+  }
+  std::string axes[3];  // x, y, z
+  for (std::size_t i = 0; i < 3; ++i) {
+    std::string& axis = axes[2 - i];
+    if (i >= slices.size()) {
+      axis = ":";
+      continue;
+    }
+    const py::object& slice = slices[i];
+    const py::object step = slice.attr("step");
+    if (!step.is_none() && !step.equal(py::int_(1))) {
+      throw InputError(function +
+                       ": crop's slices take no step (read every Nth sample with "
+                       "stride=N)");
+    }
+    const auto bound = [&](const char* which) {
+      const py::object b = slice.attr(which);
+      if (b.is_none()) return std::string();
+      if (!PyIndex_Check(b.ptr())) {
+        throw PythonTypeError(function + ": crop's slice bounds are integers, not " +
+                              typeNameOf(b));
+      }
+      return std::string(py::str(py::reinterpret_steal<py::object>(PyNumber_Index(b.ptr()))));
+    };
+    axis = bound("start") + ":" + bound("stop");
+  }
+  return axes[0] + "," + axes[1] + "," + axes[2];
+}
+
+// param={"k_ty": 0.4, "k_ds": 0.5} -> "k_ty=0.4,k_ds=0.5".
+std::string parameterText(const py::dict& parameters) {
+  std::string text;
+  for (const auto& [name, value] : parameters) {
+    text +=
+        (text.empty() ? "" : ",") + std::string(py::str(name)) + "=" + std::string(py::str(value));
+  }
+  return text;
+}
+
+bool isDictOrDicts(const py::handle& value) {
+  if (py::isinstance<py::dict>(value)) return true;
+  if (!isSequence(value) || py::len(value) == 0) return false;
+  for (const py::handle item : value) {
+    if (!py::isinstance<py::dict>(item)) return false;
+  }
+  return true;
+}
+
+// One value as the command line writes it: str as it is (rule text too: --rules takes it),
+// os.PathLike by os.fspath, a number by Python's shortest round-trip text, an RGB(A) tuple for a
+// colour, slices for crop, a dict for param, a dict or list of dicts (tf=[{"value": 0, ...}],
+// style={...}) as its JSON text, a sequence of numbers or texts joined ("30,20"; "640x480" for
+// size, "8x7x6" for dims). Anything else is a TypeError naming the keyword.
+std::string valueText(const Keyword& keyword, const py::handle& value,
+                      const std::string& function) {
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (keyword.key == "crop" && isSliceOrSlices(value)) return cropText(value, function);
+  if (isColourKeyword(keyword) && isSequence(value)) return colourText(keyword, value, function);
+  if (keyword.key == "param" && py::isinstance<py::dict>(value)) {
+    return parameterText(py::reinterpret_borrow<py::dict>(value));
+  }
+  if (keyword.kind == "text" && isDictOrDicts(value)) {
+    return py::str(py::module_::import("json").attr("dumps")(value));
+  }
   if (py::hasattr(value, "__fspath__")) {
     return py::module_::import("os").attr("fspath")(value).cast<std::string>();
   }
@@ -348,7 +524,8 @@ void appendFlag(std::vector<std::string>& args, const Keyword& keyword, const py
   if (py::isinstance<py::bool_>(value)) {
     throw PythonTypeError(function + ": " + keyword.key + " takes a value, not a bool");
   }
-  if (keyword.kind == "list" && (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value))) {
+  if (keyword.kind == "list" &&
+      (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value))) {
     bool ofItems = false;
     for (const py::handle item : value) ofItems = ofItems || !isNumber(item);
     if (ofItems) {
@@ -371,9 +548,10 @@ void parseKeywords(CLI::App& app, const py::kwargs& kwargs, const std::string& f
     const std::string name = key.cast<std::string>();
     std::string flag = "--" + name;
     for (char& c : flag) c = c == '_' ? '-' : c;
-    const CLI::Option* option = name.empty() || name == "help" || name.find('-') != std::string::npos
-                                    ? nullptr
-                                    : app.get_option_no_throw(flag);
+    const CLI::Option* option =
+        name.empty() || name == "help" || name.find('-') != std::string::npos
+            ? nullptr
+            : app.get_option_no_throw(flag);
     if (!option) throw PythonTypeError(function + ": unknown keyword '" + name + "'");
     appendFlag(args, describeKeyword(*option), value, function);
   }
@@ -477,8 +655,7 @@ py::object info(const py::object& input, const py::kwargs& kwargs) {
                           typeNameOf(input));
   }
   const std::string spec = input.cast<std::string>();
-  const LoadOptions options =
-      cli::summaryLoadOptions(loadOptionsFromKeywords(kwargs, "vsil.info"));
+  const LoadOptions options = cli::summaryLoadOptions(loadOptionsFromKeywords(kwargs, "vsil.info"));
   Volume loaded;
   nlohmann::ordered_json json;
   {
@@ -495,9 +672,10 @@ py::object info(const py::object& input, const py::kwargs& kwargs) {
 // ---- rendering ----
 
 struct Frame {
-  py::array image;  // H x W x 4 uint8, RGBA
-  py::array state;  // H x W uint8, PixelState (0 empty, 1 filled, 2 contour, 3 silhouette)
-  py::array depth;  // H x W float32, normalized depth, NaN where none
+  py::array image;   // H x W x 4 uint8, RGBA
+  py::object state;  // H x W uint8, PixelState (0 empty, 1 filled, 2 contour, 3 silhouette); None
+  py::object depth;  // H x W float32, normalized depth, NaN where none; None
+                     // (None: the technique makes none, as TechniqueInfo::outputs says)
   py::object metadata;
   std::vector<std::string> warnings;
 };
@@ -514,31 +692,27 @@ py::array arrayFromMat(const cv::Mat& mat, int channels) {
 
 // ---- GL turns ----
 
-// GL state is process-wide (the function pointers of slicing/gl.h; a context current on one
-// thread only), so every GL call of the module, from any thread and any Renderer, happens under
-// this one lock: renders from several threads wait their turn (llvmpipe uses every core for
-// each frame anyway). A turn ends by releasing its context, so that the next turn may make any
-// context current on any thread.
-std::mutex& glMutex() {
-  static std::mutex mutex;
-  return mutex;
-}
-
-// One turn: releases the GIL first, then waits for the lock. Never the other way round: a thread
-// holding the lock may need the GIL (the last reference to a numpy array a volume borrowed), so
-// a thread holding the GIL must not wait for the lock.
+// One turn (job/gl_turn.h: every GL call of the module, from any thread and any Renderer, under
+// one lock; renders from several threads wait their turn, llvmpipe uses every core for each
+// frame anyway). It releases the GIL first, then waits for the lock. Never the other way round:
+// a thread holding the lock may need the GIL (the last reference to a numpy array a volume
+// borrowed), so a thread holding the GIL must not wait for the lock.
 class GlTurn {
  public:
-  explicit GlTurn(RenderJob* job) : job_(job), lock_(glMutex()) {}
-  ~GlTurn() {
-    if (job_) job_->context().releaseCurrent();
-  }
-  void setJob(RenderJob* job) { job_ = job; }  // a job made during the turn
+  explicit GlTurn(RenderJob* job) : turn_(job) {}
+  void setJob(RenderJob* job) { turn_.setJob(job); }  // a job made during the turn
 
  private:
   py::gil_scoped_release release_;  // destroyed last: the GIL comes back after the unlock
-  RenderJob* job_;
-  std::unique_lock<std::mutex> lock_;
+  vsil::GlTurn turn_;
+};
+
+// A RenderJob and what its textures hold: the volume, when given as a Volume, and its bricks'
+// limit. Read and written during turns only.
+struct Slot {
+  std::unique_ptr<RenderJob> job;
+  std::shared_ptr<Volume> uploaded;
+  std::uint64_t uploadedTextureBytes = limits::kMaxTextureBytes;
 };
 
 class PythonRenderer {
@@ -548,123 +722,334 @@ class PythonRenderer {
     cli::GlOptions options;
     cli::addGlOptions(app, options);
     parseKeywords(app, kwargs, "vsil.Renderer");
-    const gl::ContextOptions context = cli::toContextOptions(options);
+    context_ = cli::toContextOptions(options);
     GlTurn turn(nullptr);
-    job_ = std::make_unique<RenderJob>(context);
-    turn.setJob(job_.get());
+    main_.job = std::make_unique<RenderJob>(context_);
+    turn.setJob(main_.job.get());
   }
 
   ~PythonRenderer() { close(); }
 
-  // Ends the context and frees the volume's textures now; later calls raise ValueError.
+  // Ends the contexts and frees the volumes' textures now; later calls raise ValueError.
   void close() {
-    if (!job_) return;
+    if (!main_.job) return;
+    std::vector<std::shared_ptr<Slot>> resident;
+    for (auto& [volume, slot] : resident_) resident.push_back(std::move(slot));
+    resident_.clear();
+    for (auto& slot : resident) release(slot);
     GlTurn turn(nullptr);  // the job's destructor makes its context current to delete objects
-    job_.reset();
-    uploaded_.reset();
+    main_ = Slot{};
   }
 
-  bool closed() const { return !job_; }
+  bool closed() const { return !main_.job; }
 
   // What `--meta-out` writes under "gl": backend, platform, renderer, version, ...
   py::object glInfo() const { return jsonToPython(gl::contextInfoJson(job().context().info())); }
 
   // Uploads `volume` now (render does it when the volume changes; call this after changing a
-  // volume's samples in place), in bricks of the last render's max_texture_mib.
+  // volume's samples in place), in bricks of the last render's max_texture_mib; into its own
+  // textures when it is resident.
   void upload(const PyVolume& volume) {
-    RenderJob& job = this->job();
-    const std::shared_ptr<Volume> samples = volume.volume;
-    GlTurn turn(&job);
-    uploadInBricks(job, samples, uploadedTextureBytes_);
+    job();
+    std::shared_ptr<Slot> resident = residentSlot(volume.volume);
+    Slot& slot = resident ? *resident : main_;
+    {
+      GlTurn turn(slot.job.get());
+      uploadInBricks(slot, volume.volume, slot.uploadedTextureBytes);
+    }
+    release(resident);
   }
 
+  // Keeps `volume` resident: its own context and textures (one upload now), used by every
+  // render of it until remove_volume, so that switching between resident volumes uploads
+  // nothing. The main context serves every other volume, replacing its texture on each switch.
+  void addVolume(const PyVolume& volume, std::optional<int> maxTextureMib) {
+    job();
+    if (resident_.count(volume.volume)) return;
+    if (maxTextureMib && !(*maxTextureMib >= 1)) {
+      throw InputError("vsil.Renderer.add_volume: max_texture_mib must be 1 or more");
+    }
+    const std::uint64_t textureBytes =
+        maxTextureMib ? std::uint64_t(*maxTextureMib) << 20 : limits::kMaxTextureBytes;
+    auto slot = std::make_shared<Slot>();
+    {
+      GlTurn turn(nullptr);
+      slot->job = std::make_unique<RenderJob>(context_);
+      turn.setJob(slot->job.get());
+      uploadInBricks(*slot, volume.volume, textureBytes);
+    }
+    resident_.emplace(volume.volume, std::move(slot));  // with the GIL, as every reader
+  }
+
+  void removeVolume(const PyVolume& volume) {
+    job();
+    const auto it = resident_.find(volume.volume);
+    if (it == resident_.end()) {
+      throw InputError("vsil.Renderer.remove_volume: the volume is not resident (add_volume)");
+    }
+    std::shared_ptr<Slot> slot = std::move(it->second);
+    resident_.erase(it);
+    release(slot);
+  }
+
+  std::size_t residentCount() const { return resident_.size(); }
+  std::uint64_t uploads() const { return uploads_; }
+
   Frame render(const py::object& input, const py::kwargs& kwargs) {
-    RenderJob& job = this->job();
+    const Request request = prepare(input, kwargs, "vsil.Renderer.render");
+    std::shared_ptr<Slot> resident = request.volume ? residentSlot(request.volume) : nullptr;
+    Slot& slot = resident ? *resident : main_;
+    RenderOutput output;
+    Held held;
+    {
+      // Upload (or load) and render in one turn: another thread's turn in between could
+      // replace the volume this Renderer holds.
+      GlTurn turn(slot.job.get());
+      held = holdVolume(slot, request);
+      output = slot.job->render(request.render, request.load.limits);
+    }
+    Frame frame = makeFrame(output, request.render, held);
+    release(resident);
+    return frame;
+  }
+
+  // `vsil animate`'s frames (job/animation.h's AnimationPlan, the same code path): an orbit,
+  // a view moving from view_from to view_to, sweeps {"iso": (0.3, 0.6)} or ["iso=0.3:0.6"];
+  // a video file as --video writes it (video/video_file.h); the frames as Frames (keep_frames).
+  py::list animate(const py::object& input, long long frames, double orbit,
+                   const py::object& viewFrom, const py::object& viewTo, const py::object& sweep,
+                   const py::object& video, double fps, bool keepFrames, const py::kwargs& kwargs) {
+    const std::string function = "vsil.Renderer.animate";
+    Request request = prepare(input, kwargs, function);
+    request.render.settings.readDepth = false;  // as vsil animate: frames are images only
+    AnimationSpec spec;
+    spec.frames = frames;
+    spec.orbitDeg = orbit;
+    const Keyword pair = textKeyword("view_from");
+    if (viewFrom.is_none() != viewTo.is_none()) {
+      throw InputError(function + ": give view_from and view_to together");
+    }
+    if (!viewFrom.is_none()) {
+      spec.viewFrom = parseNumberPair("--view-from", valueText(pair, viewFrom, function));
+      spec.viewTo = parseNumberPair("--view-to", valueText(pair, viewTo, function));
+    }
+    for (const std::string& text : sweepTexts(sweep, function)) {
+      spec.sweeps.push_back(parseSweep(text));
+    }
+    const AnimationPlan plan(request.render, spec, request.load.limits);
+    std::string videoPath;
+    if (!video.is_none()) {
+      videoPath = valueText(textKeyword("video"), video, function);
+      VideoFile::checkTarget("--video", videoPath, request.render.settings.size, fps);
+    }
+    std::shared_ptr<Slot> resident = request.volume ? residentSlot(request.volume) : nullptr;
+    Slot& slot = resident ? *resident : main_;
+    std::vector<RenderOutput> outputs;
+    Held held;
+    {
+      GlTurn turn(slot.job.get());
+      held = holdVolume(slot, request);
+      std::optional<VideoFile> file;
+      if (!videoPath.empty()) file.emplace(videoPath, request.render.settings.size, fps);
+      for (int i = 0; i < plan.frames(); ++i) {
+        RenderOutput output = slot.job->render(plan.request(i), request.load.limits);
+        if (file) file->write(output.image);
+        output.metadata["swept"] = plan.sweptValues(i);
+        if (keepFrames) outputs.push_back(std::move(output));
+      }
+      if (file) file->finish();
+    }
+    py::list result;
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+      result.append(makeFrame(outputs[i], plan.request(int(i)), i == 0 ? held : Held{}));
+    }
+    release(resident);
+    return result;
+  }
+
+ private:
+  // A render's request as the flags give it, and what it renders.
+  struct Request {
+    RenderRequest render;
+    LoadOptions load;
+    std::string spec;                // a path or gen: spec read in the turn, or ""
+    std::shared_ptr<Volume> volume;  // a Volume, or null
+  };
+  // What holding the volume took and what it is, for the metadata.
+  struct Held {
+    nlohmann::json dataset = nlohmann::json::object();  // read, file (as --meta-out)
+    StageTime read, upload;
+  };
+
+  Request prepare(const py::object& input, const py::kwargs& kwargs, const std::string& function) {
+    job();
     // Flags that choose what render does not own here: the context is the Renderer's, and a
     // Volume is read already.
     const bool isPath = py::isinstance<py::str>(input);
     for (const char* key : {"gl", "gl_device"}) {
       if (kwargs.contains(key)) {
-        throw InputError("vsil.Renderer.render: " + std::string(key) +
+        throw InputError(function + ": " + std::string(key) +
                          " is chosen when the Renderer is made: vsil.Renderer(" + key + "=...)");
       }
     }
     for (const char* key : {"dims", "type", "spacing", "endian", "crop", "stride", "series"}) {
       if (!isPath && kwargs.contains(key)) {
-        throw InputError("vsil.Renderer.render: " + std::string(key) +
+        throw InputError(function + ": " + std::string(key) +
                          " applies when a file is read: vsil.load(path, " + key + "=...)");
       }
     }
     CLI::App app;
     cli::RenderFlags flags;
     cli::addRenderOptions(app, flags);
-    parseKeywords(app, kwargs, "vsil.Renderer.render");
-    const RenderRequest request = cli::toRenderRequest(flags);
-    const LoadOptions loadOptions = cli::toLoadOptions(flags.volume);
-    RenderJob::checkRequest(request, loadOptions.limits);
-    const std::string spec = isPath ? input.cast<std::string>() : std::string();
+    parseKeywords(app, kwargs, function);
+    Request request;
+    request.render = cli::toRenderRequest(flags);
+    request.load = cli::toLoadOptions(flags.volume);
+    RenderJob::checkRequest(request.render, request.load.limits);
     if (!isPath && !py::isinstance<PyVolume>(input)) {
-      throw PythonTypeError("vsil.Renderer.render: volume must be a vsil.Volume, a path or a "
-                            "gen: spec, not " + typeNameOf(input));
+      throw PythonTypeError(function +
+                            ": volume must be a vsil.Volume, a path or a gen: spec, "
+                            "not " +
+                            typeNameOf(input));
     }
-    const std::shared_ptr<Volume> volume =
-        isPath ? nullptr : input.cast<const PyVolume&>().volume;
+    if (isPath) {
+      request.spec = input.cast<std::string>();
+    } else {
+      request.volume = input.cast<const PyVolume&>().volume;
+    }
+    return request;
+  }
 
-    RenderOutput output;
-    {
-      // Upload (or load) and render in one turn: another thread's turn in between could
-      // replace the volume this Renderer holds.
-      GlTurn turn(&job);
-      if (isPath) {
-        // Read on every call (the file may have changed); a sweep loads once with vsil.load.
-        loadOrNotFound(
-            [&]() -> const Volume& {
-              return job.load(spec, RenderJob::loadOptionsFor(request, loadOptions));
-            },
-            spec);
-        uploaded_.reset();
-      } else {
-        const std::uint64_t textureBytes = loadOptions.limits.maxTextureBytes;
-        if (volume != uploaded_ || textureBytes != uploadedTextureBytes_) {
-          uploadInBricks(job, volume, textureBytes);
-        }
-      }
-      output = job.render(request, loadOptions.limits);
+  // During a turn: reads the path (on every call: the file may have changed; a sweep loads
+  // once with vsil.load) or uploads the Volume unless the slot's texture holds it.
+  Held holdVolume(Slot& slot, const Request& request) {
+    Held held;
+    RenderJob& job = *slot.job;
+    StageClock clock;
+    const std::uint64_t textureBytes = request.load.limits.maxTextureBytes;
+    if (!request.spec.empty()) {
+      Volume loaded = loadOrNotFound(
+          [&] {
+            return loadVolume(request.spec,
+                              RenderJob::loadOptionsFor(request.render, request.load));
+          },
+          request.spec);
+      held.read = clock.lap();
+      job.setVolume(std::move(loaded), request.spec, textureBytes);
+      held.upload = clock.lap();
+      ++uploads_;
+      slot.uploaded.reset();
+    } else if (request.volume != slot.uploaded || textureBytes != slot.uploadedTextureBytes) {
+      uploadInBricks(slot, request.volume, textureBytes);
+      held.upload = clock.lap();
     }
+    if (auto read = cli::describeRead<nlohmann::json>(job.volume()); !read.is_null()) {
+      held.dataset["read"] = read;
+    }
+    if (auto file = cli::describeFile<nlohmann::json>(job.volume()); !file.is_null()) {
+      held.dataset["file"] = file;
+    }
+    return held;
+  }
+
+  // The Frame of an output, with the GIL: the metadata as --meta-out writes it.
+  static Frame makeFrame(RenderOutput& output, const RenderRequest& request, const Held& held) {
+    nlohmann::json& meta = output.metadata;
+    for (const auto& [key, value] : held.dataset.items()) meta["dataset"][key] = value;
+    // The stages of this call before the frame's own (0 where the texture was resident).
+    meta["timings_ms"]["read"] = held.read.wallMs;
+    meta["cpu_ms"]["read"] = held.read.cpuMs;
+    meta["timings_ms"]["upload"] = held.upload.wallMs;
+    meta["cpu_ms"]["upload"] = held.upload.cpuMs;
     cv::Mat rgba;
     cv::cvtColor(output.image, rgba,
                  output.image.channels() == 4 ? cv::COLOR_BGRA2RGBA : cv::COLOR_BGR2RGBA);
+    // None for what the technique does not make (mip's states), as --state-out refuses it.
+    const FrameOutputs& makes = findTechnique(request.settings.technique).outputs;
+    const FrameBuffers& buffers = output.result.frame;
     Frame frame;
     frame.image = arrayFromMat<std::uint8_t>(rgba, 4);
-    frame.state = arrayFromMat<std::uint8_t>(output.result.frame.state, 1);
-    frame.depth = arrayFromMat<float>(output.result.frame.depth, 1);
-    frame.metadata = jsonToPython(output.metadata);
+    frame.state = makes.state && !buffers.state.empty()
+                      ? py::object(arrayFromMat<std::uint8_t>(buffers.state, 1))
+                      : py::none();
+    frame.depth = makes.depth && !buffers.depth.empty()
+                      ? py::object(arrayFromMat<float>(buffers.depth, 1))
+                      : py::none();
+    frame.metadata = jsonToPython(meta);
     frame.warnings = output.warnings;
     const py::object warn = py::module_::import("warnings").attr("warn");
     for (const std::string& warning : output.warnings) warn("vsil: " + warning);
     return frame;
   }
 
- private:
+  // sweep={"iso": (0.3, 0.6), "cursor": ((0, 0, 0), (9, 9, 9))} or ["iso=0.3:0.6", ...]: the
+  // texts --sweep takes.
+  static std::vector<std::string> sweepTexts(const py::object& sweep, const std::string& function) {
+    std::vector<std::string> texts;
+    if (sweep.is_none()) return texts;
+    if (py::isinstance<py::str>(sweep)) return {sweep.cast<std::string>()};
+    if (py::isinstance<py::dict>(sweep)) {
+      const Keyword ends = textKeyword("sweep");
+      for (const auto& [name, range] : py::reinterpret_borrow<py::dict>(sweep)) {
+        if (!isSequence(range) || py::len(range) != 2) {
+          throw PythonTypeError(function + ": sweep takes {name: (from, to)}, not " +
+                                typeNameOf(range) + " for " + std::string(py::str(name)));
+        }
+        const py::sequence pair = py::reinterpret_borrow<py::sequence>(range);
+        texts.push_back(std::string(py::str(name)) + "=" + valueText(ends, pair[0], function) +
+                        ":" + valueText(ends, pair[1], function));
+      }
+      return texts;
+    }
+    if (isSequence(sweep)) {
+      for (const py::handle item : sweep) {
+        if (!py::isinstance<py::str>(item)) {
+          throw PythonTypeError(function + ": sweep takes a dict or texts NAME=A:B, not " +
+                                typeNameOf(item) + " items");
+        }
+        texts.push_back(item.cast<std::string>());
+      }
+      return texts;
+    }
+    throw PythonTypeError(function + ": sweep takes a dict or texts NAME=A:B, not " +
+                          typeNameOf(sweep));
+  }
+
   RenderJob& job() const {
-    if (!job_) throw InputError("vsil.Renderer: this renderer is closed");
-    return *job_;
+    if (!main_.job) throw InputError("vsil.Renderer: this renderer is closed");
+    return *main_.job;
+  }
+
+  std::shared_ptr<Slot> residentSlot(const std::shared_ptr<Volume>& volume) const {
+    const auto it = resident_.find(volume);
+    return it == resident_.end() ? nullptr : it->second;
+  }
+
+  // Drops a reference to a resident slot (with the GIL); the last one ends its context in a turn.
+  static void release(std::shared_ptr<Slot>& slot) {
+    if (slot && slot.use_count() == 1) {
+      GlTurn turn(nullptr);
+      slot.reset();
+    }
+    slot.reset();
   }
 
   // During a turn (no GIL: the samples are read as raw memory).
-  void uploadInBricks(RenderJob& job, const std::shared_ptr<Volume>& volume,
+  void uploadInBricks(Slot& slot, const std::shared_ptr<Volume>& volume,
                       std::uint64_t maxTextureBytes) {
     requireFiniteSamples(*volume);
-    job.setVolume(Volume::sharing(volume), volume->source, maxTextureBytes);
-    uploaded_ = volume;
-    uploadedTextureBytes_ = maxTextureBytes;
+    slot.job->setVolume(Volume::sharing(volume), volume->source, maxTextureBytes);
+    slot.uploaded = volume;
+    slot.uploadedTextureBytes = maxTextureBytes;
+    ++uploads_;
   }
 
-  std::unique_ptr<RenderJob> job_;
-  // The volume the texture holds, when given as a Volume, and its bricks' limit; read and
-  // written during turns only.
-  std::shared_ptr<Volume> uploaded_;
-  std::uint64_t uploadedTextureBytes_ = limits::kMaxTextureBytes;
+  gl::ContextOptions context_;
+  Slot main_;
+  // Read and changed with the GIL held; a slot's job used during turns only.
+  std::map<std::shared_ptr<Volume>, std::shared_ptr<Slot>> resident_;
+  // Textures filled, for tests and users who count; written in turns (no GIL), read with it.
+  std::atomic<std::uint64_t> uploads_ = 0;
 };
 
 // ---- postfx on arrays ----
@@ -788,8 +1173,8 @@ PYBIND11_MODULE(_vsil, m) {
     } catch (const VolumeNotFound& e) {
       // FileNotFoundError(errno, strerror, filename): e.filename is the path, str(e) holds the
       // CLI's one-line message.
-      const py::object error = py::reinterpret_borrow<py::object>(PyExc_FileNotFoundError)(
-          ENOENT, e.what(), e.path);
+      const py::object error =
+          py::reinterpret_borrow<py::object>(PyExc_FileNotFoundError)(ENOENT, e.what(), e.path);
       PyErr_SetObject(PyExc_FileNotFoundError, error.ptr());
     } catch (const InputError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
@@ -802,7 +1187,8 @@ PYBIND11_MODULE(_vsil, m) {
       .def(py::init(&wrapArray), py::arg("array"),
            py::arg("spacing") = std::vector<double>{1.0, 1.0, 1.0}, py::arg("name") = "array",
            "Wraps a C-contiguous (z, y, x) array of uint8, int8, uint16, int16 or float32 "
-           "without copying; spacing is (x, y, z)")
+           "without copying; other real or boolean dtypes, other strides and big-endian "
+           "arrays are copied once (a UserWarning says why); spacing is (x, y, z)")
       .def_property_readonly("data", &dataOf)
       .def_property_readonly("dims",
                              [](const PyVolume& v) {
@@ -850,16 +1236,22 @@ PYBIND11_MODULE(_vsil, m) {
 
   py::class_<Frame>(m, "Frame", "One rendered frame")
       .def_readonly("image", &Frame::image, "H x W x 4 uint8, RGBA")
-      .def_readonly("state", &Frame::state, "H x W uint8 pixel states")
-      .def_readonly("depth", &Frame::depth, "H x W float32 normalized depth, NaN where none")
-      .def_readonly("metadata", &Frame::metadata, "what `vsil render --meta-out` writes")
+      .def_readonly("state", &Frame::state,
+                    "H x W uint8 pixel states; None for techniques that make none (mip, ...)")
+      .def_readonly("depth", &Frame::depth,
+                    "H x W float32 normalized depth, NaN where none; None for techniques that "
+                    "make no depth")
+      .def_readonly("metadata", &Frame::metadata,
+                    "what `vsil render --meta-out` writes, less parameters.out; timings_ms and "
+                    "cpu_ms hold this call's read, upload (0: the texture was resident) and the "
+                    "frame's stages")
       .def_readonly("warnings", &Frame::warnings)
       .def("__repr__",
            [](const Frame& frame) {
              const py::object technique = frame.metadata["parameters"]["technique"];
              return "<vsil.Frame " + std::to_string(frame.image.shape(1)) + "x" +
-                    std::to_string(frame.image.shape(0)) + " " +
-                    std::string(py::str(technique)) + ">";
+                    std::to_string(frame.image.shape(0)) + " " + std::string(py::str(technique)) +
+                    ">";
            })
       .def(
           "_repr_png_",
@@ -898,8 +1290,25 @@ PYBIND11_MODULE(_vsil, m) {
       .def("render", &PythonRenderer::render, py::arg("volume"),
            "Renders a Volume (or a path or gen: spec); keywords: every flag of `vsil render` "
            "by its name with _ for - (iso=40, width_near=4, view=(30, 20), size=(640, 480))")
+      .def("animate", &PythonRenderer::animate, py::arg("volume"), py::kw_only(), py::arg("frames"),
+           py::arg("orbit") = 0.0, py::arg("view_from") = py::none(),
+           py::arg("view_to") = py::none(), py::arg("sweep") = py::none(),
+           py::arg("video") = py::none(), py::arg("fps") = 25.0, py::arg("keep_frames") = true,
+           "vsil animate's frames in one turn: orbit degrees over the sequence, view_from/"
+           "view_to, sweep={name: (from, to)}; video= writes the file as --video does; returns "
+           "the Frames (none with keep_frames=False)")
       .def("upload", &PythonRenderer::upload, py::arg("volume"),
-           "Uploads the volume again (after its samples changed in place)");
+           "Uploads the volume again (after its samples changed in place)")
+      .def("add_volume", &PythonRenderer::addVolume, py::arg("volume"),
+           py::arg("max_texture_mib") = py::none(),
+           "Keeps the volume resident (its own textures, uploaded once now) until "
+           "remove_volume: renders switching between resident volumes upload nothing")
+      .def("remove_volume", &PythonRenderer::removeVolume, py::arg("volume"),
+           "Frees a resident volume's textures")
+      .def_property_readonly("resident_volumes", &PythonRenderer::residentCount,
+                             "How many volumes add_volume keeps resident")
+      .def_property_readonly("uploads", &PythonRenderer::uploads,
+                             "How many times this Renderer filled textures with a volume");
 
   m.def("_keywords", &keywordTable, py::arg("function"),
         "The keywords of render, load or Renderer, from the CLI's option tables: key, flag, "

@@ -36,7 +36,8 @@ const VideoFormat* formatOf(const std::filesystem::path& target) {
 }
 
 // The plugin (video_encoder.h), loaded once and kept: beside the executable (the build tree),
-// in ../lib/vsil beside it (installed), or where the build put it.
+// in ../lib/vsil beside it (installed), beside the shared object holding this code (the Python
+// extension vsil/_vsil*.so, whose package ships the plugin), or where the build put it.
 video::CreateEncoder loadPlugin() {
   static const video::CreateEncoder create = [] {
     std::error_code ignored;
@@ -44,6 +45,11 @@ video::CreateEncoder loadPlugin() {
     std::vector<std::filesystem::path> candidates = {
         exe.parent_path() / video::kPluginFile,
         exe.parent_path() / ".." / "lib" / "vsil" / video::kPluginFile};
+    Dl_info self{};
+    if (::dladdr(reinterpret_cast<void*>(&loadPlugin), &self) != 0 && self.dli_fname) {
+      candidates.push_back(std::filesystem::path(self.dli_fname).parent_path() /
+                           video::kPluginFile);
+    }
 #ifdef VSIL_VIDEO_PLUGIN_BUILT
     candidates.push_back(VSIL_VIDEO_PLUGIN_BUILT);
 #endif

@@ -3,6 +3,7 @@
 // arguments that would succeed, it prints nothing and writes nothing. Every registered command
 // must have a case here, so a new command (animate, rules) is held to the same rule.
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <set>
 #include <sstream>
@@ -140,6 +141,15 @@ const std::vector<WorkingCase>& workingCases() {
                  "--json=" + (out / "b.json").string(),
                  "--markdown=" + (out / "b.md").string(),
                  "--plot=" + (out / "b.png").string()};
+       }},
+      // The sweep file is written before the run: only what the sweep writes counts.
+      {"sweep",
+       [](const fs::path& out) -> std::vector<std::string> {
+         std::ofstream(out / "sweep.json")
+             << R"({"render": {"input": "gen:spheres:32", "size": "32x32"},)"
+             << R"( "axes": {"width": [1, 2]}})";
+         return {"sweep", (out / "sweep.json").string(), "--json",    (out / "rows.json").string(),
+                 "--csv", (out / "rows.csv").string(),   "--out-dir", (out / "images").string()};
        }},
       // If serve ever ran here, it would listen: the test would hang until ctest's timeout.
       {"serve",

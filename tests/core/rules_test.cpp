@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/rules.h"
+#include "io/file_access.h"
 
 namespace vsil {
 namespace {
@@ -407,6 +408,23 @@ TEST(DefuzzTables, MatchHandIntegrals) {
   EXPECT_NEAR(tableCentroid(tables, both), 0.625, kIntegration);
   const RuleActivation none[] = {{0, 0.0}, {1, 0.0}};
   EXPECT_EQ(tableCentroid(tables, none), 0.0);
+}
+
+// --rules takes rule text itself (it holds an attribute block's '{'; the Python package's
+// rules="..."): the same rule base as the file, errors named "--rules:LINE:COLUMN".
+TEST(Rules, TheOptionTakesRuleTextItself) {
+  const std::string text = io::readWholeFile((kRulesDir / "example.rules").string(), 1 << 20);
+  const RuleBase inline_ = loadRulesPreset(text);
+  const RuleBase preset = loadRulesPreset("example");
+  EXPECT_EQ(inline_.rules.size(), preset.rules.size());
+  EXPECT_EQ(inline_.attributes.size(), preset.attributes.size());
+  EXPECT_EQ(inline_.styles.size(), preset.styles.size());
+  try {
+    loadRulesPreset("attribute a from data { }\nrule if");
+    FAIL() << "a broken rule base was taken";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("--rules:", 0), 0u) << error.what();
+  }
 }
 
 }  // namespace

@@ -148,5 +148,27 @@ TEST(DefaultWindow, RunsFromOtsuToTheHighPercentileAboveIt) {
   EXPECT_EQ(constant.windowHigh, 3.5);
 }
 
+// --tf takes the JSON list itself too (what the Python package's tf=[{...}] becomes): the same
+// points as the file, errors named after the flag; a preset name or a file is still that.
+TEST(TransferFunctionPresets, TheOptionTakesTheJsonItself) {
+  const std::string json =
+      R"([{"value": 0, "color": "#000000", "opacity": 0}, {"value": 9, "color": "red", "opacity": 0.5}])";
+  EXPECT_TRUE(isInlineSource(json));
+  EXPECT_FALSE(isInlineSource("ct-bone"));
+  EXPECT_FALSE(isInlineSource("dir/tf.json"));
+  const TransferFunction tf = transferFunctionOption(json, kEightBit);
+  ASSERT_EQ(tf.points.size(), 2u);
+  EXPECT_EQ(tf.points[1].value, 9.0);
+  EXPECT_EQ(tf.points[1].opacity, 0.5);
+  EXPECT_EQ(tf.source, "--tf");
+  EXPECT_NO_THROW(checkTransferFunctionOption(json));
+  try {
+    checkTransferFunctionOption(R"([{"value": 0, "color": "#000000", "opacity": 2}])");
+    FAIL() << "an opacity of 2 was taken";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("--tf: point 1: ", 0), 0u) << error.what();
+  }
+}
+
 }  // namespace
 }  // namespace vsil

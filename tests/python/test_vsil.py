@@ -47,6 +47,8 @@ def test_the_package_is_the_one_asked_for_and_has_the_project_version():
     cmake = open(os.path.join(os.path.dirname(__file__), "..", "..", "CMakeLists.txt")).read()
     assert re.search(r"project\(vsil VERSION ([0-9.]+)", cmake).group(1) == vsil.__version__
     assert vsil.__version__ in run_cli("--version").stdout
+    # Renderer.animate(video=...) loads the video plugin the package carries beside the extension.
+    assert (pathlib.Path(vsil.__file__).parent / "libvsil_video.so").exists()
 
 
 # ---- the CLI's bytes ----
@@ -224,10 +226,8 @@ def test_bad_input_raises_value_error_with_the_cli_message(tmp_path, renderer):
 
     with pytest.raises(ValueError, match="--size"):
         renderer.render("gen:sphere:16", size="0x0")
-    with pytest.raises(ValueError, match="float64"):
-        vsil.Volume(np.zeros((4, 4, 4)))
-    with pytest.raises(ValueError, match="C-contiguous"):
-        vsil.Volume(np.zeros((4, 4, 8), np.float32)[:, :, ::2])
+    with pytest.raises(ValueError, match="complex128 are not supported"):
+        vsil.Volume(np.zeros((4, 4, 4), np.complex128))
     with pytest.raises(ValueError, match="3-dimensional"):
         vsil.Volume(np.zeros((4, 4), np.float32))
     with pytest.raises(ValueError, match="width"):
@@ -409,11 +409,10 @@ def test_the_signature_lists_every_keyword_with_a_default_that_renders_as_none_g
               and k["group"] != "Raw volume layout (headerless files)"}
     for technique in table[0]["choices"]:
         given = dict(shared, technique=technique, size=(40, 32))
-        # Less semantic's flatness: the table declares 0, but not giving it lets the rules
-        # decide per sample (semantic_scene.cpp reads options.given("flatness")): the table's
-        # default says what flatness=0 does, not what leaving it out does.
+        # semantic's flatness included: it declares no default (leaving it out lets the rules
+        # decide per sample, which no value says), so None; it once declared 0, which differs.
         given.update({k["key"]: k["default"] for k in table if k["default"] is not None
-                      and technique in (_technique_users(k) or []) and k["key"] != "flatness"})
+                      and technique in (_technique_users(k) or [])})
         plain = renderer.render(volume, technique=technique, size=(40, 32))
         explicit = renderer.render(volume, **given)
         assert np.array_equal(plain.image, explicit.image), (technique, given)
@@ -554,3 +553,308 @@ def test_an_empty_value_is_refused_not_read_as_absent(renderer, key):
         renderer.render("gen:sphere:16", technique=technique, size=(16, 16), **{key: ""})
     with pytest.raises(ValueError, match="--crop: is empty"):
         vsil.load("gen:sphere:16", crop="")
+
+
+# ---- native values (issue 34): each the same bytes as the flag's text ----
+
+def _same_image(renderer, native, text, volume="gen:spheres:32", **common):
+    common = {"size": (48, 40), **common}
+    a = renderer.render(volume, **common, **native).image
+    b = renderer.render(volume, **common, **text).image
+    assert np.array_equal(a, b), (native, text)
+    return a
+
+
+def test_colours_take_rgb_tuples_in_0_1(renderer):
+    image = _same_image(renderer, {"background": (0, 0, 0), "line_color": (1, 0.5, 0),
+                                   "fill": "flat", "fill_color": (0.2, 0.4, 0.6, 1.0)},
+                        {"background": "#000000", "line_color": "#ff8000",
+                         "fill": "flat", "fill_color": "#336699ff"})
+    assert (image[0, 0] == [0, 0, 0, 255]).all()  # the background is what was asked
+    _same_image(renderer, {"color": (1, 1, 0.9411764705882353), "sketch_color": [0, 0, 1]},
+                {"color": "#fffff0", "sketch_color": "blue"}, technique="illustrate",
+                effects="sketch,tone")
+    with pytest.raises(ValueError, match=r"background takes channels in \[0, 1\], not 255"):
+        renderer.render("gen:sphere:8", background=(255, 0, 0))
+    with pytest.raises(ValueError, match="3 or 4 numbers"):
+        renderer.render("gen:sphere:8", background=(1, 0))
+    with pytest.raises(TypeError, match="line_color takes numbers in"):
+        renderer.render("gen:sphere:8", line_color=("red", 0, 0))
+
+
+def test_crop_takes_slices_in_numpy_axis_order(tmp_path, renderer):
+    array = (np.arange(10 * 12 * 14) % 251).astype(np.uint8).reshape(10, 12, 14)  # z, y, x
+    array.tofile(tmp_path / "v.raw")
+    raw = {"dims": (14, 12, 10), "type": "uint8"}
+    for crop in [np.s_[2:9, :, 3:], np.s_[1:5], slice(None, 7), (slice(0, 10), slice(3, 4))]:
+        volume = vsil.load(tmp_path / "v.raw", crop=crop, **raw)
+        assert np.array_equal(volume.data, array[crop]), crop
+    # The same bytes as the flag's text, whose order is x, y, z.
+    by_slices = vsil.load(tmp_path / "v.raw", crop=np.s_[2:9, :, 3:], **raw)
+    by_text = vsil.load(tmp_path / "v.raw", crop="3:,:,2:9", **raw)
+    assert np.array_equal(by_slices.data, by_text.data)
+    _same_image(renderer, {"crop": np.s_[2:9, :, 3:]}, {"crop": "3:,:,2:9"},
+                volume=tmp_path / "v.raw", iso=100, **raw)
+    with pytest.raises(ValueError, match="stride=N"):
+        vsil.load(tmp_path / "v.raw", crop=np.s_[::2], **raw)
+    with pytest.raises(ValueError, match="is not a voxel index"):
+        vsil.load(tmp_path / "v.raw", crop=np.s_[-3:], **raw)
+    with pytest.raises(ValueError, match="up to 3 slices"):
+        vsil.load(tmp_path / "v.raw", crop=(slice(1, 2),) * 4, **raw)
+
+
+def test_tf_takes_a_list_of_dicts_as_the_file_holds_it(tmp_path, renderer):
+    import json
+
+    tf = [{"value": 0.1, "color": "#000000", "opacity": 0},
+          {"value": 0.5, "color": "#c08040", "opacity": 0.05},
+          {"value": 1.0, "color": "#fffff0", "opacity": 0.8}]
+    (tmp_path / "tf.json").write_text(json.dumps(tf))
+    for technique in ("illustrate", "mip"):
+        options = {"technique": technique, "size": (48, 40)}
+        args = ["render", "gen:spheres:32", "--technique", technique, "--size", "48x40",
+                "--tf", str(tmp_path / "tf.json"), "--out", str(tmp_path / "cli.png")]
+        run_cli(*args)
+        cli = np.asarray(Image.open(tmp_path / "cli.png").convert("RGBA"))
+        native = renderer.render("gen:spheres:32", tf=tf, **options).image
+        assert np.array_equal(native, cli), technique
+        # A path object names the file, as the flag does.
+        assert np.array_equal(renderer.render("gen:spheres:32", tf=tmp_path / "tf.json",
+                                              **options).image, cli)
+    # The CLI takes the JSON itself too (what the list becomes).
+    run_cli("render", "gen:spheres:32", "--technique", "mip", "--size", "48x40", "--tf",
+            json.dumps(tf), "--out", str(tmp_path / "inline.png"))
+    assert np.array_equal(np.asarray(Image.open(tmp_path / "inline.png").convert("RGBA")), cli)
+    with pytest.raises(ValueError, match=r"--tf: point 2: .*opacity"):
+        renderer.render("gen:spheres:32", technique="mip", size=(8, 8),
+                        tf=[tf[0], dict(tf[1], opacity=2)])
+
+
+def test_style_takes_a_dict_as_the_file_holds_it(tmp_path, renderer):
+    import json
+
+    style = {"effects": ["boundary", "tone"], "parameters": {"k_gc": 0.9}}
+    (tmp_path / "style.json").write_text(json.dumps(style))
+    _same_image(renderer, {"style": style}, {"style": str(tmp_path / "style.json")},
+                technique="illustrate")
+
+
+def test_rules_take_rule_text(tmp_path, renderer):
+    rules = (pathlib.Path(__file__).parents[2] / "src/core/rules/example.rules").read_text()
+    (tmp_path / "mine.rules").write_text(rules)
+    image = _same_image(renderer, {"rules": rules}, {"rules": tmp_path / "mine.rules"},
+                        technique="semantic")
+    assert np.array_equal(image, renderer.render("gen:spheres:32", technique="semantic",
+                                                 rules="example", size=(48, 40)).image)
+    with pytest.raises(ValueError, match=r"--rules:1:"):
+        renderer.render("gen:spheres:32", technique="semantic", size=(8, 8),
+                        rules="attribute density from data { }")
+
+
+def test_param_takes_a_dict_and_light_several_tuples(renderer):
+    _same_image(renderer, {"param": {"k_ty": 0.4, "k_ds": 0.5}, "light": [(30, 70), (-40, 10)]},
+                {"param": "k_ty=0.4,k_ds=0.5", "light": ["30,70", "-40,10"]},
+                technique="illustrate", effects="tone,distance")
+
+
+# ---- volumes of any dtype, strides and byte order ----
+
+def _ball(dtype=np.float32):
+    z, y, x = np.mgrid[0:20, 0:18, 0:16]
+    return ((x - 8) ** 2 + (y - 9) ** 2 + (z - 10) ** 2 < 36).astype(dtype) * 100
+
+
+@pytest.mark.parametrize("dtype, native", [(np.float64, np.float32), (np.int32, np.float32),
+                                           (np.int64, np.float32), (np.uint32, np.float32),
+                                           (np.float16, np.float32), (bool, np.uint8)])
+def test_other_dtypes_convert_to_the_nearest_with_a_warning(renderer, dtype, native):
+    array = _ball(dtype) if dtype is not bool else _ball() > 0
+    name = np.dtype(dtype).name
+    with pytest.warns(UserWarning, match=f"{name} samples converted to {np.dtype(native).name}"):
+        volume = vsil.Volume(array)
+    assert volume.dtype == native and np.array_equal(volume.data, array.astype(native))
+    expected = renderer.render(vsil.Volume(array.astype(native)), iso=0.5, size=(40, 32))
+    frame = renderer.render(volume, iso=0.5, size=(40, 32))
+    assert np.array_equal(frame.image, expected.image) and (frame.state == 3).any()
+
+
+@pytest.mark.parametrize("view, why", [
+    (lambda a: a[:, :, ::-1], "non-C-contiguous"),
+    (lambda a: np.asfortranarray(a), "non-C-contiguous"),
+    (lambda a: np.repeat(a, 2, axis=2)[:, :, ::2], "non-C-contiguous"),
+    (lambda a: a.astype(">f4"), "big-endian samples byte-swapped"),
+    (lambda a: a.astype(">i2")[::-1], "big-endian samples byte-swapped; a non-C-contiguous"),
+])
+def test_any_strides_and_byte_order_are_copied_once_with_a_warning(renderer, view, why):
+    array = view(_ball())
+    with pytest.warns(UserWarning, match=why) as warned:
+        volume = vsil.Volume(array)
+    assert len(warned) == 1 and "one copy of" in str(warned[0].message)
+    assert volume.data.flags.c_contiguous and volume.data.dtype.isnative
+    assert np.array_equal(volume.data, array)
+    native = np.ascontiguousarray(array, dtype=array.dtype.newbyteorder("="))
+    expected = renderer.render(vsil.Volume(native), iso=50, size=(40, 32))
+    assert np.array_equal(renderer.render(volume, iso=50, size=(40, 32)).image, expected.image)
+
+
+def test_a_native_array_is_shared_without_a_warning():
+    import warnings
+
+    array = _ball()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert vsil.Volume(array).data is array
+
+
+# ---- outputs and metadata as the command writes them ----
+
+def test_outputs_a_technique_does_not_make_are_none(renderer):
+    # As TechniqueInfo::outputs says, and --state-out / --depth-out refuse.
+    mip = renderer.render("gen:spheres:32", technique="mip", size=(32, 32))
+    assert mip.state is None and mip.depth is None
+    demip = renderer.render("gen:spheres:32", technique="demip", size=(32, 32))
+    assert demip.state is None and demip.depth.shape == (32, 32)
+    silhouette = renderer.render("gen:spheres:32", size=(32, 32))
+    assert silhouette.state.shape == (32, 32) and silhouette.depth.shape == (32, 32)
+    for technique in vsil._vsil._keywords("render")[0]["choices"]:
+        frame = renderer.render("gen:spheres:16", technique=technique, size=(16, 16))
+        for output in ("state", "depth"):
+            value = getattr(frame, output)
+            assert value is None or value.shape == (16, 16), (technique, output)
+
+
+def _without_timings(meta):
+    """Less what differs from run to run (times; whether this process compiled the program
+    before) and the output file only the command writes."""
+    if isinstance(meta, dict):
+        return {k: _without_timings(v) for k, v in meta.items()
+                if not k.endswith("_ms") and k not in ("program_compiled", "out")}
+    return meta
+
+
+@pytest.mark.parametrize("technique", ["silhouette", "mip", "illustrate", "semantic"])
+def test_metadata_is_what_meta_out_writes(tmp_path, renderer, technique):
+    import json
+
+    array = (np.arange(12 * 14 * 16) % 200).astype(np.uint8).reshape(12, 14, 16)
+    array.tofile(tmp_path / "v.raw")
+    args = ["--dims", "16x14x12", "--type", "uint8", "--crop", "1:15,:,2:", "--size", "40x32",
+            "--technique", technique]
+    run_cli("render", str(tmp_path / "v.raw"), *args, "--out", str(tmp_path / "x.png"),
+            "--meta-out", str(tmp_path / "m.json"))
+    cli = json.loads((tmp_path / "m.json").read_text())
+    frame = renderer.render(tmp_path / "v.raw", dims=(16, 14, 12), type="uint8",
+                            crop=np.s_[2:, :, 1:15], size=(40, 32), technique=technique)
+    assert cli["dataset"]["read"]["crop"] == [[1, 15], [0, 14], [2, 12]]
+    assert _without_timings(frame.metadata) == _without_timings(cli)
+    # The stages the command times are there, less what only a process has (startup, write).
+    assert {"read", "upload", "render"} <= set(frame.metadata["timings_ms"])
+
+
+# ---- several volumes resident on one Renderer ----
+
+def test_resident_volumes_switch_without_upload():
+    first, second = vsil.generate("spheres", 32), vsil.Volume(_ball())
+    with vsil.Renderer() as renderer:
+        expected = [renderer.render(v, iso=0.5, size=(40, 32)).image for v in (first, second)]
+        renderer.add_volume(first)
+        renderer.add_volume(second)
+        assert renderer.resident_volumes == 2
+        uploads = renderer.uploads
+        for i in range(6):
+            frame = renderer.render((first, second)[i % 2], iso=0.5, size=(40, 32))
+            assert np.array_equal(frame.image, expected[i % 2])
+            assert frame.metadata["timings_ms"]["upload"] == 0
+        assert renderer.uploads == uploads  # switching uploaded nothing
+        # A volume that is not resident takes the main texture, one upload per switch.
+        third = vsil.generate("sphere", 16)
+        renderer.render(third, size=(16, 16))
+        renderer.render(first, size=(16, 16))
+        renderer.render(third, size=(16, 16))
+        assert renderer.uploads == uploads + 1
+        # In place changes reach a resident volume's texture with upload, as any volume's.
+        renderer.upload(second)
+        assert renderer.uploads == uploads + 2
+        renderer.remove_volume(first)
+        assert renderer.resident_volumes == 1
+        assert np.array_equal(renderer.render(first, iso=0.5, size=(40, 32)).image, expected[0])
+        with pytest.raises(ValueError, match="not resident"):
+            renderer.remove_volume(first)
+        # Without resident volumes the same switching uploads each time.
+        before = renderer.uploads
+        renderer.remove_volume(second)
+        for i in range(4):
+            renderer.render((first, second)[i % 2], iso=0.5, size=(40, 32))
+        assert renderer.uploads == before + 4 - 1  # first is already in the main texture
+
+
+# ---- animate: vsil animate's frames and video from one call ----
+
+@pytest.mark.parametrize("container", ["avi", "mp4"])
+def test_animate_writes_the_video_vsil_animate_writes(tmp_path, renderer, container):
+    frames = renderer.animate("gen:spheres:32", frames=4, orbit=90, sweep={"iso": (0.3, 0.6)},
+                              video=tmp_path / f"py.{container}", size=(48, 40))
+    run_cli("animate", "gen:spheres:32", "--frames", "4", "--orbit", "90", "--sweep",
+            "iso=0.3:0.6", "--video", str(tmp_path / f"cli.{container}"), "--out-dir",
+            str(tmp_path / "frames"), "--size", "48x40", "--quiet")
+    assert (tmp_path / f"py.{container}").read_bytes() == (tmp_path / f"cli.{container}").read_bytes()
+    assert len(frames) == 4 and frames[1].metadata["swept"] == {"iso": pytest.approx(0.4)}
+    for i, frame in enumerate(frames):
+        png = np.asarray(Image.open(tmp_path / "frames" / f"frame_{i:04d}.png").convert("RGBA"))
+        assert np.array_equal(frame.image, png), i
+    assert len({f.image.tobytes() for f in frames}) == 4
+
+
+def test_animate_moves_the_view_and_checks_its_input(tmp_path, renderer):
+    volume = vsil.generate("spheres", 32)
+    frames = renderer.animate(volume, frames=3, view_from=(0, 0), view_to=(90, 30), size=(32, 32))
+    # Each frame the render of its view: the middle one at (45, 15).
+    for frame, view in zip(frames, [(0, 0), (45, 15), (90, 30)]):
+        assert np.array_equal(frame.image, renderer.render(volume, view=view, size=(32, 32)).image)
+    assert renderer.animate(volume, frames=2, size=(32, 32), keep_frames=False) == []
+    with pytest.raises(ValueError, match="--video"):
+        renderer.animate(volume, frames=2, size=(33, 32), video=tmp_path / "odd.avi")
+    assert not (tmp_path / "odd.avi").exists()
+    with pytest.raises(ValueError, match="no_such"):
+        renderer.animate(volume, frames=2, sweep=["no_such=1:2"])
+    with pytest.raises(ValueError, match="together"):
+        renderer.animate(volume, frames=2, view_from=(0, 0))
+
+
+def test_every_technique_options_default_is_the_one_the_command_line_states(renderer):
+    """The CLI's --help "(default X" against inspect.signature, for every option of every
+    technique: numbers equal, 'off' is False, a word is the keyword's default or, where the
+    signature says None, renders what leaving it out renders; prose (derived) is None."""
+    help_text = run_cli("render", "--help").stdout
+    signature = inspect.signature(vsil.Renderer.render).parameters
+    table = vsil._vsil._keywords("render")
+    checked = 0
+    for keyword in table:
+        users = _technique_users(keyword)
+        if not users:
+            continue
+        line = next(l for l in help_text.splitlines() if l.strip().startswith(keyword["flag"] + " "))
+        match = re.search(r"\(default ((?:[^,()]|,(?! ))*)", line)  # to ", " or a parenthesis
+        if not match:
+            continue  # pipeline: a default per technique, in words
+        stated, default = match.group(1).strip(), signature[keyword["key"]].default
+        numbers = re.fullmatch(r"-?[0-9.]+(,-?[0-9.]+)*", stated)
+        if numbers:
+            values = tuple(float(v) for v in stated.split(","))
+            got = default if isinstance(default, tuple) else (default,)
+            assert tuple(float(v) for v in got) == values, keyword["key"]
+        elif stated == "off":
+            assert default is False, keyword["key"]
+        elif re.fullmatch(r"[a-z-]+", stated):
+            if default is None:  # the word, given, renders what leaving it out renders
+                plain = renderer.render("gen:spheres:16", technique=users[0], size=(24, 24))
+                given = renderer.render("gen:spheres:16", technique=users[0], size=(24, 24),
+                                        **{keyword["key"]: stated})
+                assert np.array_equal(plain.image, given.image), keyword["key"]
+            else:
+                assert default == stated, keyword["key"]
+        else:
+            assert default is None, (keyword["key"], stated, default)
+        checked += 1
+    assert checked >= 15
+    assert signature["flatness"].default is None

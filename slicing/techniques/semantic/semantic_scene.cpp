@@ -8,22 +8,37 @@
 
 namespace vsil {
 
+namespace {
+
+// Not given, the flatness rules decide per sample; given, one flatness everywhere. No value
+// stands for "not given" (0 is ordinary compositing everywhere, which ignores the rules), so
+// the option declares none: the help, the metadata (null) and Python's default (None) say so.
+OptionSpec flatnessOption() {
+  OptionSpec spec = OptionSpec::number("flatness", 0.0,
+                                       "flat rendering mode everywhere with this flatness p_f "
+                                       "(0: ordinary compositing, 1: the top priority always "
+                                       "shows)")
+                        .atLeast(0)
+                        .atMost(1);
+  spec.defaultValue.reset();
+  spec.defaultNote = "none: the flatness rules decide per sample";
+  return spec;
+}
+
+}  // namespace
+
 const std::vector<OptionSpec>& semanticOptions() {
   static const std::vector<OptionSpec> options{
       OptionSpec::text("rules",
-                       "fuzzy rule base: a .rules file or a preset (default, example, fig6-cube, "
-                       "tooth-focus-context; README, semantic); default: default")
+                       "fuzzy rule base: a .rules file, a preset (default, example, fig6-cube, "
+                       "tooth-focus-context; README, semantic) or the rule text itself; "
+                       "default: default")
           .validatedBy([](const OptionValue& value) {
             const std::string& text = std::get<std::string>(value);
             // The sphere files too: every error before any GL work.
             if (!text.empty()) buildSphereAtlas(loadRulesPreset(text), 2);
           }),
-      OptionSpec::number("flatness", 0.0,
-                         "flat rendering mode everywhere with this flatness p_f (0: ordinary "
-                         "compositing, 1: the top priority always shows); not given: the "
-                         "flatness rules decide per sample")
-          .atLeast(0)
-          .atMost(1),
+      flatnessOption(),
       OptionSpec::text("cursor",
                        "the 3D cursor X,Y,Z in voxel coordinates (cursor_distance); default the "
                        "volume's centre")

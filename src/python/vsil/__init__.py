@@ -67,13 +67,20 @@ def _signed(function, parameters, doc):
 class Renderer(_vsil._Renderer):
     """One GL context (OSMesa or EGL, as `vsil render --gl`), reused by every render; any thread
     may use it (GL work takes turns under one lock). A context manager: `with vsil.Renderer() as
-    r:` ends the context at the end of the block (also r.close())."""
+    r:` ends the context at the end of the block (also r.close()). add_volume(v) keeps a volume
+    resident (its own textures): renders switching between resident volumes upload nothing."""
 
     def __init__(self, **options):
         super().__init__(**options)
 
     def render(self, volume, **options):
         return super().render(_fspath(volume), **options)
+
+    def animate(self, volume, *, frames, orbit=0.0, view_from=None, view_to=None, sweep=None,
+                video=None, fps=25.0, keep_frames=True, **options):
+        return super().animate(_fspath(volume), frames=frames, orbit=orbit, view_from=view_from,
+                               view_to=view_to, sweep=sweep, video=_fspath(video), fps=fps,
+                               keep_frames=keep_frames, **options)
 
     def upload(self, volume):
         """Uploads the volume again (after its samples changed in place)."""
@@ -92,6 +99,34 @@ _signed(Renderer.render,
         "into a Frame: the pixels `vsil render` writes with the same flags, byte for byte.\n"
         "A keyword left at None takes the command line's default (the help says which);\n"
         "sequences join as the flags write them: size=(640, 480), view=(30, 20).\n"
+        + _keyword_help("render"))
+
+
+_ANIMATION = [
+    inspect.Parameter("frames", inspect.Parameter.KEYWORD_ONLY, annotation="int"),
+    inspect.Parameter("orbit", inspect.Parameter.KEYWORD_ONLY, default=0.0, annotation="float"),
+    inspect.Parameter("view_from", inspect.Parameter.KEYWORD_ONLY, default=None,
+                      annotation="Text | None"),
+    inspect.Parameter("view_to", inspect.Parameter.KEYWORD_ONLY, default=None,
+                      annotation="Text | None"),
+    inspect.Parameter("sweep", inspect.Parameter.KEYWORD_ONLY, default=None,
+                      annotation="dict[str, Sequence[Any]] | Sequence[str] | str | None"),
+    inspect.Parameter("video", inspect.Parameter.KEYWORD_ONLY, default=None,
+                      annotation="str | os.PathLike[str] | None"),
+    inspect.Parameter("fps", inspect.Parameter.KEYWORD_ONLY, default=25.0, annotation="float"),
+    inspect.Parameter("keep_frames", inspect.Parameter.KEYWORD_ONLY, default=True,
+                      annotation="bool"),
+]
+_signed(Renderer.animate,
+        [_SELF, inspect.Parameter("volume", inspect.Parameter.POSITIONAL_OR_KEYWORD,
+                                  annotation="Volume | str | os.PathLike[str]")]
+        + _ANIMATION + _parameters("render"),
+        "`vsil animate` in one call, on the same code path (job/animation.h, video_file.h):\n"
+        "frames; orbit degrees of azimuth over the sequence (frame i adds orbit*i/frames);\n"
+        "view_from/view_to (AZ, EL) moving linearly; sweep={'iso': (0.3, 0.6)} (or texts\n"
+        "'iso=0.3:0.6'); video= a .mp4 or .avi file written as --video writes it, at fps.\n"
+        "Returns the list of Frames (each metadata['swept'] says its values; [] with\n"
+        "keep_frames=False). The render keywords as Renderer.render.\n"
         + _keyword_help("render"))
 
 
