@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/brick_layout.h"
+#include "core/camera.h"
 #include "core/volume.h"
 #include "slicing/gl_objects.h"
 
@@ -35,15 +36,25 @@ class SlabRelay {
   virtual void maxReduce(const gl::RenderTarget& target) = 0;
 };
 
+// Slabs along z meet a ray in z order: which way the ray through `pixel` (pixel coordinates, a
+// centre at +0.5) runs along the volume's z, +1 towards higher z, -1 towards lower, 0 along a
+// plane of constant z (it never leaves its slab, so any order is its order).
+int rayZDirection(const View& view, glm::dvec2 pixel);
+
+// The direction every ray of the frame shares (orthographic views; a perspective eye outside
+// the slabs' z), or nullopt where rays leave the eye both ways along z. The ray's z
+// direction is affine in the pixel, so the four corner pixels decide.
+std::optional<int> frameZDirection(const View& view);
+
 struct SlabPart {
-  glm::ivec3 dims{0};       // the whole volume's
-  BrickLayout layout;       // the whole volume's bricks
+  glm::ivec3 dims{0};            // the whole volume's
+  BrickLayout layout;            // the whole volume's bricks
   int ownedZ0 = 0, ownedZ1 = 0;  // brick layers (Brick::index.z) this process owns, [z0, z1)
   int heldZ0 = 0, heldZ1 = 0;    // and holds: owned plus the ghost layers
-  int voxelZ0 = 0;          // the whole volume's z of the slab volume's z = 0
-  GLenum internalFormat = 0;  // the same on every process (R16F only where all slabs allow it)
-  ValueRange valueRange;      // the whole volume's
-  DerivedDefaults derived;    // the whole volume's (summed histograms)
+  int voxelZ0 = 0;               // the whole volume's z of the slab volume's z = 0
+  GLenum internalFormat = 0;     // the same on every process (R16F only where all slabs allow it)
+  ValueRange valueRange;         // the whole volume's
+  DerivedDefaults derived;       // the whole volume's (summed histograms)
   SlabRelay* relay = nullptr;
 
   bool owns(std::size_t brick) const {

@@ -145,7 +145,6 @@ TEST_F(VolumeTextureUpload, EveryBrickHoldsItsVoxelsOverlapAndPadding) {
   }
 }
 
-
 // One process's part of a volume split along z (slicing/slab.h): the held bricks hold the
 // whole volume's voxels at their origins (overlap and padding as in the whole volume's
 // textures), the others have no texture; a slab that misses a held brick's voxels is refused.
@@ -162,9 +161,10 @@ TEST_F(VolumeTextureUpload, ASlabHoldsItsBricksAsTheWholeVolumeDoes) {
   part.voxelZ0 = 10;  // layer 1's origin (12 − 2 voxels of overlap)
   part.internalFormat = GL_R16F;
   const int slabEnd = 22 + 16;  // layer 2's origin + its texture's size
-  Volume slab = volumeOf<std::uint8_t>({dims.x, dims.y, slabEnd - part.voxelZ0}, [&](std::size_t i) {
-    return whole.value(i + std::size_t(part.voxelZ0) * std::size_t(dims.x * dims.y));
-  });
+  Volume slab =
+      volumeOf<std::uint8_t>({dims.x, dims.y, slabEnd - part.voxelZ0}, [&](std::size_t i) {
+        return whole.value(i + std::size_t(part.voxelZ0) * std::size_t(dims.x * dims.y));
+      });
   EXPECT_EQ(part.ownedLowZ(), 11.5);
   EXPECT_EQ(part.ownedHighZ(), 23.5);
   EXPECT_EQ(part.ghostVoxels(), 12);
@@ -201,6 +201,28 @@ TEST_F(VolumeTextureUpload, ASlabHoldsItsBricksAsTheWholeVolumeDoes) {
 
   part.heldZ1 = 4;  // the last layer too, whose voxels this slab does not hold
   EXPECT_THROW(VolumeTexture(slab, part), std::logic_error);
+}
+
+TEST(SlabOrder, RaysVisitTheSlabsInTheOrderOfTheirZDirection) {
+  const glm::ivec3 dims{40, 30, 64};
+  const glm::dvec3 spacing{1.0};
+  const glm::ivec2 viewport{64, 48};
+  // Seen from +z (azimuth 0) every ray runs towards lower z, orthographic or not.
+  const View fromFront = makeView({.azimuthDeg = 0, .elevationDeg = 10}, dims, spacing, viewport);
+  EXPECT_EQ(frameZDirection(fromFront), std::optional<int>(-1));
+  EXPECT_EQ(rayZDirection(fromFront, {32, 24}), -1);
+  const View fromBack = makeView({.azimuthDeg = 180, .elevationDeg = -10, .orthographic = true},
+                                 dims, spacing, viewport);
+  EXPECT_EQ(frameZDirection(fromBack), std::optional<int>(1));
+  // A perspective eye level with the volume's middle along z (seen from +x): the left and the
+  // right half of the image run opposite ways, so no one order serves the frame.
+  const View fromSide = makeView({.azimuthDeg = 90, .elevationDeg = 0}, dims, spacing, viewport);
+  EXPECT_EQ(frameZDirection(fromSide), std::nullopt);
+  EXPECT_EQ(rayZDirection(fromSide, {0.5, 24}), -rayZDirection(fromSide, {63.5, 24}));
+  // Orthographic from the side: rays parallel to the slabs.
+  const View flat = makeView({.azimuthDeg = 90, .elevationDeg = 0, .orthographic = true}, dims,
+                             spacing, viewport);
+  ASSERT_TRUE(frameZDirection(flat).has_value());
 }
 
 }  // namespace
