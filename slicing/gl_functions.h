@@ -89,6 +89,7 @@
   X(glTexImage3D, PFNGLTEXIMAGE3DPROC)                           \
   X(glTexParameteri, PFNGLTEXPARAMETERIPROC)                     \
   X(glTexSubImage1D, PFNGLTEXSUBIMAGE1DPROC)                     \
+  X(glTexSubImage2D, PFNGLTEXSUBIMAGE2DPROC)                     \
   X(glTexSubImage3D, PFNGLTEXSUBIMAGE3DPROC)                     \
   X(glUniform1f, PFNGLUNIFORM1FPROC)                             \
   X(glUniform1fv, PFNGLUNIFORM1FVPROC)                           \

@@ -1,5 +1,7 @@
 #include "slicing/renderer.h"
 
+#include "slicing/slab.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -88,6 +90,7 @@ struct Renderer::Impl {
   gl::VertexArrayName sliceVertexArray;
   gl::VertexArrayName screenVertexArray;
   std::map<std::string, std::unique_ptr<Technique>> techniques;
+  std::optional<SlabPart> slab;  // setSlab
 
   // Uploads `volume` in the layout `bricking` asks for; gradients and halo masks follow
   // (volumeGeneration).
@@ -146,7 +149,26 @@ const gl::ProgramCache& Renderer::programs() const {
   return impl_->programs;
 }
 
+void Renderer::setSlab(const Volume& slabVolume, const SlabPart& part) {
+  impl_->slab = part;
+  impl_->volume = &slabVolume;
+  impl_->gradients.reset(nullptr, slabVolume.spacing);
+  impl_->volumeTexture.reset();
+  impl_->volumeTexture.emplace(slabVolume, part);
+  impl_->gradients.reset(&*impl_->volumeTexture, slabVolume.spacing);
+  if (!impl_->uniforms) impl_->uniforms.emplace();
+  impl_->uniforms->uploadBricks(impl_->volumeTexture->layout());
+  ++impl_->volumeGeneration;
+  // Empty-space skipping stays off for slabs (render()): its ranges are never read.
+  impl_->brickRanges.emplace(slabVolume);
+  impl_->dims = part.dims;
+  impl_->spacing = slabVolume.spacing;
+  impl_->valueRange = part.valueRange;
+  impl_->histogramDefaults = part.derived;
+}
+
 void Renderer::setVolume(const Volume& volume, std::uint64_t maxTextureBytes) {
+  impl_->slab.reset();
   impl_->volume = &volume;
   impl_->maxTextureBytes = maxTextureBytes;
   impl_->uploadVolume(BrickLayout::Bricking::Compact);
@@ -157,9 +179,13 @@ void Renderer::setVolume(const Volume& volume, std::uint64_t maxTextureBytes) {
   impl_->histogramDefaults.reset();
 }
 
-RenderResult Renderer::render(const RenderSettings& settings) {
+RenderResult Renderer::render(const RenderSettings& givenSettings) {
   if (!impl_->volumeTexture) throw std::logic_error("Renderer::render before setVolume");
-  validate(settings);
+  validate(givenSettings);
+  const SlabPart* slab = impl_->slab ? &*impl_->slab : nullptr;
+  RenderSettings settings = givenSettings;
+  // A slab's brick ranges are its own: skipping (which changes no pixel) stays off.
+  if (slab) settings.emptySpaceSkipping = false;
   const TechniqueInfo& info = findTechnique(settings.technique);
   Technique& technique = impl_->technique(info);
   RenderResult result;
@@ -180,7 +206,13 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   const OptionReader options(info.options, given, derived);
   // Bricks the frame cannot follow: the volume in one texture when it fits (else the
   // technique refuses). It stays so for later frames (the same bytes either way).
-  if (impl_->volumeTexture->brickCount() > 1 && impl_->bricking == BrickLayout::Bricking::Compact &&
+  if (slab && info.needsOneTexture && info.needsOneTexture(options)) {
+    throw UnavailableError("--technique " + info.name +
+                           ": these options need the volume in one texture, which a slab "
+                           "rendered across MPI ranks is not");
+  }
+  if (!slab && impl_->volumeTexture->brickCount() > 1 &&
+      impl_->bricking == BrickLayout::Bricking::Compact &&
       info.needsOneTexture && info.needsOneTexture(options)) {
     impl_->bricking = BrickLayout::Bricking::OneIfItFits;  // asked once per volume
     if (fitsOneTexture(impl_->dims, impl_->volumeTexture->internalFormat(),
@@ -213,11 +245,13 @@ RenderResult Renderer::render(const RenderSettings& settings) {
     if (!plan.slices[k].polygonVoxel.empty()) {
       for (const SlicePiece& piece :
            slicePieces(result.view, layout, plan.slices[k].eyeDistance, margin, overlap)) {
+        // Bounds from every piece, so that screen passes cover what a single process covers.
+        slice.recentBounds[0] =
+            slice.recentBounds[0].united(polygonPixelBounds(result.view, piece.polygonVoxel));
+        if (slab && !slab->owns(piece.brick)) continue;
         slice.pieces.push_back(
             {GLint(vertices.size()), GLsizei(piece.polygonVoxel.size()), piece.brick});
         for (const auto& p : piece.polygonVoxel) vertices.emplace_back(p);
-        slice.recentBounds[0] =
-            slice.recentBounds[0].united(polygonPixelBounds(result.view, piece.polygonVoxel));
       }
     }
     slice.vertexCount = GLsizei(vertices.size()) - slice.firstVertex;
@@ -257,6 +291,7 @@ RenderResult Renderer::render(const RenderSettings& settings) {
   frame.uniforms = &*impl_->uniforms;
   frame.gradients = &impl_->gradients;
   frame.volumeGeneration = impl_->volumeGeneration;
+  frame.slab = slab;
   const ResolvedOptions resolved = technique.resolve(frame);
   result.background =
       settings.background.value_or(resolved.background.value_or(kDefaultBackground));
@@ -277,6 +312,10 @@ RenderResult Renderer::render(const RenderSettings& settings) {
     }
   }
   frame.sweep = sweeps - 1;
+  if (slab) {
+    if (slab->relay == nullptr) throw std::logic_error("Renderer: a slab without a relay");
+    technique.combineSlabs(frame, *slab->relay);
+  }
   technique.endFrame(frame);
   VSIL_GL(glFinish());
   result.timings.programs = gl::programBuildTime() - programsBefore;

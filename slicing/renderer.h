@@ -21,6 +21,7 @@
 #include "core/volume.h"
 
 namespace vsil {
+struct SlabPart;
 namespace gl {
 class GlContext;
 class ProgramCache;
@@ -102,6 +103,11 @@ class Renderer {
   // texture (TechniqueInfo::needsOneTexture: the tiles march, illustrate's halos) uploads it
   // again in one texture when it fits.
   void setVolume(const Volume& volume, std::uint64_t maxTextureBytes = limits::kMaxTextureBytes);
+  // One process's slab of a volume split along z across processes (slab.h): uploads only the
+  // bricks `part` holds from `slabVolume`; frames draw only the pieces of the bricks it owns and
+  // combine with the other processes' (Technique::combineSlabs) before their last passes. The
+  // value range and derived defaults are the whole volume's, from `part`.
+  void setSlab(const Volume& slabVolume, const SlabPart& part);
   // Bricks of the current volume's texture (0 before setVolume).
   std::size_t brickCount() const;
   // The current volume's value range (valueRange, computed once in setVolume).

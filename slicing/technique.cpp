@@ -39,6 +39,11 @@ void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice) {
   }
 }
 
+void Technique::combineSlabs(const FrameContext& frame, SlabRelay&) {
+  throw UnavailableError("--technique " + frame.settings->technique +
+                         ": rendering across MPI ranks is not available yet; run one rank");
+}
+
 void requireOneBrick(const FrameContext& frame, const std::string& what, const std::string& hint) {
   if (frame.volume->brickCount() <= 1) return;
   const glm::ivec3 counts = frame.volume->layout().counts();

@@ -22,6 +22,7 @@
 #include "slicing/gradient_texture.h"
 #include "slicing/renderer.h"
 #include "slicing/shader_program.h"
+#include "slicing/slab.h"
 #include "slicing/slicer.h"
 #include "slicing/volume_texture.h"
 
@@ -56,6 +57,9 @@ struct FrameContext {
   // resolve() chose, else white (distance colour blending's c_b).
   Rgba background = kDefaultBackground;
   int sweep = 0;  // which sweep over the slices is being drawn (0 .. sweepCount - 1)
+  // Set when this process renders one slab of a volume split across processes (slab.h): the
+  // slices then hold only the pieces of the bricks it owns.
+  const SlabPart* slab = nullptr;
 };
 
 // A piece of a slice polygon (slicer.h slicePieces): its vertices in the slice vertex array
@@ -109,6 +113,10 @@ class Technique {
   // GPU work after the last sweep (e.g. the extra empty slice); the Renderer then calls glFinish.
   virtual void endFrame(const FrameContext& frame) = 0;
   virtual FrameBuffers readBack(const FrameContext& frame) = 0;
+  // Slab rendering (slab.h): after this process's slices, before endFrame, combines its partial
+  // frame with the other processes' by the technique's rule (TechniqueInfo::composition), so
+  // that every process finishes the whole frame. Default: the technique cannot be split.
+  virtual void combineSlabs(const FrameContext& frame, SlabRelay& relay);
 };
 
 // The occupancy of techniques that look for the iso-surface: a brick may hold a FILLED sample

@@ -13,20 +13,44 @@
 
 namespace vsil {
 
+namespace {
+TechniqueInfo composedBy(TechniqueInfo info, Composition composition) {
+  info.composition = composition;
+  return info;
+}
+}  // namespace
+
 const std::vector<TechniqueInfo>& techniqueTable() {
+  // How each technique's slabs combine (core/composition.h): the silhouette pair (first contour
+  // value, state; depths travel with it) and the MIP family's depth records reduce exactly;
+  // front-to-back "over" of premultiplied RGBA in RGBA32F is not associative in float and early
+  // ray termination reads the accumulated alpha, so those frames relay the accumulated targets
+  // from slab to slab in depth order (the same float operations in the same order); demip's
+  // second sweep needs the whole ray's maximum, so it relays too.
   static const std::vector<TechniqueInfo> table{
       // clang-format off
-      silhouetteTechniqueInfo(),
-      rightAngleTechniqueInfo(),
-      firstHitTechniqueInfo(),
-      illustrateTechniqueInfo(),
-      mipTechniqueInfo(),
-      demipTechniqueInfo(),
-      lmipTechniqueInfo(),
-      semanticTechniqueInfo(),
+      composedBy(silhouetteTechniqueInfo(), Composition::PairReduce),
+      composedBy(rightAngleTechniqueInfo(), Composition::Relay),
+      composedBy(firstHitTechniqueInfo(), Composition::Relay),
+      composedBy(illustrateTechniqueInfo(), Composition::Relay),
+      composedBy(mipTechniqueInfo(), Composition::MaxReduce),
+      composedBy(demipTechniqueInfo(), Composition::Relay),
+      composedBy(lmipTechniqueInfo(), Composition::LocalMaxReduce),
+      composedBy(semanticTechniqueInfo(), Composition::Relay),
       // clang-format on
   };
   return table;
+}
+
+void requireSplittable(const TechniqueInfo& info, int ranks) {
+  if (ranks <= 1) return;
+  // Wired into the frame loop so far: the max reduce (mip).
+  if (info.composition == Composition::MaxReduce) return;
+  throw UnavailableError("--technique " + info.name + ": rendering across " +
+                         std::to_string(ranks) +
+                         " MPI ranks is not available yet (its combine rule, " +
+                         compositionName(info.composition) +
+                         ", is stated but the slab renderer is not wired in); run one rank");
 }
 
 const OptionSpec* TechniqueInfo::option(const std::string& optionName) const {

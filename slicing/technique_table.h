@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/composition.h"
 #include "core/options.h"
 
 namespace vsil {
@@ -44,12 +45,20 @@ struct TechniqueInfo {
   // slice pieces get a wider margin and overlap by it across brick borders (slicer.h
   // slicePieces), and the slice shader keeps only the samples its brick owns.
   bool samplesOffPlanes = false;
+  // How the partial frames of slabs rendered by different processes combine (`mpirun -np N
+  // vsil render`, core/composition.h, where each rule is proved against the sequential fold).
+  // Set in the table (technique_table.cpp techniqueTable).
+  Composition composition = Composition::None;
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }
 };
 
 const std::vector<TechniqueInfo>& techniqueTable();
+// Throws UnavailableError "--technique NAME: rendering across N MPI ranks is not available
+// yet (...)" when `ranks` > 1 and the technique's combine rule is not wired into the slab
+// renderer (slicing/slab.h) yet: only MaxReduce (mip) is. A single rank renders as without MPI.
+void requireSplittable(const TechniqueInfo& info, int ranks);
 // The entry named `name`; InputError "--technique: unknown technique 'x' (known: ...)".
 const TechniqueInfo& findTechnique(const std::string& name);
 std::vector<std::string> techniqueNames();

@@ -148,7 +148,6 @@ VolumeTexture::VolumeTexture(const Volume& volume, std::uint64_t maxTextureBytes
     throwInputError(volume.source, "no 8x8x8 brick fits the texture limit of " +
                                        std::to_string(maxTextureBytes >> 20) + " MiB");
   }
-  const GLenum type = internalFormat_ == GL_R16F ? GL_HALF_FLOAT : GL_FLOAT;
   for (const Brick& brick : layout_.bricks()) {
     if (!textureFits(brick.size, internalFormat_)) {
       const double mib =
@@ -162,8 +161,21 @@ VolumeTexture::VolumeTexture(const Volume& volume, std::uint64_t maxTextureBytes
                           "--stride N");
     }
   }
+  upload(volume, slabBytes, 0, nullptr);
+  VSIL_GL(glBindTexture(GL_TEXTURE_3D, 0));
+}
+
+void VolumeTexture::upload(const Volume& volume, std::size_t slabBytes, int zShift,
+                           const SlabPart* part) {
+  const std::size_t texel = texelSize(internalFormat_);
+  const GLenum type = internalFormat_ == GL_R16F ? GL_HALF_FLOAT : GL_FLOAT;
   VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
-  for (const Brick& brick : layout_.bricks()) {
+  for (std::size_t b = 0; b < layout_.size(); ++b) {
+    const Brick& brick = layout_.bricks()[b];
+    if (part != nullptr && !part->holds(b)) {
+      textures_.emplace_back();  // another process holds it
+      continue;
+    }
     const glm::ivec3 size = brick.size;
     gl::TextureName texture = gl::createTexture();
     VSIL_GL(glBindTexture(GL_TEXTURE_3D, texture.id()));
@@ -178,7 +190,7 @@ VolumeTexture::VolumeTexture(const Volume& volume, std::uint64_t maxTextureBytes
       const int z = slab * depth, slabDepth = std::min(depth, size.z - z);
       std::vector<std::byte>& texels = slabs[slab % 2];
       texels.resize(sliceBytes * std::size_t(slabDepth));
-      convertTexels(volume, brick.origin + glm::ivec3(0, 0, z), {size.x, size.y, slabDepth},
+      convertTexels(volume, brick.origin + glm::ivec3(0, 0, z - zShift), {size.x, size.y, slabDepth},
                     internalFormat_, texels);
     };
     const int slabCount = (size.z + depth - 1) / depth;
@@ -206,6 +218,29 @@ VolumeTexture::VolumeTexture(const Volume& volume, std::uint64_t maxTextureBytes
     textures_.push_back(std::move(texture));
   }
   VSIL_GL(glBindTexture(GL_TEXTURE_3D, 0));
+}
+
+VolumeTexture::VolumeTexture(const Volume& slabVolume, const SlabPart& slab, std::size_t slabBytes)
+    : layout_(slab.layout), dims_(slab.dims), internalFormat_(slab.internalFormat) {
+  if (slabVolume.sampleCount() != slabVolume.voxelCount()) {
+    throw std::logic_error("VolumeTexture: sample count does not match the dimensions");
+  }
+  for (std::size_t b = 0; b < layout_.size(); ++b) {
+    const Brick& brick = layout_.bricks()[b];
+    if (!slab.holds(b)) continue;
+    if (!textureFits(brick.size, internalFormat_)) {
+      throwInputError(slabVolume.source, "its " + dimsText(brick.size) +
+                                             " brick texture is more than one 3D texture can "
+                                             "hold here; give a smaller --max-texture-mib");
+    }
+    // The brick's voxels (its power-of-two padding past the volume's end repeats the last
+    // voxel, as convertTexels does for the whole volume) must lie in the slab.
+    const int z1 = std::min(brick.origin.z + brick.size.z, slab.dims.z);
+    if (brick.origin.z < slab.voxelZ0 || z1 > slab.voxelZ0 + slabVolume.dims.z) {
+      throw std::logic_error("VolumeTexture: a held brick reaches beyond the slab read");
+    }
+  }
+  upload(slabVolume, slabBytes, slab.voxelZ0, &slab);
 }
 
 std::vector<float> VolumeTexture::readVoxels() const {

@@ -13,6 +13,7 @@
 #include "core/brick_layout.h"
 #include "core/volume.h"
 #include "slicing/gl_objects.h"
+#include "slicing/slab.h"
 
 namespace vsil {
 
@@ -50,6 +51,11 @@ class VolumeTexture {
                          std::uint64_t maxTextureBytes = limits::kMaxTextureBytes,
                          std::size_t slabBytes = limits::kUploadSlabBytes,
                          BrickLayout::Bricking bricking = BrickLayout::Bricking::Compact);
+  // One process's part of a volume split into slabs (slicing/slab.h): the whole volume's layout,
+  // textures only for the bricks `slab` holds (0 for the others), from `slabVolume`, which holds
+  // the whole volume's z from slab.voxelZ0 on.
+  VolumeTexture(const Volume& slabVolume, const SlabPart& slab,
+                std::size_t slabBytes = limits::kUploadSlabBytes);
   const BrickLayout& layout() const { return layout_; }
   std::size_t brickCount() const { return textures_.size(); }
   GLuint brickTexture(std::size_t brick) const { return textures_[brick].id(); }
@@ -60,6 +66,9 @@ class VolumeTexture {
   std::vector<float> readVoxels() const;
 
  private:
+  // Uploads the layout's bricks from `volume`, whose z = 0 is the whole volume's `zShift`;
+  // with `slab`, only those it holds.
+  void upload(const Volume& volume, std::size_t slabBytes, int zShift, const SlabPart* part);
   BrickLayout layout_;
   std::vector<gl::TextureName> textures_;  // one per brick, in the layout's order
   glm::ivec3 dims_;

@@ -36,6 +36,10 @@ int run(int argc, char** argv) {
   } catch (const vsil::InputError& e) {
     std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
     return 2;
+  } catch (const vsil::mpi::EveryRankError& e) {
+    if (vsil::mpi::rank() == 0) std::cerr << "vsil: " << e.what() << "\n";
+    vsil::mpi::failAlike();
+    return 1;
   } catch (const vsil::PartialFailure& e) {
     std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
     return kPartialFailureStatus;

@@ -241,6 +241,44 @@ DerivedDefaults derivedDefaults(const Volume& volume) {
   return derivedDefaults(volume, valueRange(volume));
 }
 
+LevelCounts levelCounts(const Volume& volume, ValueRange range, int zBegin, int zEnd) {
+  LevelCounts counts{};
+  const double span = double(range.max) - double(range.min);
+  if (!(span > 0)) return counts;
+  const std::size_t sliceSize = std::size_t(volume.dims.x) * std::size_t(volume.dims.y);
+  volume.visit([&](auto samples) {
+    const double scale = kLevels / span;
+    for (std::size_t i = std::size_t(zBegin) * sliceSize; i < std::size_t(zEnd) * sliceSize; ++i) {
+      const double level = std::floor((double(samples[i]) - range.min) * scale);
+      ++counts[std::size_t(std::clamp(level, 0.0, kLevels - 1.0))];
+    }
+  });
+  return counts;
+}
+
+DerivedDefaults derivedDefaultsFromCounts(ValueRange range, const LevelCounts& counts) {
+  LevelHistogram h;
+  h.range = range;
+  h.span = double(range.max) - double(range.min);
+  if (h.span > 0) {
+    // Otsu (cv::threshold) reads only the histogram of its image: the levels in order.
+    std::size_t total = 0;
+    for (std::size_t c : counts) total += c;
+    h.levels.create(1, int(total));
+    int j = 0;
+    for (int level = 0; level < kLevels; ++level) {
+      h.counts[std::size_t(level)] = counts[std::size_t(level)];
+      for (std::uint64_t k = 0; k < counts[std::size_t(level)]; ++k) h.levels(0, j++) = std::uint8_t(level);
+    }
+    h.total = total;
+  }
+  const float iso = otsuThreshold(h);
+  return {.iso = iso,
+          .valueRangeWidth = h.span,
+          .valueMin = h.range.min,
+          .windowHigh = std::max(quantileAbove(h, iso, kDefaultWindowQuantile), iso)};
+}
+
 DerivedDefaults derivedDefaults(const Volume& volume, ValueRange range) {
   const LevelHistogram h = levelHistogram(volume, range);
   const float iso = otsuThreshold(h);

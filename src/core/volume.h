@@ -3,6 +3,7 @@
 // produces and every technique consumes. Samples stay in their file's own type (one byte per
 // voxel for 8-bit data), so a volume costs what its file holds; consumers read them through a
 // typed view for fast loops (visit, samples<T>) or as floats one at a time (at, value).
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -223,6 +224,12 @@ inline constexpr double kDefaultWindowQuantile = 0.995;
 DerivedDefaults derivedDefaults(const Volume& volume);
 // The same for a volume whose valueRange is known (a pass over the samples saved).
 DerivedDefaults derivedDefaults(const Volume& volume, ValueRange range);
+// The same from the 256-level histogram of the samples (a volume split across processes sums
+// its slabs' levelCounts): equal to derivedDefaults for volumes of up to 2^24 samples, which it
+// histograms whole (larger ones it subsamples).
+using LevelCounts = std::array<std::uint64_t, 256>;
+LevelCounts levelCounts(const Volume& volume, ValueRange range, int zBegin, int zEnd);
+DerivedDefaults derivedDefaultsFromCounts(ValueRange range, const LevelCounts& counts);
 
 // Limits checked before a reader allocates or reads any payload. maxBytes bounds the memory of
 // the whole task the volume is read for (default: half the physical memory, core/limits.h);

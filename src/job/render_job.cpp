@@ -1,5 +1,7 @@
 #include "job/render_job.h"
 
+#include "slicing/slab.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -223,6 +225,21 @@ const Volume& RenderJob::setVolume(Volume volume, const std::string& input,
   impl_->volume.emplace(std::move(volume));
   impl_->input = input.empty() ? impl_->volume->source : input;
   impl_->renderer->setVolume(*impl_->volume, maxTextureBytes);
+  return *impl_->volume;
+}
+
+std::uint64_t RenderJob::memoryBytes(const RenderRequest& request, glm::ivec3 dims,
+                                     SampleType type, std::uint64_t maxTextureBytes) {
+  return renderBytes(request, dims, type, maxTextureBytes);
+}
+
+const Volume& RenderJob::setSlab(Volume slabVolume, const SlabPart& part,
+                                 const std::string& input) {
+  impl_->context.makeCurrent();
+  impl_->volume.reset();
+  impl_->volume.emplace(std::move(slabVolume));
+  impl_->input = input;
+  impl_->renderer->setSlab(*impl_->volume, part);
   return *impl_->volume;
 }
 

@@ -59,6 +59,9 @@ class RenderJob {
   const Volume& setVolume(Volume volume, const std::string& input = "",
                           std::uint64_t maxTextureBytes = limits::kMaxTextureBytes);
   const Volume& volume() const;
+  // One process's slab of a volume split across processes (slicing/slab.h Renderer::setSlab):
+  // `slabVolume` holds the whole volume's z from part.voxelZ0 on; memory checks count it alone.
+  const Volume& setSlab(Volume slabVolume, const SlabPart& part, const std::string& input);
 
   // Renders, broadens and composes one frame. Checks the request first (checkRequest) and the
   // work the volume needs (slices per frame, memory) against `limits`.
@@ -73,6 +76,10 @@ class RenderJob {
   // `load` with limits for rendering `request`: the loader checks the whole render's memory
   // (samples in the file's type, texture, brick ranges and images; limits::renderVolumeBytes)
   // and that the texture can exist, from the file's header, before reading any payload.
+  // The memory the checks count for rendering `request` from a volume of `dims` samples of
+  // `type` (textures, the structures beside them, the images).
+  static std::uint64_t memoryBytes(const RenderRequest& request, glm::ivec3 dims, SampleType type,
+                                   std::uint64_t maxTextureBytes);
   static LoadOptions loadOptionsFor(const RenderRequest& request, LoadOptions load);
 
  private:

@@ -5,7 +5,16 @@
 // <mpi.h> itself, in files built only with VSIL_HAVE_MPI (src/mpi/CMakeLists.txt).
 #include <string>
 
+#include "core/error.h"
+
 namespace vsil::mpi {
+
+// An error every rank meets alike (a refusal decided from the flags alone, before reading):
+// main() prints it on rank 0 only, so that N ranks do not print N copies.
+class EveryRankError : public UnavailableError {
+ public:
+  using UnavailableError::UnavailableError;
+};
 
 // Whether this build has MPI.
 bool built();
@@ -24,6 +33,9 @@ int size();
 // a world of several ranks, MPI_Abort with it, so that no rank waits forever in a collective
 // for one that failed. Returns exitCode.
 int finish(int exitCode);
+// Says that this process fails as every rank does (an EveryRankError): finish() then
+// finalizes instead of aborting, so that no rank is killed before rank 0 has printed the error.
+void failAlike();
 // Throws UnavailableError "<what> needs MPI: this vsil was built without it (...)" in a build
 // without MPI, and "<what> needs an MPI launcher (mpirun -np N vsil ...)" when not launched.
 void require(const std::string& what);

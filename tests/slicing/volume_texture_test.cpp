@@ -145,5 +145,85 @@ TEST_F(VolumeTextureUpload, EveryBrickHoldsItsVoxelsOverlapAndPadding) {
   }
 }
 
+// One process's part of a volume split along z (slicing/slab.h): the held bricks hold the
+// whole volume's voxels at their origins (overlap and padding as in the whole volume's
+// textures), the others have no texture; a slab that misses a held brick's voxels is refused.
+TEST_F(VolumeTextureUpload, ASlabHoldsItsBricksAsTheWholeVolumeDoes) {
+  const glm::ivec3 dims(12, 10, 40);
+  const Volume whole =
+      volumeOf<std::uint8_t>(dims, [](std::size_t i) { return (i * 37 + i / 97) % 256; });
+  SlabPart part;
+  part.dims = dims;
+  part.layout = BrickLayout::withStorage(dims, {16, 16, 16});  // layers own z from 0, 12, 24, 36
+  ASSERT_EQ(part.layout.counts().z, 4);
+  part.ownedZ0 = 1, part.ownedZ1 = 2;  // the second layer, with the third as its ghost
+  part.heldZ0 = 1, part.heldZ1 = 3;
+  part.voxelZ0 = 10;  // layer 1's origin (12 − 2 voxels of overlap)
+  part.internalFormat = GL_R16F;
+  const int slabEnd = 22 + 16;  // layer 2's origin + its texture's size
+  Volume slab =
+      volumeOf<std::uint8_t>({dims.x, dims.y, slabEnd - part.voxelZ0}, [&](std::size_t i) {
+        return whole.value(i + std::size_t(part.voxelZ0) * std::size_t(dims.x * dims.y));
+      });
+  EXPECT_EQ(part.ownedLowZ(), 11.5);
+  EXPECT_EQ(part.ownedHighZ(), 23.5);
+  EXPECT_EQ(part.ghostVoxels(), 12);
+
+  const VolumeTexture texture(slab, part);
+  ASSERT_EQ(texture.brickCount(), part.layout.size());
+  std::vector<float> texels;
+  int held = 0;
+  for (std::size_t b = 0; b < texture.brickCount(); ++b) {
+    if (!part.holds(b)) {
+      EXPECT_EQ(texture.brickTexture(b), 0u) << "brick " << b;
+      continue;
+    }
+    ++held;
+    const Brick& brick = part.layout.bricks()[b];
+    const glm::ivec3 size = brick.size;
+    texels.assign(std::size_t(size.x * size.y * size.z), -99.0f);
+    glBindTexture(GL_TEXTURE_3D, texture.brickTexture(b));
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, texels.data());
+    std::size_t i = 0;
+    for (int z = 0; z < size.z; ++z) {
+      for (int y = 0; y < size.y; ++y) {
+        for (int x = 0; x < size.x; ++x, ++i) {
+          const glm::ivec3 voxel = glm::min(brick.origin + glm::ivec3(x, y, z), dims - 1);
+          ASSERT_EQ(texels[i], whole.at(voxel.x, voxel.y, voxel.z))
+              << "brick " << b << " texel " << x << "," << y << "," << z;
+        }
+      }
+    }
+  }
+  glBindTexture(GL_TEXTURE_3D, 0);
+  EXPECT_EQ(held, 2);
+
+  part.heldZ1 = 4;  // the last layer too, whose voxels this slab does not hold
+  EXPECT_THROW(VolumeTexture(slab, part), std::logic_error);
+}
+
+TEST(SlabOrder, RaysVisitTheSlabsInTheOrderOfTheirZDirection) {
+  const glm::ivec3 dims{40, 30, 64};
+  const glm::dvec3 spacing{1.0};
+  const glm::ivec2 viewport{64, 48};
+  // Seen from +z (azimuth 0) every ray runs towards lower z, orthographic or not.
+  const View fromFront = makeView({.azimuthDeg = 0, .elevationDeg = 10}, dims, spacing, viewport);
+  EXPECT_EQ(frameZDirection(fromFront), std::optional<int>(-1));
+  EXPECT_EQ(rayZDirection(fromFront, {32, 24}), -1);
+  const View fromBack = makeView({.azimuthDeg = 180, .elevationDeg = -10, .orthographic = true},
+                                 dims, spacing, viewport);
+  EXPECT_EQ(frameZDirection(fromBack), std::optional<int>(1));
+  // A perspective eye level with the volume's middle along z (seen from +x): the left and the
+  // right half of the image run opposite ways, so no one order serves the frame.
+  const View fromSide = makeView({.azimuthDeg = 90, .elevationDeg = 0}, dims, spacing, viewport);
+  EXPECT_EQ(frameZDirection(fromSide), std::nullopt);
+  EXPECT_EQ(rayZDirection(fromSide, {0.5, 24}), -rayZDirection(fromSide, {63.5, 24}));
+  // Orthographic from the side: rays parallel to the slabs.
+  const View flat = makeView({.azimuthDeg = 90, .elevationDeg = 0, .orthographic = true}, dims,
+                             spacing, viewport);
+  ASSERT_TRUE(frameZDirection(flat).has_value());
+}
+
 }  // namespace
 }  // namespace vsil

@@ -197,6 +197,14 @@ FrameBuffers colourWithDepth(const gl::RenderTarget& colour, const gl::RenderTar
   return frame;
 }
 
+void MipTechnique::combineSlabs(const FrameContext& frame, SlabRelay& relay) {
+  if (depthEnhanced_ || marches(frame)) {
+    Technique::combineSlabs(frame, relay);
+    return;
+  }
+  relay.maxReduce(targets_->values);
+}
+
 void MipTechnique::endFrame(const FrameContext& frame) {
   const OptionReader& options = *frame.options;
   const bool marching = marches(frame);

@@ -37,6 +37,9 @@ class MipTechnique : public Technique {
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
   void endFrame(const FrameContext& frame) override;
   FrameBuffers readBack(const FrameContext& frame) override;
+  // mip: the maxima of every slab (Composition::MaxReduce); demip's second sweep needs the
+  // whole ray's maximum, so it is not split (yet).
+  void combineSlabs(const FrameContext& frame, SlabRelay& relay) override;
 
  private:
   void uploadSphereMap();  // colourSphere_'s image into sphereMapTexture_

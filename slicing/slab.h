@@ -1,0 +1,75 @@
+#pragma once
+// A volume split into slabs of z across processes (`mpirun -np N vsil render`, src/mpi/):
+// what one process holds of it, and how the processes pass a frame's targets along.
+//
+// The slabs are runs of the whole volume's bricks along z (core/brick_layout.h): a process
+// uploads only the bricks it holds (its own and, as a ghost layer, one layer of bricks on each
+// side), draws only the slice pieces of the bricks it owns, and the pieces of its ghost bricks
+// where a technique reads neighbouring pixels of the same slice (silhouette's contour test).
+// Bricks sample exactly alike in any texture, so a process's samples are the single process's
+// samples. Slab borders are brick planes z = b − 0.5; a sample belongs to the slab its point's z
+// lies in (the first and last slab reach to ∓infinity, as bricks do).
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "core/brick_layout.h"
+#include "core/camera.h"
+#include "core/volume.h"
+#include "slicing/gl_objects.h"
+
+namespace vsil {
+
+// Moves a frame's targets between the processes in the view's depth order (a relay): the
+// process nearest the eye starts, each continues from what the one in front of it sent.
+class SlabRelay {
+ public:
+  virtual ~SlabRelay() = default;
+  // Replaces the colour of `targets` with what the process in front sent (nothing on the first).
+  virtual void receive(const std::vector<const gl::RenderTarget*>& targets) = 0;
+  // Sends `targets` to the process behind (nothing on the last).
+  virtual void send(const std::vector<const gl::RenderTarget*>& targets) = 0;
+  // The last process's `targets` to every process.
+  virtual void shareLast(const std::vector<const gl::RenderTarget*>& targets) = 0;
+  // Replaces every float of `target` by its maximum over all processes (Composition::MaxReduce:
+  // float max is exact and commutative, so the order does not matter).
+  virtual void maxReduce(const gl::RenderTarget& target) = 0;
+};
+
+// Slabs along z meet a ray in z order: which way the ray through `pixel` (pixel coordinates, a
+// centre at +0.5) runs along the volume's z, +1 towards higher z, -1 towards lower, 0 along a
+// plane of constant z (it never leaves its slab, so any order is its order).
+int rayZDirection(const View& view, glm::dvec2 pixel);
+
+// The direction every ray of the frame shares (orthographic views; a perspective eye outside
+// the slabs' z), or nullopt where rays leave the eye both ways along z. The ray's z
+// direction is affine in the pixel, so the four corner pixels decide.
+std::optional<int> frameZDirection(const View& view);
+
+struct SlabPart {
+  glm::ivec3 dims{0};            // the whole volume's
+  BrickLayout layout;            // the whole volume's bricks
+  int ownedZ0 = 0, ownedZ1 = 0;  // brick layers (Brick::index.z) this process owns, [z0, z1)
+  int heldZ0 = 0, heldZ1 = 0;    // and holds: owned plus the ghost layers
+  int voxelZ0 = 0;               // the whole volume's z of the slab volume's z = 0
+  GLenum internalFormat = 0;     // the same on every process (R16F only where all slabs allow it)
+  ValueRange valueRange;         // the whole volume's
+  DerivedDefaults derived;       // the whole volume's (summed histograms)
+  SlabRelay* relay = nullptr;
+
+  bool owns(std::size_t brick) const {
+    const int z = layout.bricks()[brick].index.z;
+    return z >= ownedZ0 && z < ownedZ1;
+  }
+  bool holds(std::size_t brick) const {
+    const int z = layout.bricks()[brick].index.z;
+    return z >= heldZ0 && z < heldZ1;
+  }
+  // The sample positions (voxel z) the owned bricks own: [low, high).
+  double ownedLowZ() const;
+  double ownedHighZ() const;
+  // Voxel z the ghost layers reach beyond the owned bricks on the thinner side (0 without).
+  int ghostVoxels() const;
+};
+
+}  // namespace vsil
