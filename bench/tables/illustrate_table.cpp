@@ -144,8 +144,6 @@ RenderSettings caseSettings(const IllustrateCase& c, const IllustrateDataset& d,
     settings.technique = "illustrate";
     settings.options["tf"] = tfPath;
     settings.options["effects"] = c.effects;
-    if (std::getenv("PARAM"))
-      settings.options["param"] = std::vector<std::string>{std::getenv("PARAM")};
   }
   return settings;
 }
