@@ -135,7 +135,13 @@ struct Nk3Column {
   bool broadened;        // BS: FFT broadening to kBroadenedWidth and composition, timed
   bool resolvesContour;  // finished frames hold no Contour pixel (the extra empty slice)
   double PaperFps::*paperFps;
+  bool isDefault = false;  // `pipeline` is the technique's default: what a user gets
 };
+
+// The technique's --pipeline default (technique_table.h: each technique's fastest).
+std::string defaultPipelineOf(const TechniqueInfo& technique) {
+  return std::get<std::string>(*technique.option("pipeline")->defaultValue);
+}
 
 // Positions within a pipeline's three columns, for the checks between columns.
 constexpr std::size_t kRa = 0, kOps = 1, kBs = 2, kColumnsPerPipeline = 3;
@@ -167,6 +173,9 @@ const std::vector<Nk3Column>& nk3Columns() {
                      &PaperFps::ops});
       all.push_back(
           {"bs" + suffix, "BS", pipeline, findTechnique("silhouette"), true, true, &PaperFps::bs});
+    }
+    for (Nk3Column& column : all) {
+      column.isDefault = column.pipeline == defaultPipelineOf(column.technique);
     }
     return all;
   }();
@@ -529,6 +538,25 @@ std::string checkOf(const CaseResult& result) {
   return result.problems.empty() ? "ok" : "FAILED: " + problemsOf(result);
 }
 
+// Issue 36's ratio, as a user gets it: OPS at its default pipeline over RA at its default, in
+// frame time (median over median) from the same frames taken in turn (runCases). nullopt when
+// either is missing.
+std::optional<double> opsDefaultOverRaDefault(const std::vector<CaseResult>& cases) {
+  const auto& columns = nk3Columns();
+  const CaseResult *ra = nullptr, *ops = nullptr;
+  for (const CaseResult& c : cases) {
+    if (!c.column->isDefault || c.column->broadened) continue;
+    if (c.column->label == columns[kRa].label) ra = &c;
+    if (c.column->label == columns[kOps].label) ops = &c;
+  }
+  if (!ra || !ops || !(ra->stats.msMedian > 0) || !(ops->stats.msMedian > 0)) return std::nullopt;
+  return ops->stats.msMedian / ra->stats.msMedian;
+}
+
+nlohmann::json jsonOrNull(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json();
+}
+
 // What a row says of any case, measured or missing.
 nlohmann::json caseRow(const Nk3Dataset& d, int window, const Nk3Column& column) {
   const auto paper = paperFor(d, window);
@@ -538,6 +566,7 @@ nlohmann::json caseRow(const Nk3Dataset& d, int window, const Nk3Column& column)
           {"height", window},
           {"technique", column.key},
           {"pipeline", column.pipeline},
+          {"default_pipeline", column.isDefault},
           {"paper_fps", paper ? nlohmann::json((*paper).*column.paperFps) : nlohmann::json()}};
 }
 
@@ -549,12 +578,13 @@ nlohmann::json missingRow(const Nk3Measured& m, int window, const Nk3Column& col
               {"ms_max", nullptr},
               {"fps", nullptr},
               {"missing", m.missing},
+              {"ops_default_over_ra_default", nullptr},
               {"check", nullptr}});
   return row;
 }
 
 nlohmann::json measuredRow(const Nk3Measured& m, int window, const CaseResult& r,
-                           const BenchOptions& options) {
+                           std::optional<double> opsOverRa, const BenchOptions& options) {
   nlohmann::json row = caseRow(m.dataset, window, *r.column);
   row.update({{"frames", r.stats.frames},
               {"warmup", options.warmup},
@@ -570,6 +600,7 @@ nlohmann::json measuredRow(const Nk3Measured& m, int window, const CaseResult& r
               {"iso", m.dataset.iso},
               {"dims", {m.dims.x, m.dims.y, m.dims.z}},
               {"slices", r.sliceCount},
+              {"ops_default_over_ra_default", jsonOrNull(opsOverRa)},
               {"check", checkOf(r)}});
   if (r.column->broadened) {
     row["line_width"] = kBroadenedWidth;
@@ -587,8 +618,9 @@ std::vector<nlohmann::json> jsonRows(const Nk3Measured& m, const BenchOptions& o
         rows.push_back(missingRow(m, window.size, column));
       }
     }
+    const std::optional<double> opsOverRa = opsDefaultOverRaDefault(window.cases);
     for (const CaseResult& r : window.cases) {
-      rows.push_back(measuredRow(m, window.size, r, options));
+      rows.push_back(measuredRow(m, window.size, r, opsOverRa, options));
     }
   }
   return rows;
@@ -613,6 +645,8 @@ struct Nk3Line {
   std::vector<double> fps;  // RA, OPS, BS (0: not measured)
   std::optional<PaperFps> paper;
   std::string check;
+  // On a window's first line only: the ratio belongs to the window, not to one pipeline.
+  std::optional<double> opsDefaultOverRaDefault = std::nullopt;
 };
 
 std::vector<Nk3Line> tableLines(const Nk3Measured& m) {
@@ -621,13 +655,12 @@ std::vector<Nk3Line> tableLines(const Nk3Measured& m) {
   const auto& columns = nk3Columns();
   for (const auto& window : m.windows) {
     for (std::size_t first = 0; first < columns.size(); first += kColumnsPerPipeline) {
-      Nk3Line line{m.dataset.name,
-                   missing ? m.dataset.paperSize : dimsLabel(m.dims),
-                   std::to_string(window.size) + "²",
-                   columns[first].pipeline,
-                   std::vector<double>(kColumnsPerPipeline, 0.0),
-                   paperFor(m.dataset, window.size),
-                   missing ? "missing" : "ok"};
+      Nk3Line line{m.dataset.name, missing ? m.dataset.paperSize : dimsLabel(m.dims),
+                   std::to_string(window.size) + "²", columns[first].pipeline,
+                   std::vector<double>(kColumnsPerPipeline, 0.0), paperFor(m.dataset, window.size),
+                   missing ? "missing" : "ok",
+                   // the window's ratio, on its first line only
+                   first == 0 ? opsDefaultOverRaDefault(window.cases) : std::nullopt};
       std::string failed;
       for (std::size_t i = 0; i < kColumnsPerPipeline && first + i < window.cases.size(); ++i) {
         const CaseResult& result = window.cases[first + i];
@@ -649,6 +682,7 @@ TextTable textTable(const std::vector<Nk3Line>& lines) {
   std::vector<std::string> header{"dataset", "size", "window", "pipeline"};
   for (std::size_t i = 0; i < kColumnsPerPipeline; ++i) header.push_back(columns[i].label + " fps");
   header.push_back("RA/OPS");
+  header.push_back("OPS default / RA default");
   for (std::size_t i = 0; i < kColumnsPerPipeline; ++i)
     header.push_back("paper " + columns[i].label);
   header.insert(header.end(), {"paper RA/OPS", "check"});
@@ -657,6 +691,7 @@ TextTable textTable(const std::vector<Nk3Line>& lines) {
     std::vector<std::string> cells{l.dataset, l.size, l.window, l.pipeline};
     for (double fps : l.fps) cells.push_back(formatFps(fps));
     cells.push_back(formatRatio(l.fps[kRa] / l.fps[kOps]));
+    cells.push_back(l.opsDefaultOverRaDefault ? formatRatio(*l.opsDefaultOverRaDefault) : "");
     for (std::size_t i = 0; i < kColumnsPerPipeline; ++i) {
       cells.push_back(l.paper ? formatFps((*l.paper).*columns[i].paperFps) : "–");
     }
@@ -708,6 +743,18 @@ std::string methodNote(const BenchOptions& options) {
   return method;
 }
 
+// What the column of the defaults' ratio compares.
+std::string defaultsNote() {
+  const auto& columns = nk3Columns();
+  return "OPS default / RA default: frame time (median) of " + columns[kOps].label +
+         " at its "
+         "default pipeline (" +
+         defaultPipelineOf(columns[kOps].technique) + ") over " + columns[kRa].label +
+         " at its default (" + defaultPipelineOf(columns[kRa].technique) +
+         "), as a user gets them, from the same frames taken in turn; on each window's first "
+         "line; JSON: ops_default_over_ra_default on every row of the window";
+}
+
 // Why a dataset is missing, or the iso value it was measured at and why.
 std::string datasetNote(const Nk3Measured& m) {
   return std::string(m.dataset.paperName) + ": " +
@@ -743,6 +790,7 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
       "Nagy–Klein Table 3: frames per second, ours beside the paper's (3 GHz Pentium 4, "
       "ATI Fire GL X1)";
   table.notes.push_back(methodNote(options));
+  table.notes.push_back(defaultsNote());
   std::vector<Nk3Line> lines;
   for (const Nk3Measured& m : measured) {
     table.notes.push_back(datasetNote(m));
