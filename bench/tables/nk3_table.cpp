@@ -135,7 +135,13 @@ struct Nk3Column {
   bool broadened;        // BS: FFT broadening to kBroadenedWidth and composition, timed
   bool resolvesContour;  // finished frames hold no Contour pixel (the extra empty slice)
   double PaperFps::*paperFps;
+  bool isDefault = false;  // `pipeline` is the technique's default: what a user gets
 };
+
+// The technique's --pipeline default (technique_table.h: each technique's fastest).
+std::string defaultPipelineOf(const TechniqueInfo& technique) {
+  return std::get<std::string>(*technique.option("pipeline")->defaultValue);
+}
 
 // Positions within a pipeline's three columns, for the checks between columns.
 constexpr std::size_t kRa = 0, kOps = 1, kBs = 2, kColumnsPerPipeline = 3;
@@ -167,6 +173,9 @@ const std::vector<Nk3Column>& nk3Columns() {
                      &PaperFps::ops});
       all.push_back(
           {"bs" + suffix, "BS", pipeline, findTechnique("silhouette"), true, true, &PaperFps::bs});
+    }
+    for (Nk3Column& column : all) {
+      column.isDefault = column.pipeline == defaultPipelineOf(column.technique);
     }
     return all;
   }();
@@ -214,6 +223,7 @@ int casesToMeasure(const std::vector<Nk3Choice>& chosen, const std::vector<int>&
 
 struct FrameSample {
   double ms = 0, renderMs = 0, readbackMs = 0, postfxMs = 0;
+  double cpuMs = 0;  // the process's CPU time over the timed region, every llvmpipe thread
   int silhouettes = 0, filled = 0, contours = 0, linePixels = 0;
 };
 
@@ -279,6 +289,7 @@ void renderFrame(Renderer& renderer, RenderSettings settings, int k, const Bench
   postfx.width = WidthLaw::fixed(kBroadenedWidth);
 
   FrameSample sample;
+  const double cpuStart = processCpuMs();
   const auto start = std::chrono::steady_clock::now();
   RenderResult frame = renderer.render(settings);
   cv::Mat1b lines;
@@ -292,6 +303,7 @@ void renderFrame(Renderer& renderer, RenderSettings settings, int k, const Bench
     }
   }
   sample.ms = millisecondsSince(start);
+  sample.cpuMs = processCpuMs() - cpuStart;
   sample.renderMs = frame.timings.render.wallMs + frame.timings.programs.wallMs;
   sample.readbackMs = frame.timings.readback.wallMs;
   result.sliceCount = frame.sliceCount;
@@ -511,13 +523,6 @@ std::optional<PaperFps> paperFor(const Nk3Dataset& dataset, int window) {
   return std::nullopt;
 }
 
-template <typename Field>
-double medianOf(const std::vector<FrameSample>& frames, Field FrameSample::*field) {
-  std::vector<double> values;
-  for (const auto& f : frames) values.push_back(f.*field);
-  return median(values);
-}
-
 // The case's failed checks, "; " between them ("" when all passed).
 std::string problemsOf(const CaseResult& result) {
   std::string text;
@@ -529,6 +534,36 @@ std::string checkOf(const CaseResult& result) {
   return result.problems.empty() ? "ok" : "FAILED: " + problemsOf(result);
 }
 
+template <typename Field>
+double medianOf(const std::vector<FrameSample>& frames, Field FrameSample::*field) {
+  std::vector<double> values;
+  for (const auto& f : frames) values.push_back(f.*field);
+  return median(values);
+}
+
+// Issue 36's ratio, as a user gets it: OPS at its default pipeline over RA at its default, in
+// frame time (median over median; `field` &FrameSample::cpuMs: in CPU time, steadier on a
+// loaded machine) from the same frames taken in turn (runCases). nullopt when either is
+// missing.
+std::optional<double> opsDefaultOverRaDefault(const std::vector<CaseResult>& cases,
+                                              double FrameSample::*field = &FrameSample::ms) {
+  const auto& columns = nk3Columns();
+  const CaseResult *ra = nullptr, *ops = nullptr;
+  for (const CaseResult& c : cases) {
+    if (!c.column->isDefault || c.column->broadened) continue;
+    if (c.column->label == columns[kRa].label) ra = &c;
+    if (c.column->label == columns[kOps].label) ops = &c;
+  }
+  if (!ra || !ops || ra->frames.empty() || ops->frames.empty()) return std::nullopt;
+  const double raMs = medianOf(ra->frames, field), opsMs = medianOf(ops->frames, field);
+  if (!(raMs > 0) || !(opsMs > 0)) return std::nullopt;
+  return opsMs / raMs;
+}
+
+nlohmann::json jsonOrNull(const std::optional<double>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json();
+}
+
 // What a row says of any case, measured or missing.
 nlohmann::json caseRow(const Nk3Dataset& d, int window, const Nk3Column& column) {
   const auto paper = paperFor(d, window);
@@ -538,6 +573,7 @@ nlohmann::json caseRow(const Nk3Dataset& d, int window, const Nk3Column& column)
           {"height", window},
           {"technique", column.key},
           {"pipeline", column.pipeline},
+          {"default_pipeline", column.isDefault},
           {"paper_fps", paper ? nlohmann::json((*paper).*column.paperFps) : nlohmann::json()}};
 }
 
@@ -549,11 +585,14 @@ nlohmann::json missingRow(const Nk3Measured& m, int window, const Nk3Column& col
               {"ms_max", nullptr},
               {"fps", nullptr},
               {"missing", m.missing},
+              {"ops_default_over_ra_default", nullptr},
+              {"ops_default_over_ra_default_cpu", nullptr},
               {"check", nullptr}});
   return row;
 }
 
 nlohmann::json measuredRow(const Nk3Measured& m, int window, const CaseResult& r,
+                           std::optional<double> opsOverRa, std::optional<double> opsOverRaCpu,
                            const BenchOptions& options) {
   nlohmann::json row = caseRow(m.dataset, window, *r.column);
   row.update({{"frames", r.stats.frames},
@@ -570,6 +609,9 @@ nlohmann::json measuredRow(const Nk3Measured& m, int window, const CaseResult& r
               {"iso", m.dataset.iso},
               {"dims", {m.dims.x, m.dims.y, m.dims.z}},
               {"slices", r.sliceCount},
+              {"cpu_ms_median", medianOf(r.frames, &FrameSample::cpuMs)},
+              {"ops_default_over_ra_default", jsonOrNull(opsOverRa)},
+              {"ops_default_over_ra_default_cpu", jsonOrNull(opsOverRaCpu)},
               {"check", checkOf(r)}});
   if (r.column->broadened) {
     row["line_width"] = kBroadenedWidth;
@@ -587,8 +629,11 @@ std::vector<nlohmann::json> jsonRows(const Nk3Measured& m, const BenchOptions& o
         rows.push_back(missingRow(m, window.size, column));
       }
     }
+    const std::optional<double> opsOverRa = opsDefaultOverRaDefault(window.cases);
+    const std::optional<double> opsOverRaCpu =
+        opsDefaultOverRaDefault(window.cases, &FrameSample::cpuMs);
     for (const CaseResult& r : window.cases) {
-      rows.push_back(measuredRow(m, window.size, r, options));
+      rows.push_back(measuredRow(m, window.size, r, opsOverRa, opsOverRaCpu, options));
     }
   }
   return rows;
@@ -613,6 +658,9 @@ struct Nk3Line {
   std::vector<double> fps;  // RA, OPS, BS (0: not measured)
   std::optional<PaperFps> paper;
   std::string check;
+  // On a window's first line only: the ratio belongs to the window, not to one pipeline.
+  std::optional<double> opsDefaultOverRaDefault = std::nullopt;
+  std::optional<double> opsDefaultOverRaDefaultCpu = std::nullopt;
 };
 
 std::vector<Nk3Line> tableLines(const Nk3Measured& m) {
@@ -621,13 +669,14 @@ std::vector<Nk3Line> tableLines(const Nk3Measured& m) {
   const auto& columns = nk3Columns();
   for (const auto& window : m.windows) {
     for (std::size_t first = 0; first < columns.size(); first += kColumnsPerPipeline) {
-      Nk3Line line{m.dataset.name,
-                   missing ? m.dataset.paperSize : dimsLabel(m.dims),
-                   std::to_string(window.size) + "²",
-                   columns[first].pipeline,
-                   std::vector<double>(kColumnsPerPipeline, 0.0),
-                   paperFor(m.dataset, window.size),
-                   missing ? "missing" : "ok"};
+      Nk3Line line{
+          m.dataset.name, missing ? m.dataset.paperSize : dimsLabel(m.dims),
+          std::to_string(window.size) + "²", columns[first].pipeline,
+          std::vector<double>(kColumnsPerPipeline, 0.0), paperFor(m.dataset, window.size),
+          missing ? "missing" : "ok",
+          // the window's ratio, on its first line only
+          first == 0 ? opsDefaultOverRaDefault(window.cases) : std::nullopt,
+          first == 0 ? opsDefaultOverRaDefault(window.cases, &FrameSample::cpuMs) : std::nullopt};
       std::string failed;
       for (std::size_t i = 0; i < kColumnsPerPipeline && first + i < window.cases.size(); ++i) {
         const CaseResult& result = window.cases[first + i];
@@ -649,6 +698,8 @@ TextTable textTable(const std::vector<Nk3Line>& lines) {
   std::vector<std::string> header{"dataset", "size", "window", "pipeline"};
   for (std::size_t i = 0; i < kColumnsPerPipeline; ++i) header.push_back(columns[i].label + " fps");
   header.push_back("RA/OPS");
+  header.push_back("OPS default / RA default");
+  header.push_back("cpu OPS default / RA default");
   for (std::size_t i = 0; i < kColumnsPerPipeline; ++i)
     header.push_back("paper " + columns[i].label);
   header.insert(header.end(), {"paper RA/OPS", "check"});
@@ -657,6 +708,8 @@ TextTable textTable(const std::vector<Nk3Line>& lines) {
     std::vector<std::string> cells{l.dataset, l.size, l.window, l.pipeline};
     for (double fps : l.fps) cells.push_back(formatFps(fps));
     cells.push_back(formatRatio(l.fps[kRa] / l.fps[kOps]));
+    cells.push_back(l.opsDefaultOverRaDefault ? formatRatio(*l.opsDefaultOverRaDefault) : "");
+    cells.push_back(l.opsDefaultOverRaDefaultCpu ? formatRatio(*l.opsDefaultOverRaDefaultCpu) : "");
     for (std::size_t i = 0; i < kColumnsPerPipeline; ++i) {
       cells.push_back(l.paper ? formatFps((*l.paper).*columns[i].paperFps) : "–");
     }
@@ -708,6 +761,17 @@ std::string methodNote(const BenchOptions& options) {
   return method;
 }
 
+// What the column of the defaults' ratio compares.
+std::string defaultsNote() {
+  const auto& columns = nk3Columns();
+  return "OPS default / RA default: the median frame time of " + columns[kOps].label +
+         " at its default pipeline (" + defaultPipelineOf(columns[kOps].technique) + ") over " +
+         columns[kRa].label + " at its default (" + defaultPipelineOf(columns[kRa].technique) +
+         "), as a user gets them, from the same frames taken in turn, on each window's first "
+         "line; cpu: the same in the process's CPU time per frame (steadier on a loaded "
+         "machine); JSON: ops_default_over_ra_default(_cpu) on every row of the window";
+}
+
 // Why a dataset is missing, or the iso value it was measured at and why.
 std::string datasetNote(const Nk3Measured& m) {
   return std::string(m.dataset.paperName) + ": " +
@@ -743,6 +807,7 @@ TableResult runNk3Table(const BenchOptions& options, Progress& progress) {
       "Nagy–Klein Table 3: frames per second, ours beside the paper's (3 GHz Pentium 4, "
       "ATI Fire GL X1)";
   table.notes.push_back(methodNote(options));
+  table.notes.push_back(defaultsNote());
   std::vector<Nk3Line> lines;
   for (const Nk3Measured& m : measured) {
     table.notes.push_back(datasetNote(m));

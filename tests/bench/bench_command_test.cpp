@@ -114,6 +114,49 @@ TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
   for (const char* pipeline : {"fast", "paper", "tiles"}) EXPECT_EQ(perPipeline[pipeline], 6);
 }
 
+// Issue 36's ratio: per dataset and window, OPS at its default pipeline over RA at its default,
+// in frame time, from the rows the table itself marks as the defaults (one pipeline per
+// technique; silhouette's default is tiles, rightangle's fast: technique_table_test.cpp).
+TEST_F(Nk3Run, OpsDefaultOverRaDefaultComesFromTheDefaultPipelines) {
+  ASSERT_EQ(result_.exitCode, 0) << result_.err;
+  const auto rows = nlohmann::json::parse(test::readFileBytes(dir_ / "nk3.json"))["rows"];
+  std::map<std::string, std::map<std::string, double>> defaultMs;  // dataset -> ra/ops/bs
+  std::map<std::string, std::map<std::string, double>> defaultCpuMs;
+  std::map<std::string, std::map<std::string, std::string>> defaultPipeline;
+  for (const auto& row : rows) {
+    SCOPED_TRACE(row.dump());
+    const std::string technique = row["technique"];
+    const std::string base = technique.substr(0, technique.find('-'));
+    if (!row["default_pipeline"].get<bool>()) continue;
+    EXPECT_EQ(defaultMs[row["dataset"]].count(base), 0u) << "one default pipeline per technique";
+    defaultMs[row["dataset"]][base] = row["ms_median"];
+    defaultCpuMs[row["dataset"]][base] = row["cpu_ms_median"];
+    defaultPipeline[row["dataset"]][base] = row["pipeline"];
+  }
+  ASSERT_EQ(defaultMs.size(), 2u);
+  for (const auto& [dataset, pipelines] : defaultPipeline) {
+    EXPECT_EQ(pipelines.at("ra"), "fast") << dataset;
+    EXPECT_EQ(pipelines.at("ops"), "tiles") << dataset;
+    EXPECT_EQ(pipelines.at("bs"), "tiles") << dataset << ": BS is OPS broadened";
+  }
+  for (const auto& row : rows) {
+    SCOPED_TRACE(row.dump());
+    const auto& ms = defaultMs[row["dataset"]];
+    EXPECT_NEAR(row["ops_default_over_ra_default"].get<double>(), ms.at("ops") / ms.at("ra"), 1e-9);
+    // CPU time: the same ratio, where the clock measured any (the process's CPU clock ticks in
+    // steps that a 64² frame may fall between).
+    const auto& cpu = defaultCpuMs[row["dataset"]];
+    EXPECT_GE(row["cpu_ms_median"].get<double>(), 0.0);
+    if (cpu.at("ra") > 0 && cpu.at("ops") > 0) {
+      EXPECT_NEAR(row["ops_default_over_ra_default_cpu"].get<double>(),
+                  cpu.at("ops") / cpu.at("ra"), 1e-9);
+    } else {
+      EXPECT_TRUE(row["ops_default_over_ra_default_cpu"].is_null());
+    }
+  }
+  EXPECT_NE(result_.out.find("OPS default / RA default"), std::string::npos) << result_.out;
+}
+
 TEST_F(Nk3Run, WritesMarkdownAndPlot) {
   ASSERT_EQ(result_.exitCode, 0) << result_.err;
   const std::string markdown = test::readFileBytes(dir_ / "nk3.md");
