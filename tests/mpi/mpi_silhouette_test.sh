@@ -5,7 +5,7 @@
 # orthographic, zoomed out so far that a pixel spans several voxels (there a slab without its
 # ghost layers must differ: the contour test reads neighbours in the next slab), spheres that
 # cross the slab borders, and a classic dataset. The single process runs the default tiles
-# pipeline; a slab runs the fast one (and --pipeline paper turns into it).
+# pipeline; a slab runs the fast one (and --pipeline paper or tiles turns into it).
 # Usage: mpi_silhouette_test.sh VSIL MPIEXEC [DATASETS]
 set -euo pipefail
 vsil=$1
@@ -61,13 +61,15 @@ if cmp -s "$work/single.state.png" "$work/noghost.state.png"; then
 fi
 echo "without ghost layers: differs (as it must)"
 
-# --pipeline paper across ranks runs the fast pipeline: the single process's paper bytes.
-"$vsil" render gen:spheres:64 --size 96x96 --view 37,-23 --technique silhouette \
-  --pipeline paper --out "$work/paper.png" >/dev/null
-"$mpiexec" --oversubscribe -np 2 "$vsil" render gen:spheres:64 --size 96x96 --view 37,-23 \
-  --technique silhouette --pipeline paper --out "$work/paper2.png" >/dev/null
-cmp -s "$work/paper.png" "$work/paper2.png" || fail "--pipeline paper: -np 2 differs"
-echo "--pipeline paper: -np 2 byte-identical"
+# --pipeline paper or tiles across ranks runs the fast pipeline: the single process's bytes.
+for pipeline in paper tiles; do
+  "$vsil" render gen:spheres:64 --size 96x96 --view 37,-23 --technique silhouette \
+    --pipeline "$pipeline" --out "$work/one.png" >/dev/null
+  "$mpiexec" --oversubscribe -np 2 "$vsil" render gen:spheres:64 --size 96x96 --view 37,-23 \
+    --technique silhouette --pipeline "$pipeline" --out "$work/two.png" >/dev/null
+  cmp -s "$work/one.png" "$work/two.png" || fail "--pipeline $pipeline: -np 2 differs"
+done
+echo "--pipeline paper, tiles: -np 2 byte-identical"
 
 # --fill tone shades with the volume at every hit: refused in one line across ranks.
 if "$mpiexec" --oversubscribe -np 2 "$vsil" render gen:spheres:64 --size 64x64 \
