@@ -31,7 +31,7 @@ struct PairPixel {
   // The run's first sample's PixelState; -1 for a run without samples inside the volume (those
   // outside are EMPTY: the slice gap below accounts for them).
   std::int32_t first = -1;
-  std::int32_t t = 0;       // NkRun::t
+  std::int32_t t = 0;                       // NkRun::t
   float hit = 0, detectPrev = 0, last = 0;  // NkRun's depths
   // Travel with the hit (where the state's first non-EMPTY sample lies): the first-hit eye
   // distance and the shade there (finish_hits.frag), from the process that owns the hit.

@@ -51,8 +51,8 @@ void writeTexels(const gl::RenderTarget& target, const std::vector<float>& texel
   const glm::ivec2 size = target.size();
   VSIL_GL(glBindTexture(GL_TEXTURE_2D, target.texture()));
   VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
-  VSIL_GL(glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size.x, size.y, GL_RGBA, GL_FLOAT,
-                          texels.data()));
+  VSIL_GL(
+      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size.x, size.y, GL_RGBA, GL_FLOAT, texels.data()));
   VSIL_GL(glBindTexture(GL_TEXTURE_2D, 0));
 }
 
@@ -89,8 +89,8 @@ PairPixel pairPixel(const float* record, const float* coverage, float shade) {
   // CONTOUR first sample that turned FILLED combines alike: the state FILLED, the front's
   // hit), else CONTOUR (FILLED is final).
   if (pixel.hit == firstDepth) {
-    pixel.first = std::int32_t(state == PixelState::Filled ? PixelState::Filled
-                                                           : PixelState::Contour);
+    pixel.first =
+        std::int32_t(state == PixelState::Filled ? PixelState::Filled : PixelState::Contour);
   }
   return pixel;
 }

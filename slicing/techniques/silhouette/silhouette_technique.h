@@ -68,9 +68,9 @@ class SilhouetteTechnique : public Technique {
   std::optional<Targets> targets_;
   Programs programs_{};
   SlicingPipeline pipeline_ = SlicingPipeline::Fast;
-  int current_ = 0;    // the record target holding the latest record
+  int current_ = 0;            // the record target holding the latest record
   bool slabCombined_ = false;  // combineSlabs left the finished records in records[current_]
-  ToneFill toneFill_;  // --fill tone
+  ToneFill toneFill_;          // --fill tone
 };
 
 }  // namespace vsil
