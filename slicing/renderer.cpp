@@ -206,7 +206,10 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
   const OptionReader options(info.options, given, derived);
   // Bricks the frame cannot follow: the volume in one texture when it fits (else the
   // technique refuses). It stays so for later frames (the same bytes either way).
-  if (slab && info.needsOneTexture && info.needsOneTexture(options)) {
+  // (The silhouette's pair reduce runs a slab's frame in the fast pipeline whatever --pipeline
+  // says: silhouette_technique.cpp beginFrame.)
+  if (slab && info.composition != Composition::PairReduce && info.needsOneTexture &&
+      info.needsOneTexture(options)) {
     throw UnavailableError("--technique " + info.name +
                            ": these options need the volume in one texture, which a slab "
                            "rendered across MPI ranks is not");
@@ -248,13 +251,14 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
         // Bounds from every piece, so that screen passes cover what a single process covers.
         slice.recentBounds[0] =
             slice.recentBounds[0].united(polygonPixelBounds(result.view, piece.polygonVoxel));
-        if (slab && !slab->owns(piece.brick)) continue;
-        slice.pieces.push_back(
-            {GLint(vertices.size()), GLsizei(piece.polygonVoxel.size()), piece.brick});
+        if (slab && !slab->holds(piece.brick)) continue;
+        const bool ghost = slab && !slab->owns(piece.brick);
+        (ghost ? slice.ghostPieces : slice.pieces)
+            .push_back({GLint(vertices.size()), GLsizei(piece.polygonVoxel.size()), piece.brick});
+        if (!ghost) slice.vertexCount += GLsizei(piece.polygonVoxel.size());
         for (const auto& p : piece.polygonVoxel) vertices.emplace_back(p);
       }
     }
-    slice.vertexCount = GLsizei(vertices.size()) - slice.firstVertex;
     for (std::size_t back = 1; back <= 2 && back <= k; ++back) {
       slice.recentBounds[back] = slices[k - back].recentBounds[0];
     }

@@ -1,8 +1,12 @@
 #include "slicing/slab.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
 #include <glm/glm.hpp>
 #include <optional>
+#include <string>
 
 namespace vsil {
 
@@ -13,6 +17,77 @@ const Brick& brickOfLayer(const BrickLayout& layout, int z) {
   return layout.bricks()[std::size_t(z) * std::size_t(counts.x) * std::size_t(counts.y)];
 }
 }  // namespace
+
+composition::NkRun runOf(const PairPixel& pixel) {
+  composition::NkRun run;
+  if (pixel.first >= 0) run.first = PixelState(pixel.first);
+  run.t = PixelState(pixel.t);
+  run.hit = pixel.hit;
+  run.detectPrev = pixel.detectPrev;
+  run.last = pixel.last;
+  return run;
+}
+
+namespace {
+PairPixel withRun(PairPixel pixel, const composition::NkRun& run) {
+  pixel.first = run.first ? std::int32_t(*run.first) : -1;
+  pixel.t = std::int32_t(run.t);
+  pixel.hit = run.hit;
+  pixel.detectPrev = run.detectPrev;
+  pixel.last = run.last;
+  return pixel;
+}
+
+PairPixel inRayOrder(const PairPixel& front, const PairPixel& back) {
+  composition::NkRun run = runOf(front);
+  if (front.lastSlice >= 0 && back.firstSlice > front.lastSlice + 1) {
+    // Slices between the runs sample outside the volume (or nowhere): one EMPTY sample stands
+    // for them (any number of EMPTY samples folds alike).
+    const composition::NkSample gap{PixelState::Empty, front.last};
+    run = composition::combine(run, composition::foldNk({&gap, 1}));
+  }
+  run = composition::combine(run, runOf(back));
+  PairPixel out = withRun(front, run);
+  // The hit's eye distance and shade come from the run that holds the hit: the front's unless
+  // its state is EMPTY (composition::combine takes the back's hit then).
+  if (front.first < 0 || PixelState(front.t) == PixelState::Empty) {
+    out.eyeDistance = back.eyeDistance;
+    out.shade = back.shade;
+  }
+  out.firstSlice = front.firstSlice >= 0 ? front.firstSlice : back.firstSlice;
+  out.lastSlice = back.lastSlice >= 0 ? back.lastSlice : front.lastSlice;
+  return out;
+}
+}  // namespace
+
+PairPixel combineInZOrder(const PairPixel& lowerZ, const PairPixel& higherZ) {
+  // Rays running towards lower z meet the higher slab first.
+  return lowerZ.zDirection < 0 ? inRayOrder(higherZ, lowerZ) : inRayOrder(lowerZ, higherZ);
+}
+
+int techniqueGhostVoxels(const std::string& technique, const View& view, glm::ivec3 dims) {
+  if (const char* forced = std::getenv("VSIL_SLAB_GHOST_VOXELS")) return std::atoi(forced);
+  if (technique != "silhouette") return 0;
+  // Points of one slice plane at eye distance d for neighbouring pixels differ by d times a
+  // fixed vector (perspective; orthographic: by a fixed vector): the farthest box corner
+  // bounds the reach.
+  const glm::dmat4 voxelFromEye = glm::inverse(view.eyeFromVoxel);
+  double farthest = 0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 p((corner & 1) ? dims.x - 0.5 : -0.5, (corner & 2) ? dims.y - 0.5 : -0.5,
+                       (corner & 4) ? dims.z - 0.5 : -0.5);
+    farthest = std::max(farthest, -(view.eyeFromVoxel * glm::dvec4(p, 1.0)).z);
+  }
+  const glm::dvec2 centre = glm::dvec2(view.viewport) * 0.5;
+  const auto voxelZ = [&](glm::dvec2 pixel) {
+    return (voxelFromEye * glm::dvec4(view.eyeAtNdc(view.ndcFromPixel(pixel), farthest), 1.0)).z;
+  };
+  double reach = 0;
+  for (const glm::dvec2 step : {glm::dvec2(1, 1), glm::dvec2(1, -1)}) {
+    reach = std::max(reach, std::abs(voxelZ(centre + step) - voxelZ(centre)));
+  }
+  return int(std::ceil(reach)) + 1;
+}
 
 int rayZDirection(const View& view, glm::dvec2 pixel) {
   const glm::dvec2 ndc = view.ndcFromPixel(pixel);
@@ -43,13 +118,15 @@ double SlabPart::ownedHighZ() const {
 }
 
 int SlabPart::ghostVoxels() const {
-  // A ghost layer's own voxels (its owned range, cut to the volume) on each side held.
+  // How far the held voxels reach beyond the owned ones (cut to the volume) on each side that
+  // has ghost layers; the thinner side.
   std::optional<int> thinnest;
-  for (int z = heldZ0; z < heldZ1; ++z) {
-    if (z >= ownedZ0 && z < ownedZ1) continue;
-    const Brick& brick = brickOfLayer(layout, z);
-    const double low = std::max(brick.low.z, -0.5), high = std::min(brick.high.z, dims.z - 0.5);
-    thinnest = std::min(thinnest.value_or(int(high - low)), int(high - low));
+  const auto reach = [&](double from, double to) {
+    thinnest = std::min(thinnest.value_or(int(to - from)), int(to - from));
+  };
+  if (heldZ0 < ownedZ0) reach(std::max(brickOfLayer(layout, heldZ0).low.z, -0.5), ownedLowZ());
+  if (heldZ1 > ownedZ1) {
+    reach(ownedHighZ(), std::min(brickOfLayer(layout, heldZ1 - 1).high.z, dims.z - 0.5));
   }
   return thinnest.value_or(0);
 }

@@ -3,22 +3,51 @@
 // what one process holds of it, and how the processes pass a frame's targets along.
 //
 // The slabs are runs of the whole volume's bricks along z (core/brick_layout.h): a process
-// uploads only the bricks it holds (its own and, as a ghost layer, one layer of bricks on each
-// side), draws only the slice pieces of the bricks it owns, and the pieces of its ghost bricks
-// where a technique reads neighbouring pixels of the same slice (silhouette's contour test).
+// uploads only the bricks it holds (its own and, as ghost layers, as many brick layers on each
+// side as the technique's ghost width for the view needs, techniqueGhostVoxels), draws only the
+// slice pieces of the bricks it owns, and the pieces of its ghost bricks where a technique reads
+// neighbouring pixels of the same slice (silhouette's footprint for the contour test).
 // Bricks sample exactly alike in any texture, so a process's samples are the single process's
 // samples. Slab borders are brick planes z = b − 0.5; a sample belongs to the slab its point's z
 // lies in (the first and last slab reach to ∓infinity, as bricks do).
 #include <cstddef>
+#include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/brick_layout.h"
 #include "core/camera.h"
+#include "core/composition.h"
 #include "core/volume.h"
 #include "slicing/gl_objects.h"
 
 namespace vsil {
+
+// One pixel of a slab's silhouette run (Composition::PairReduce), as it travels between the
+// processes: composition::NkRun with plain fields, plus what the run's samples cannot say
+// themselves. Floats and ints only, so that an array of them is one MPI datatype.
+struct PairPixel {
+  // The run's first sample's PixelState; -1 for a run without samples inside the volume (those
+  // outside are EMPTY: the slice gap below accounts for them).
+  std::int32_t first = -1;
+  std::int32_t t = 0;                       // NkRun::t
+  float hit = 0, detectPrev = 0, last = 0;  // NkRun's depths
+  // Travel with the hit (where the state's first non-EMPTY sample lies): the first-hit eye
+  // distance and the shade there (finish_hits.frag), from the process that owns the hit.
+  float eyeDistance = 0, shade = 0;
+  // The first and last slice index of the run's samples inside the volume (-1 without): a gap
+  // between two runs' slices is samples outside the volume, EMPTY.
+  std::int32_t firstSlice = -1, lastSlice = -1;
+  // rayZDirection of the pixel: +1 where the process of lower z is in front, -1 where it is
+  // behind, 0 (the ray stays in one slab) either way.
+  std::int32_t zDirection = 0;
+};
+composition::NkRun runOf(const PairPixel& pixel);
+// `lowerZ`'s run combined with `higherZ`'s, in the order the pixel's ray meets them (core/
+// composition.h combine; an EMPTY sample between runs whose slices leave a gap); the result
+// spans both slabs.
+PairPixel combineInZOrder(const PairPixel& lowerZ, const PairPixel& higherZ);
 
 // Moves a frame's targets between the processes in the view's depth order (a relay): the
 // process nearest the eye starts, each continues from what the one in front of it sent.
@@ -34,6 +63,10 @@ class SlabRelay {
   // Replaces every float of `target` by its maximum over all processes (Composition::MaxReduce:
   // float max is exact and commutative, so the order does not matter).
   virtual void maxReduce(const gl::RenderTarget& target) = 0;
+  // Replaces `pixels` on the process of the lowest z by the combine of every process's pixels
+  // in z order (combineInZOrder; the others' `pixels` are left unspecified): the silhouette
+  // pair (Composition::PairReduce).
+  virtual void pairReduce(std::vector<PairPixel>& pixels) = 0;
 };
 
 // Slabs along z meet a ray in z order: which way the ray through `pixel` (pixel coordinates, a
@@ -45,6 +78,16 @@ int rayZDirection(const View& view, glm::dvec2 pixel);
 // the slabs' z), or nullopt where rays leave the eye both ways along z. The ray's z
 // direction is affine in the pixel, so the four corner pixels decide.
 std::optional<int> frameZDirection(const View& view);
+
+// How far, in voxels along z, the samples of one slice that a technique reads for a pixel reach
+// beyond the pixel's own sample, for the frame's view (0: it reads only its own samples). A
+// process holds that many voxels of ghost bricks beyond the slab it owns (mpi/slab_render.h
+// readSlab), so that it draws those samples itself. silhouette: the contour test reads the 8
+// neighbours' footprints on the slice (one pixel's footprint in voxels, taken at the slice
+// farthest from the eye, where a perspective pixel is widest), plus one voxel for trilinear
+// filtering. The environment variable VSIL_SLAB_GHOST_VOXELS, when set, replaces the width
+// (for tests that show what too thin a ghost layer breaks).
+int techniqueGhostVoxels(const std::string& technique, const View& view, glm::ivec3 dims);
 
 struct SlabPart {
   glm::ivec3 dims{0};            // the whole volume's

@@ -22,10 +22,11 @@ BrickOccupancy reachesIso(float iso) {
   };
 }
 
-void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice) {
+namespace {
+void drawPieces(const FrameContext& frame, const std::vector<PieceDraw>& pieces) {
   glBindVertexArray(frame.sliceVertexArray);
   const bool bricked = frame.volume->brickCount() > 1;
-  for (const PieceDraw& piece : slice.pieces) {
+  for (const PieceDraw& piece : pieces) {
     if (bricked) {
       gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D,
                       frame.volume->brickTexture(piece.brick));
@@ -37,6 +38,15 @@ void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice) {
     }
     VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, piece.firstVertex, piece.vertexCount));
   }
+}
+}  // namespace
+
+void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice) {
+  drawPieces(frame, slice.pieces);
+}
+
+void drawGhostPieces(const FrameContext& frame, const SliceContext& slice) {
+  drawPieces(frame, slice.ghostPieces);
 }
 
 void Technique::combineSlabs(const FrameContext& frame, SlabRelay&) {

@@ -76,6 +76,10 @@ struct SliceContext {
   GLint firstVertex = 0;
   GLsizei vertexCount = 0;  // of all its pieces; 0 when the plane misses the box
   std::vector<PieceDraw> pieces;
+  // A slab's pieces of the ghost bricks it holds but does not own (slab.h): drawn only where a
+  // technique reads neighbouring pixels of the slice (silhouette's footprint), never counted in
+  // vertexCount.
+  std::vector<PieceDraw> ghostPieces;
   // Pixels the polygons of this slice ([0]), the previous ([1]) and the one before ([2]) may
   // cover; empty where there is no such slice.
   std::array<PixelRect, 3> recentBounds;
@@ -129,6 +133,8 @@ BrickOccupancy reachesIso(float iso);
 // bound the slice's uniform block before drawSlice. With more than one brick, binds each
 // piece's volume texture, gradient texture (once built) and BrickBlock.
 void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice);
+// The same for the slice's ghost pieces (a slab's, SliceContext::ghostPieces).
+void drawGhostPieces(const FrameContext& frame, const SliceContext& slice);
 // Throws InputError "<what> needs the volume in one texture ... (<hint>)" when the volume
 // takes more than one brick: for the passes that cannot follow the bricks (compute marches,
 // illustrate's halos).

@@ -44,8 +44,9 @@ const std::vector<TechniqueInfo>& techniqueTable() {
 
 void requireSplittable(const TechniqueInfo& info, int ranks) {
   if (ranks <= 1) return;
-  // Wired into the frame loop so far: the max reduce (mip).
+  // Wired into the frame loop so far: the max reduce (mip) and the silhouette pair.
   if (info.composition == Composition::MaxReduce) return;
+  if (info.composition == Composition::PairReduce) return;
   throw UnavailableError("--technique " + info.name + ": rendering across " +
                          std::to_string(ranks) +
                          " MPI ranks is not available yet (its combine rule, " +

@@ -69,6 +69,11 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   // every rank refuses alike, before reading anything.
   try {
     requireSplittable(findTechnique(request.settings.technique), mpi::size());
+    if (mpi::size() > 1 && request.postfx.fill == FillMode::Tone) {
+      throw UnavailableError(
+          "--fill tone: not across MPI ranks yet (it shades every hit with the volume there); "
+          "run one rank");
+    }
   } catch (const UnavailableError& e) {
     throw mpi::EveryRankError(e.what());
   }
@@ -90,7 +95,13 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
 #ifdef VSIL_HAVE_MPI
   std::optional<mpi::SlabRead> slab;
   if (acrossRanks) {
-    slab.emplace(mpi::readSlab(flags.input, load, load.limits.maxTextureBytes));
+    // Ghost layers wide enough for what the technique reads beside its samples in this view.
+    const Volume probe = mpi::probeSlab(flags.input, load);
+    const glm::ivec3 dims = mpi::fileDims(probe);
+    const int ghost = techniqueGhostVoxels(
+        request.settings.technique,
+        makeView(request.settings.camera, dims, probe.spacing, request.settings.size), dims);
+    slab.emplace(mpi::readSlab(flags.input, load, load.limits.maxTextureBytes, ghost));
     mpiMeta["ranks"] = mpi::size();
     mpiMeta["slabs"] = slab->slabs;
     mpiMeta["ghost_voxels"] = slab->part.ghostVoxels();

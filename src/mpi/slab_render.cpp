@@ -42,7 +42,33 @@ class MpiRelay : public SlabRelay {
     VSIL_GL(glBindTexture(GL_TEXTURE_2D, 0));
   }
 
+  void pairReduce(std::vector<PairPixel>& pixels) override {
+    // The slabs are in z order by rank (readSlab) and every pixel's ray meets them in z order,
+    // up or down (slab.h rayZDirection): a reduce in rank order with a non-commutative operator
+    // that orients each pixel by its own direction is exact for every view, also perspective
+    // views whose rays run both ways in one frame, with no communicator per frame direction.
+    MPI_Datatype pixel = MPI_DATATYPE_NULL;
+    check(MPI_Type_contiguous(int(sizeof(PairPixel)), MPI_BYTE, &pixel), "MPI_Type_contiguous");
+    check(MPI_Type_commit(&pixel), "MPI_Type_commit");
+    MPI_Op op = MPI_OP_NULL;
+    check(MPI_Op_create(&combinePairs, /*commute=*/0, &op), "MPI_Op_create");
+    std::vector<PairPixel> combined(rank() == 0 ? pixels.size() : 0);
+    const int code = MPI_Reduce(pixels.data(), combined.data(), int(pixels.size()), pixel, op, 0,
+                                MPI_COMM_WORLD);
+    MPI_Op_free(&op);
+    MPI_Type_free(&pixel);
+    check(code, "MPI_Reduce (silhouette pairs)");
+    if (rank() == 0) pixels = std::move(combined);
+  }
+
  private:
+  // MPI's user function: inout[i] = in[i] ∘ inout[i], `in` from the lower ranks (lower z).
+  static void combinePairs(void* in, void* inout, int* count, MPI_Datatype*) {
+    const auto* lower = static_cast<const PairPixel*>(in);
+    auto* higher = static_cast<PairPixel*>(inout);
+    for (int i = 0; i < *count; ++i) higher[i] = combineInZOrder(lower[i], higher[i]);
+  }
+
   [[noreturn]] static void unsupported() {
     throw UnavailableError("the relay between MPI ranks is not available yet");
   }
@@ -75,18 +101,26 @@ std::vector<double> gatherOnRoot(double value) {
   return all;
 }
 
-SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTextureBytes) {
+Volume probeSlab(const std::string& spec, LoadOptions load) {
   if (!load.region.whole()) {
     throw EveryRankError("--crop, --stride: not combined with mpirun yet; crop the file first");
   }
+  load.progress = nullptr;
+  load.region.crop = std::array<ReadRegion::Range, 3>{ReadRegion::Range{}, ReadRegion::Range{},
+                                                      ReadRegion::Range{0, 1}};
+  return loadVolume(spec, load);
+}
+
+glm::ivec3 fileDims(const Volume& probe) {
+  return probe.subset ? probe.subset->fileDims : probe.dims;
+}
+
+SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTextureBytes,
+                  int ghostVoxels) {
   const int ranks = size(), me = rank();
   // The file's dimensions and type from its header and one slice.
-  LoadOptions probe = load;
-  probe.progress = nullptr;
-  probe.region.crop = std::array<ReadRegion::Range, 3>{
-      ReadRegion::Range{}, ReadRegion::Range{}, ReadRegion::Range{0, 1}};
-  const Volume first = loadVolume(spec, probe);
-  const glm::ivec3 dims = first.subset ? first.subset->fileDims : first.dims;
+  const Volume first = probeSlab(spec, load);
+  const glm::ivec3 dims = fileDims(first);
 
   GLint maxSide = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSide);
@@ -111,8 +145,20 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   part.layout = layout;
   part.ownedZ0 = me * layers / ranks;
   part.ownedZ1 = (me + 1) * layers / ranks;
-  part.heldZ0 = part.ownedZ0;  // mip reads no neighbours: no ghost layers
+  // Ghost layers: as many brick layers on each side as cover ghostVoxels voxels beyond the
+  // owned samples (their textures carry the filter's apron themselves).
+  part.heldZ0 = part.ownedZ0;
   part.heldZ1 = part.ownedZ1;
+  const double ownedLow = layerBrick(layout, part.ownedZ0).low.z;
+  const double ownedHigh = layerBrick(layout, part.ownedZ1 - 1).high.z;
+  while (ghostVoxels > 0 && part.heldZ0 > 0 &&
+         layerBrick(layout, part.heldZ0).low.z > ownedLow - ghostVoxels) {
+    --part.heldZ0;
+  }
+  while (ghostVoxels > 0 && part.heldZ1 < layers &&
+         layerBrick(layout, part.heldZ1 - 1).high.z < ownedHigh + ghostVoxels) {
+    ++part.heldZ1;
+  }
   part.voxelZ0 = layerBrick(layout, part.heldZ0).origin.z;
   const Brick& lastHeld = layerBrick(layout, part.heldZ1 - 1);
   const int voxelZ1 = std::min(lastHeld.origin.z + lastHeld.size.z, dims.z);

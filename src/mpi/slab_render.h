@@ -24,7 +24,17 @@ struct SlabRead {
 // file's dimensions. The value range, the derived defaults and the texture format are agreed
 // with the other ranks. Throws InputError for --crop or --stride (not combined yet) and when
 // the volume has fewer brick layers along z than there are ranks.
-SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTextureBytes);
+// `ghostVoxels` (slab.h techniqueGhostVoxels): the rank also holds as many brick layers on each
+// side as cover that many voxels beyond its own (ghost layers, drawn where the technique reads
+// neighbouring pixels of a slice, never owned).
+SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTextureBytes,
+                  int ghostVoxels);
+
+// The file's header and its first slice (what readSlab reads first): the dimensions
+// (fileDims) and spacing for the frame's view before the slabs are chosen. Throws
+// EveryRankError for --crop or --stride.
+Volume probeSlab(const std::string& spec, LoadOptions load);
+glm::ivec3 fileDims(const Volume& probe);
 
 // Gathers a double from every rank on rank 0 (empty elsewhere).
 std::vector<double> gatherOnRoot(double value);

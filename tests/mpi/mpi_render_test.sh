@@ -2,7 +2,7 @@
 # `mpirun -np N vsil render` (issue 35) against the single-process render:
 #  - one rank: every technique's PNG, state and depth images are the single process's bytes
 #    (odd view angles, perspective with the eye close);
-#  - several ranks (2, 3, 4) for mip, the technique wired into the slab renderer: the same bytes,
+#  - several ranks (2, 3, 4) for mip (silhouette: mpi_silhouette_test.sh): the same bytes,
 #    on one texture, on a bricked volume, perspective close to the volume; a volume over one
 #    rank's --max-memory renders across three; the --meta-out "mpi" object;
 #  - several ranks for the other techniques: one refusal line, printed once, a non-zero exit and
@@ -76,7 +76,7 @@ cmp -s "$work/big.png" "$work/big3.png" || fail "--max-memory across 3 ranks dif
 echo "over one rank's --max-memory: renders across 3"
 
 for n in 2 3; do
-  if "$mpiexec" --oversubscribe -np "$n" "$vsil" render "$volume" --technique silhouette \
+  if "$mpiexec" --oversubscribe -np "$n" "$vsil" render "$volume" --technique rightangle \
     "${common[@]}" --out "$work/many.png" >"$work/out" 2>"$work/err"; then
     fail "-np $n: expected a refusal"
   fi

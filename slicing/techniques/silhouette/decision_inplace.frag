@@ -23,7 +23,13 @@ void main() {
   uint state = uint(t.r);
   if (isFinal(state)) return;
   if (state == STATE_CONTOUR && t.a != previousSliceDepth) {
+#ifdef SLAB_RUN
+    // A slab's run keeps the hit and the contour's depth apart (composition::NkRun hit and
+    // detectPrev): a run in front may still replace the hit.
+    imageStore(recordImage, pixel, vec4(float(STATE_SILHOUETTE), t.g, t.b, t.a));
+#else
     imageStore(recordImage, pixel, vec4(float(STATE_SILHOUETTE), silhouetteDepth(t), t.b, t.a));
+#endif
     return;
   }
   imageStore(recordImage, pixel, decideRecord(t, contourAt(footprintTexture, pixel)));

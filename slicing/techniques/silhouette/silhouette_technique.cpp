@@ -1,5 +1,9 @@
 #include "slicing/techniques/silhouette/silhouette_technique.h"
 
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
 #include "slicing/gl_state.h"
 #include "slicing/hit_records.h"
 #include "slicing/texture_units.h"
@@ -31,6 +35,65 @@ std::vector<std::string> sources() {
 // noise of this shape, none consistently ahead; 64 slices per dispatch (7 dispatches for
 // bonsai's 427 slices) was slower on bonsai for this march and the first-hit one.
 constexpr MarchShape kMarchShape{{32, 1}, {30, 30}};
+
+// An RGBA32F target's texels, bottom row first (GL's order), and back.
+std::vector<float> readTexels(const gl::RenderTarget& target) {
+  const glm::ivec2 size = target.size();
+  std::vector<float> texels(std::size_t(size.x) * std::size_t(size.y) * 4);
+  VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer()));
+  VSIL_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
+  VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
+  VSIL_GL(glReadPixels(0, 0, size.x, size.y, GL_RGBA, GL_FLOAT, texels.data()));
+  return texels;
+}
+
+void writeTexels(const gl::RenderTarget& target, const std::vector<float>& texels) {
+  const glm::ivec2 size = target.size();
+  VSIL_GL(glBindTexture(GL_TEXTURE_2D, target.texture()));
+  VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
+  VSIL_GL(
+      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size.x, size.y, GL_RGBA, GL_FLOAT, texels.data()));
+  VSIL_GL(glBindTexture(GL_TEXTURE_2D, 0));
+}
+
+// Cleared coverage: above any slice index and depth, so that MIN blending keeps the first.
+constexpr float kNoCoverage = 1e30f;
+
+// One pixel's run from its fast-pipeline record (silhouette.glsl: state, hit depth, hit eye
+// distance, latest CONTOUR depth; SLAB_RUN keeps a detected silhouette's hit), the slices its
+// owned samples span (coverage.frag) and the shade at its hit (finish_hits.frag).
+PairPixel pairPixel(const float* record, const float* coverage, float shade) {
+  PairPixel pixel;
+  // No owned sample inside the volume: a run without samples. (Samples outside the volume are
+  // EMPTY and come only before or after the ray's samples inside, which convex slab pieces draw
+  // on consecutive slices: combineInZOrder finds them as gaps between the runs' slices.)
+  if (coverage[0] >= kNoCoverage) return pixel;
+  pixel.first = std::int32_t(PixelState::Empty);
+  pixel.firstSlice = std::int32_t(coverage[0]);
+  pixel.lastSlice = std::int32_t(-coverage[1]);
+  const float firstDepth = coverage[2], lastDepth = -coverage[3];
+  pixel.last = lastDepth;
+  const auto state = PixelState(std::uint8_t(record[0] + 0.5f));
+  if (state == PixelState::Empty) return pixel;
+  pixel.hit = record[1];
+  pixel.eyeDistance = record[2];
+  pixel.shade = shade;
+  pixel.t = std::int32_t(state);
+  if (state == PixelState::Contour && record[3] != lastDepth) {
+    // Detection the fast pipeline applies lazily (decision_inplace.frag): an EMPTY sample
+    // followed the latest contour inside this run.
+    pixel.t = std::int32_t(PixelState::Silhouette);
+  }
+  if (PixelState(pixel.t) == PixelState::Silhouette) pixel.detectPrev = record[3];
+  // The first sample is the hit or EMPTY. A hit there was FILLED when the run ends FILLED (a
+  // CONTOUR first sample that turned FILLED combines alike: the state FILLED, the front's
+  // hit), else CONTOUR (FILLED is final).
+  if (pixel.hit == firstDepth) {
+    pixel.first =
+        std::int32_t(state == PixelState::Filled ? PixelState::Filled : PixelState::Contour);
+  }
+  return pixel;
+}
 
 }  // namespace
 
@@ -65,9 +128,16 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
         Targets{std::move(footprint),
                 gl::RenderTarget(size, GL_R8UI),
                 {gl::RenderTarget(size, GL_RGBA32F), gl::RenderTarget(size, GL_RGBA32F)},
-                gl::EmptyFramebuffer(size, depth)});
+                gl::EmptyFramebuffer(size, depth),
+                std::nullopt});
   }
   pipeline_ = pipelineOf(*frame.options);
+  slabCombined_ = false;
+  // A slab runs the fast pipeline, whatever --pipeline says (the three give the same pixels):
+  // the tile march walks every slice in one texture, and the paper pipeline's screen passes
+  // apply EMPTY at pixels whose sample another process owns. (Without --pipeline, a slab's
+  // bricks already choose fast: technique_table.cpp optionsForBricks.)
+  if (frame.slab) pipeline_ = SlicingPipeline::Fast;
   const float iso = float(frame.options->number("iso"));
   programs_.finish = &finishProgram(frame, {"techniques/silhouette/silhouette.glsl"});
   if (pipeline_ == SlicingPipeline::Tiles) {
@@ -95,8 +165,18 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
     programs_.emptySliceDecision = &cache.get(gl::screenPassProgram(
         sources(), "techniques/silhouette/decision.frag", {"PAPER_PIPELINE", "EMPTY_SLICE"}));
   } else {
-    programs_.decisionInPlace = &cache.get(
-        gl::slicePassProgram(sources(), "techniques/silhouette/decision_inplace.frag", variant));
+    std::vector<std::string> decisionVariant = variant;
+    if (frame.slab) decisionVariant.emplace_back("SLAB_RUN");
+    programs_.decisionInPlace = &cache.get(gl::slicePassProgram(
+        sources(), "techniques/silhouette/decision_inplace.frag", decisionVariant));
+  }
+  if (frame.slab) {
+    programs_.coverage =
+        &cache.get(gl::slicePassProgram(sources(), "techniques/silhouette/coverage.frag", {}));
+    if (!targets_->coverage) targets_->coverage.emplace(size, GL_RGBA32F);
+    targets_->coverage->bindForDrawing();
+    const GLfloat none[4] = {kNoCoverage, kNoCoverage, kNoCoverage, kNoCoverage};
+    VSIL_GL(glClearBufferfv(GL_COLOR, 0, none));
   }
   programs_.footprint->use();
   programs_.footprint->set("isoValue", iso);
@@ -129,6 +209,12 @@ void SilhouetteTechnique::drawSlice(const FrameContext& frame, const SliceContex
     // barrier, waits once per slice: the decision's read of the footprint then finds it done.
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     decideInPlace(frame, slice);
+    if (frame.slab) {
+      targets_->coverage->bindForDrawing();
+      programs_.coverage->use();
+      gl::Blending keepFirstAndLast(GL_MIN, GL_ONE, GL_ONE);
+      drawSlicePolygon(frame, slice);
+    }
     if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
       glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // marking reads this slice's records
       markDeadPixels(frame, slice, targets_->depthOnly, targets_->records[0],
@@ -159,6 +245,9 @@ void SilhouetteTechnique::drawFootprint(const FrameContext& frame, const SliceCo
     // FILLED fragments (not discarded) leave this slice's depth for the decision pass.
     gl::DepthTest depthTest(GL_GREATER, /*write=*/true);
     drawSlicePolygon(frame, slice);
+    // A slab's ghost pieces: the footprint the contour test reads beside the samples it owns
+    // (the decision runs only over its own pieces).
+    drawGhostPieces(frame, slice);
   } else {
     drawSlicePolygon(frame, slice);
   }
@@ -195,7 +284,52 @@ void SilhouetteTechnique::decideInPlace(const FrameContext& frame, const SliceCo
   drawSlicePolygon(frame, slice);
 }
 
+void SilhouetteTechnique::combineSlabs(const FrameContext& frame, SlabRelay& relay) {
+  if (toneFill_.active()) {
+    throw UnavailableError(
+        "--fill tone: not across MPI ranks yet (it shades every hit with the volume there); "
+        "run one rank");
+  }
+  const glm::ivec2 size = frame.view->viewport;
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+                  GL_TEXTURE_UPDATE_BARRIER_BIT);
+  // Each run's hit is shaded here, where its bricks are: the shade travels with the hit.
+  targets_->records[1].bindForDrawing();
+  VSIL_GL(glClearBufferfv(GL_COLOR, 0, kZeroF));
+  finishRecords(frame, *programs_.finish, targets_->records[0], targets_->records[1]);
+  const std::vector<float> records = readTexels(targets_->records[0]);
+  const std::vector<float> shaded = readTexels(targets_->records[1]);
+  const std::vector<float> coverage = readTexels(*targets_->coverage);
+  std::vector<PairPixel> pixels(std::size_t(size.x) * std::size_t(size.y));
+  for (int row = 0; row < size.y; ++row) {
+    // GL's rows run bottom-up; the view's pixels top-down.
+    const double y = size.y - row - 0.5;
+    for (int x = 0; x < size.x; ++x) {
+      const std::size_t i = std::size_t(row) * std::size_t(size.x) + std::size_t(x);
+      pixels[i] = pairPixel(&records[4 * i], &coverage[4 * i], shaded[4 * i + 2]);
+      pixels[i].zDirection = rayZDirection(*frame.view, {x + 0.5, y});
+    }
+  }
+  relay.pairReduce(pixels);
+  // The whole ray's run meets the extra empty slice behind the volume (the paper's; the
+  // single process's finish_hits.frag finishState): what is still CONTOUR becomes SILHOUETTE.
+  std::vector<float> finished(pixels.size() * 4, 0.0f);
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    composition::NkRun run = runOf(pixels[i]);
+    const composition::NkSample emptySlice{PixelState::Empty, run.last};
+    run = composition::combine(run, composition::foldNk({&emptySlice, 1}));
+    finished[4 * i] = float(std::uint8_t(run.t));
+    if (run.t == PixelState::Empty) continue;
+    finished[4 * i + 1] = run.depth();
+    finished[4 * i + 2] = pixels[i].shade;
+  }
+  writeTexels(targets_->records[1], finished);
+  current_ = 1;
+  slabCombined_ = true;
+}
+
 void SilhouetteTechnique::endFrame(const FrameContext& frame) {
+  if (slabCombined_) return;
   if (pipeline_ == SlicingPipeline::Tiles) {
     runMarch(frame, *programs_.march, kMarchShape, targets_->records[0]);
     finishRecords(frame, *programs_.finish, targets_->records[0], targets_->records[1]);

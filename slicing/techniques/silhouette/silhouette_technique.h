@@ -34,12 +34,16 @@ class SilhouetteTechnique : public Technique {
   void beginFrame(const FrameContext& frame) override;
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
   void endFrame(const FrameContext& frame) override;
+  // A slab's run (the fast pipeline's record from EMPTY, with where its samples lie) reduced
+  // with the other processes' in z order (SlabRelay::pairReduce); the process of the lowest z
+  // then holds the whole frame's finished records and endFrame does nothing more.
+  void combineSlabs(const FrameContext& frame, SlabRelay& relay) override;
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:
   struct Programs {
     gl::Program *footprint, *contour, *decision, *emptySliceDecision, *decisionInPlace, *finish,
-        *march;
+        *march, *coverage;
   };
   void drawFootprint(const FrameContext& frame, const SliceContext& slice);
   // Paper pipeline: contour pass, then the decision pass into the other ping-pong target over
@@ -58,12 +62,15 @@ class SilhouetteTechnique : public Technique {
     // finished frame (state, depth, shade, 0) goes to the other one.
     std::array<gl::RenderTarget, 2> records;
     gl::EmptyFramebuffer depthOnly;  // the footprint's depth, no colour: the in-place pass
+    // A slab's (coverage.frag): the first and last slice of each pixel's owned samples.
+    std::optional<gl::RenderTarget> coverage;
   };
   std::optional<Targets> targets_;
   Programs programs_{};
   SlicingPipeline pipeline_ = SlicingPipeline::Fast;
-  int current_ = 0;    // the record target holding the latest record
-  ToneFill toneFill_;  // --fill tone
+  int current_ = 0;            // the record target holding the latest record
+  bool slabCombined_ = false;  // combineSlabs left the finished records in records[current_]
+  ToneFill toneFill_;          // --fill tone
 };
 
 }  // namespace vsil
