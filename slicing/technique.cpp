@@ -22,7 +22,8 @@ BrickOccupancy reachesIso(float iso) {
   };
 }
 
-void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice) {
+void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice,
+                      const std::vector<gl::TextureName>* auxiliaryBricks) {
   glBindVertexArray(frame.sliceVertexArray);
   const bool bricked = frame.volume->brickCount() > 1;
   for (const PieceDraw& piece : slice.pieces) {
@@ -32,6 +33,10 @@ void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice) {
       if (frame.gradients->built()) {
         gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D,
                         frame.gradients->texture().brickTexture(piece.brick));
+      }
+      if (auxiliaryBricks) {
+        gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_3D,
+                        (*auxiliaryBricks)[piece.brick].id());
       }
       frame.uniforms->bindBrick(piece.brick);
     }
