@@ -20,6 +20,7 @@
 #include "generators/generators.h"
 #include "gl_harness.h"
 #include "illustrate_reference.h"
+#include "slicing/gradient_texture.h"
 #include "slicing/renderer.h"
 #include "slicing/techniques/illustrate/halo_mask.h"
 
@@ -327,6 +328,40 @@ TEST_F(IllustrateTest, HalosDarkenJustOutsideTheOutlineAndChangeNothingInside) {
       }
     }
   }
+}
+
+TEST(HaloField, PushesOutwardJustOutsideABallAndNothingInsideOrFarAway) {
+  // A ball of radius 10 with a flat inside and a 2-voxel ramp, visible above 0.5, k_hr 4 (the
+  // field's neighbours at 3 voxels): just outside its surface, F > 0 and N points outward
+  // (radially); at its centre (no gradient within reach) F = 0; far outside, nothing at all
+  // (alpha 0: no halo and transparent, so samples there leave before the volume fetch).
+  const glm::ivec3 dims(40, 40, 40);
+  const glm::dvec3 centre(19.5, 19.5, 19.5);
+  const Volume volume = test::ballsVolume(dims, {{centre, 10.0}}, 2.0);
+  std::vector<float> samples(std::size_t(dims.x) * dims.y * dims.z);
+  for (std::size_t i = 0; i < samples.size(); ++i) samples[i] = float(volume.value(i));
+  const auto visible = [](float value) { return value > 0.5f; };
+  const std::vector<std::uint8_t> mask = haloMaskVoxels(samples.data(), dims, visible, 4.0);
+  const GradientTexels gradients =
+      computeGradientTexels(samples.data(), dims, glm::dvec3(1.0), /*withValues=*/false);
+  const std::vector<std::uint8_t> field = haloFieldVoxels(
+      gradients, mask, samples.data(), [](float, float hi) { return !(hi > 0.5f); },
+      glm::dvec3(1.0), 4.0, 1.0);
+  const auto at = [&](glm::ivec3 p) {
+    return &field[4 * ((std::size_t(p.z) * dims.y + p.y) * dims.x + p.x)];
+  };
+  // Just outside, along each axis and a diagonal: about 2 voxels beyond radius 10.
+  for (const glm::dvec3 direction : {glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1),
+                                     glm::normalize(glm::dvec3(1, 1, 0))}) {
+    const glm::ivec3 p(glm::floor(centre + direction * 12.0 + 0.5));
+    SCOPED_TRACE(testing::Message() << "voxel " << p.x << "," << p.y << "," << p.z);
+    const std::uint8_t* bytes = at(p);
+    EXPECT_GT(haloFieldStrength(bytes[3]), 0.01f);
+    EXPECT_GT(glm::dot(haloFieldNormal(bytes), glm::vec3(direction)), 0.9f);
+  }
+  EXPECT_EQ(haloFieldStrength(at({19, 19, 19})[3]), 0.0f);  // the centre
+  EXPECT_EQ(at({19, 19, 19})[3], 1);                        // no halo, but visible
+  EXPECT_EQ(at({0, 0, 0})[3], 0);                           // a corner: nothing
 }
 
 TEST(HaloMask, MarksExactlyTheVoxelsWithinTheRadiusOfAVisibleOne) {

@@ -173,7 +173,7 @@ std::vector<std::uint8_t> haloFieldVoxels(const GradientTexels& gradients,
             }
           }
           const float strength = sum / float(neighbours.size());
-          if (strength > 0) {
+          if (strength >= kHaloFieldFloor) {
             const float length = glm::length(normalSum);
             const glm::vec3 n = length > 0 ? normalSum / length : glm::vec3(0.0f);
             for (int c = 0; c < 3; ++c) {
@@ -181,7 +181,7 @@ std::vector<std::uint8_t> haloFieldVoxels(const GradientTexels& gradients,
             }
             const long level =
                 std::lround(std::min(double(strength) * kHaloFieldScale, 1.0) * 254.0);
-            out[3] = std::uint8_t(1 + std::clamp(level, 1L, 254L));
+            out[3] = std::uint8_t(1 + std::clamp(level, 3L, 254L));
           } else {
             out[3] = transparentRange(lo[i], hi[i]) ? 0 : 1;
           }
