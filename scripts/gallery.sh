@@ -41,6 +41,10 @@ entries=(
   "er_engine_fig5|$data/engine.vti|--technique illustrate --style fig5-sketch --view 40,25"
   "er_bonsai_fig6|$data/bonsai.vti|--technique illustrate --style fig6-distance-halo --view 30,10"
   "er_engine_fig7|$data/engine.vti|--technique illustrate --style fig7-tone --view 40,25"
+  # Halos alone, exact (8 taps per sample) beside the halo field (the default): the README's
+  # halo row compares the two.
+  "er_bonsai_halo_exact|$data/bonsai.vti|--technique illustrate --effects halo --param k_hr=6,k_ho=2 --halo-mode exact --view 30,10"
+  "er_bonsai_halo_field|$data/bonsai.vti|--technique illustrate --effects halo --param k_hr=6,k_ho=2 --halo-mode field --view 30,10"
   "er_neghip_fig11|$data/neghip_64x64x64_uint8.nhdr|--technique illustrate --style fig11-gradient-silhouette --view 30,20 --zoom 1.3"
   "er_ironprot_fig15|$data/ironProt.vtk|--technique illustrate --style fig15-tone --view 30,20 --zoom 1.3"
   # Diaz & Vazquez, Fig. 1 and 5: MIP, then DEMIP with growing depth weight (black background, as

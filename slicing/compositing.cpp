@@ -23,7 +23,8 @@ void FrontToBackCompositor::beginFrame(const FrameContext& frame) {
 }
 
 void FrontToBackCompositor::drawSlice(const FrameContext& frame, const SliceContext& slice,
-                                      gl::Program& program) {
+                                      gl::Program& program,
+                                      const std::vector<gl::TextureName>* auxiliaryBricks) {
   if (slice.vertexCount == 0) return;
   targets_->color.bindForDrawing();
   {
@@ -31,7 +32,7 @@ void FrontToBackCompositor::drawSlice(const FrameContext& frame, const SliceCont
     gl::DepthTest skipEmptyAndDead(GL_GREATER, /*write=*/false);
     gl::Blending behind(GL_FUNC_ADD, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
     program.use();
-    drawSlicePolygon(frame, slice);
+    drawSlicePolygon(frame, slice, auxiliaryBricks);
   }
   if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
     markDeadPixels(frame, slice, targets_->depthOnly, targets_->color, DeadRule::Opacity,

@@ -31,8 +31,10 @@ class FrontToBackCompositor {
   void beginFrame(const FrameContext& frame);
   // Draws the slice's polygon with `program` (in use, its uniforms set) blended behind what is
   // there, skipping empty space and retired pixels; marks newly retired ones every
-  // kMarkDeadInterval slices.
-  void drawSlice(const FrameContext& frame, const SliceContext& slice, gl::Program& program);
+  // kMarkDeadInterval slices. `auxiliaryBricks`: per-brick textures bound to
+  // TextureUnit::Auxiliary0 with each piece (drawSlicePolygon).
+  void drawSlice(const FrameContext& frame, const SliceContext& slice, gl::Program& program,
+                 const std::vector<gl::TextureName>* auxiliaryBricks = nullptr);
   const gl::RenderTarget& target() const { return targets_->color; }
   // Premultiplied RGBA in [0, 1], rows top-down.
   cv::Mat4f readBack() const;

@@ -23,7 +23,8 @@ BrickOccupancy reachesIso(float iso) {
 }
 
 namespace {
-void drawPieces(const FrameContext& frame, const std::vector<PieceDraw>& pieces) {
+void drawPieces(const FrameContext& frame, const std::vector<PieceDraw>& pieces,
+                const std::vector<gl::TextureName>* auxiliaryBricks) {
   glBindVertexArray(frame.sliceVertexArray);
   const bool bricked = frame.volume->brickCount() > 1;
   for (const PieceDraw& piece : pieces) {
@@ -34,6 +35,10 @@ void drawPieces(const FrameContext& frame, const std::vector<PieceDraw>& pieces)
         gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D,
                         frame.gradients->texture().brickTexture(piece.brick));
       }
+      if (auxiliaryBricks) {
+        gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_3D,
+                        (*auxiliaryBricks)[piece.brick].id());
+      }
       frame.uniforms->bindBrick(piece.brick);
     }
     VSIL_GL(glDrawArrays(GL_TRIANGLE_FAN, piece.firstVertex, piece.vertexCount));
@@ -41,12 +46,13 @@ void drawPieces(const FrameContext& frame, const std::vector<PieceDraw>& pieces)
 }
 }  // namespace
 
-void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice) {
-  drawPieces(frame, slice.pieces);
+void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice,
+                      const std::vector<gl::TextureName>* auxiliaryBricks) {
+  drawPieces(frame, slice.pieces, auxiliaryBricks);
 }
 
 void drawGhostPieces(const FrameContext& frame, const SliceContext& slice) {
-  drawPieces(frame, slice.ghostPieces);
+  drawPieces(frame, slice.ghostPieces, nullptr);
 }
 
 void Technique::combineSlabs(const FrameContext& frame, SlabRelay&) {

@@ -131,8 +131,10 @@ BrickOccupancy reachesIso(float iso);
 // Draws the slice's polygon as its pieces, one per brick (it rasterizes every pixel whose
 // centre lies in the box on this plane, and some around it, exactly once); the Renderer has
 // bound the slice's uniform block before drawSlice. With more than one brick, binds each
-// piece's volume texture, gradient texture (once built) and BrickBlock.
-void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice);
+// piece's volume texture, gradient texture (once built), BrickBlock and, where given, its
+// texture of `auxiliaryBricks` (one per brick; TextureUnit::Auxiliary0).
+void drawSlicePolygon(const FrameContext& frame, const SliceContext& slice,
+                      const std::vector<gl::TextureName>* auxiliaryBricks = nullptr);
 // The same for the slice's ghost pieces (a slab's, SliceContext::ghostPieces).
 void drawGhostPieces(const FrameContext& frame, const SliceContext& slice);
 // Throws InputError "<what> needs the volume in one texture ... (<hint>)" when the volume

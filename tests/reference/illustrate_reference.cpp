@@ -43,6 +43,7 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
     formulas.lights.push_back(worldFromEye * glm::vec3(light.directionEye()));
   }
   const auto has = [&](Effect e) { return ill.effects.has(e); };
+  const bool exactHalo = setup.options.text("halo-mode") == "exact";
 
   // Classification: the transfer function's table sampled linearly, or o_v = k_os·v^k_oe.
   std::vector<glm::vec4> table;
@@ -62,14 +63,21 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
     return glm::vec4(ill.color.rgb01(), float(ill["k_os"]) * std::pow(v, float(ill["k_oe"])));
   };
 
-  // Halos: taps in the slice plane, the mask of where they may appear.
+  // Halos: exact, taps in the slice plane and the mask of where they may appear; field, the
+  // halo field's RGBA bytes per voxel (halo_mask.h haloFieldVoxels, what the GL path uploads).
   struct Tap {
     glm::vec3 offset, direction;
     float weight;
   };
   std::vector<Tap> taps;
-  std::vector<std::uint8_t> mask;
-  if (has(Effect::Halo)) {
+  std::vector<std::uint8_t> mask, field;
+  if (has(Effect::Halo) && !exactHalo) {
+    mask =
+        haloMaskVoxels(texels.data(), volume.dims, visibleValues(ill, table, range), ill["k_hr"]);
+    field = haloFieldVoxels(gradients, mask, texels.data(), transparentValues(ill, table, range),
+                            volume.spacing, ill["k_hr"], ill["k_hpe"]);
+  }
+  if (has(Effect::Halo) && exactHalo) {
     const glm::dmat3 voxelFromEye = glm::inverse(glm::dmat3(view.eyeFromVoxel));
     for (const HaloTap& tap : haloTaps(ill["k_hr"])) {
       const glm::dvec3 eye(tap.offsetEye, 0.0);
@@ -79,11 +87,12 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
     mask =
         haloMaskVoxels(texels.data(), volume.dims, visibleValues(ill, table, range), ill["k_hr"]);
   }
-  const auto maskAt = [&](glm::ivec3 t) {
-    return float(mask[(std::size_t(t.z) * std::size_t(volume.dims.y) + std::size_t(t.y)) *
-                          std::size_t(volume.dims.x) +
-                      std::size_t(t.x)]);
+  const auto voxelIndex = [&](glm::ivec3 t) {
+    return (std::size_t(t.z) * std::size_t(volume.dims.y) + std::size_t(t.y)) *
+               std::size_t(volume.dims.x) +
+           std::size_t(t.x);
   };
+  const auto maskAt = [&](glm::ivec3 t) { return float(mask[voxelIndex(t)]); };
 
   const float exponent = float(setup.plan.stepVoxels);
   // Samples on each pixel's ray, aligned to its entry into the box (BOX_ALIGNED_SAMPLING).
@@ -99,8 +108,13 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
         if (slice.polygonVoxel.empty()) continue;
         const glm::vec3 voxel = SliceSampler::boxAlignedVoxel(ray, int(k));
         if (!sampler.insideVolume(voxel)) continue;
+        const std::uint8_t* fieldBytes =
+            field.empty() ? nullptr : &field[4 * voxelIndex(nearestTexel(voxel, volume.dims))];
+        if (fieldBytes && fieldBytes[3] == 0) continue;  // no halo and transparent
         const glm::vec4 material = classify(sampler.sample(voxel));
-        const float nearFeature = has(Effect::Halo) ? maskAt(nearestTexel(voxel, volume.dims)) : 0;
+        const float nearFeature = fieldBytes          ? (fieldBytes[3] > 1 ? 1.0f : 0.0f)
+                                  : has(Effect::Halo) ? maskAt(nearestTexel(voxel, volume.dims))
+                                                      : 0;
         if (material.a <= 0 && nearFeature <= 0) continue;  // adds nothing
 
         const SplitGradient g = splitGradient(sampleGradientTexels(gradients, voxel));
@@ -121,7 +135,14 @@ ReferenceFrame renderIllustrate(const Volume& volume, const RenderSettings& sett
         if (has(Effect::Tone)) color = formulas.tone(color, base, n);
         if (has(Effect::Sketch)) formulas.sketchLines(color, opacity, facing, magnitude);
         if (has(Effect::Distance)) color = formulas.distance(color, float(slice.depth));
-        if (has(Effect::Halo)) {
+        if (fieldBytes) {
+          // h = F·(1 − |N·V|)^k_hse·(1 − |∇f|), F and N from the field's bytes.
+          const glm::vec3 fieldNormal = haloFieldNormal(fieldBytes);
+          const float across = std::max(1.0f - std::abs(glm::dot(fieldNormal, v)), 0.0f);
+          const float h = haloFieldStrength(fieldBytes[3]) * std::pow(across, formulas.p("k_hse")) *
+                          (1.0f - magnitude);
+          formulas.halo(color, opacity, h);
+        } else if (has(Effect::Halo)) {
           // h = Σ w_n·|∇f_n|·(n_n·d)^k_hpe·(1 − |n_n·V|)^k_hse, times (1 − |∇f|) here.
           float h = 0;
           for (const Tap& tap : taps) {

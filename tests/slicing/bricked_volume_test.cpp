@@ -6,8 +6,9 @@
 // new technique, or a technique that gains the tone fill, from going untested.
 // The brick borders cross the spheres' silhouettes, and the slice planes cross the borders at
 // odd angles (perspective and orthographic views off every axis). What cannot follow the
-// bricks (the tiles march, illustrate's halos) takes the volume in one texture when it fits and
-// refuses with an InputError otherwise.
+// bricks (the tiles march, illustrate's exact halos) takes the volume in one texture when it
+// fits and refuses with an InputError otherwise; illustrate's halo field (the default halo
+// mode) is laid out per brick and renders the same bytes.
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -73,6 +74,9 @@ std::vector<TechniqueCase> techniqueCases() {
       {"firsthit", "firsthit", iso("firsthit"), std::nullopt},
       {"illustrate", "illustrate",
        with(iso("illustrate"), "effects", "boundary,silhouette,fading,sketch,distance,tone"),
+       std::nullopt},
+      {"illustrate_halo_field", "illustrate",
+       with(iso("illustrate"), "effects", "boundary,silhouette,fading,sketch,distance,halo,tone"),
        std::nullopt},
       {"mip", "mip", iso("mip"), std::nullopt},
       {"demip", "demip", iso("demip"), std::nullopt},
@@ -184,6 +188,7 @@ TEST_F(BrickedVolume, WhatCannotFollowTheBricksRefuses) {
   RenderSettings halo;
   halo.technique = "illustrate";
   halo.options["effects"] = std::string("halo");
+  halo.options["halo-mode"] = std::string("exact");
   halo.size = {32, 32};
   EXPECT_THROW(bricked.render(halo), InputError);
   // One brick: both render.

@@ -20,6 +20,7 @@
 #include "generators/generators.h"
 #include "gl_harness.h"
 #include "illustrate_reference.h"
+#include "slicing/gradient_texture.h"
 #include "slicing/renderer.h"
 #include "slicing/techniques/illustrate/halo_mask.h"
 
@@ -31,6 +32,7 @@ struct EffectCase {
   std::string effects;
   std::string params;  // --param, "" for the defaults
   bool transferFunction = false;
+  std::string haloMode;  // "" for the default (field)
 };
 
 std::ostream& operator<<(std::ostream& out, const EffectCase& c) {
@@ -62,8 +64,8 @@ std::string fullRangePowerOpacity() {
   out << "[";
   for (int i = 0; i <= 16; ++i) {
     const double v = i / 16.0;
-    out << (i ? ", " : "") << R"({"color": "#fffff0", "value": )" << v
-        << R"(, "opacity": )" << v * v << "}";
+    out << (i ? ", " : "") << R"({"color": "#fffff0", "value": )" << v << R"(, "opacity": )"
+        << v * v << "}";
   }
   out << "]";
   return file.string();
@@ -110,6 +112,11 @@ const EffectCase kEffectCases[] = {
     {"all", "boundary,silhouette,fading,sketch,distance,halo,tone", "k_os=0.3"},
     {"all_but_sketch_two_lights", "boundary,silhouette,fading,distance,halo,tone", "k_os=0.3"},
     {"transfer_function_all", "boundary,silhouette,fading,distance,halo,tone", "", true},
+    {"halo_exact", "halo", "k_os=0.3", false, "exact"},
+    {"all_exact", "boundary,silhouette,fading,sketch,distance,halo,tone", "k_os=0.3", false,
+     "exact"},
+    {"transfer_function_all_exact", "boundary,silhouette,fading,distance,halo,tone", "", true,
+     "exact"},
 };
 
 class IllustrateMatchesReference
@@ -121,6 +128,7 @@ TEST_P(IllustrateMatchesReference, EveryChannelWithin2Of255) {
   const Volume volume = eightBit ? eightBitSphere() : generateVolume("sphere:48");
   RenderSettings settings = illustrateSettings(c.effects, c.params);
   if (c.transferFunction) settings.options["tf"] = sphereTransferFunction(eightBit ? 255 : 1);
+  if (!c.haloMode.empty()) settings.options["halo-mode"] = c.haloMode;
   if (c.name == "all_but_sketch_two_lights") {
     settings.options["light"] = std::vector<std::string>{"0,60", "-70,10"};
   }
@@ -284,34 +292,76 @@ TEST_F(IllustrateTest, SilhouetteEnhancementRaisesOpacityAtTheRimNotWhereTheSphe
 TEST_F(IllustrateTest, HalosDarkenJustOutsideTheOutlineAndChangeNothingInside) {
   // A ball with a sharp boundary (ramp 2 voxels) in front of the white background.
   const Volume volume = test::ballsVolume({48, 48, 48}, {{{23.5, 23.5, 23.5}, 12.0}}, 2.0);
-  RenderSettings settings = illustrateSettings("halo", "k_os=1,k_hr=4", {96, 96});
-  settings.camera.orthographic = true;
-  settings.camera.azimuthDeg = 0;
-  settings.camera.elevationDeg = 0;
-  const RenderResult halo = test::renderOnce(volume, settings);
-  settings.options.erase("effects");
-  const RenderResult plain = test::renderOnce(volume, settings);
-  const int y = 48;
-  int edge = 48;  // the outermost pixel of the centre row the plain ball covers
-  while (edge + 1 < 96 && plain.frame.color(y, edge + 1)[3] > 1e-3f) ++edge;
-  ASSERT_GT(edge, 60);
-  ASSERT_LT(edge, 90);
-  // Just outside: the halo adds opacity (dark over white). Two pixels out, still in the radius.
-  const float outsideAlpha = halo.frame.color(y, edge + 2)[3];
-  std::cout << "[ info ] edge x " << edge << ": alpha outside " << outsideAlpha << " (plain "
-            << plain.frame.color(y, edge + 2)[3] << ")\n";
-  EXPECT_GT(outsideAlpha, plain.frame.color(y, edge + 2)[3] + 0.05f);
-  // Composed over white, darker there.
-  const cv::Vec4f h = halo.frame.color(y, edge + 2);
-  EXPECT_LT(h[0] + (1 - h[3]), 1.0f - 0.05f) << "the halo should darken the background";
-  // Inside, around the centre: nothing changes (the neighbours' normals point away from it);
-  // 1e-4 (0.03/255) allows float rounding in the halo program's different instruction order
-  // and the black of halos of about 1e-4 in the ball's fringe in front.
-  for (int x = 40; x <= 56; ++x) {
-    for (int k = 0; k < 4; ++k) {
-      EXPECT_NEAR(halo.frame.color(y, x)[k], plain.frame.color(y, x)[k], 1e-4) << "x " << x;
+  for (const std::string mode : {"field", "exact"}) {
+    SCOPED_TRACE("halo mode " + mode);
+    RenderSettings settings = illustrateSettings("halo", "k_os=1,k_hr=4", {96, 96});
+    settings.options["halo-mode"] = mode;
+    settings.camera.orthographic = true;
+    settings.camera.azimuthDeg = 0;
+    settings.camera.elevationDeg = 0;
+    const RenderResult halo = test::renderOnce(volume, settings);
+    settings.options.erase("effects");
+    const RenderResult plain = test::renderOnce(volume, settings);
+    const int y = 48;
+    int edge = 48;  // the outermost pixel of the centre row the plain ball covers
+    while (edge + 1 < 96 && plain.frame.color(y, edge + 1)[3] > 1e-3f) ++edge;
+    ASSERT_GT(edge, 60);
+    ASSERT_LT(edge, 90);
+    // Just outside: the halo adds opacity (dark over white). Two pixels out, still in the radius.
+    const float outsideAlpha = halo.frame.color(y, edge + 2)[3];
+    std::cout << "[ info ] " << mode << ": edge x " << edge << ": alpha outside " << outsideAlpha
+              << " (plain " << plain.frame.color(y, edge + 2)[3] << ")\n";
+    EXPECT_GT(outsideAlpha, plain.frame.color(y, edge + 2)[3] + 0.05f);
+    // Composed over white, darker there.
+    const cv::Vec4f h = halo.frame.color(y, edge + 2);
+    EXPECT_LT(h[0] + (1 - h[3]), 1.0f - 0.05f) << "the halo should darken the background";
+    // Inside, around the centre: nothing changes (the neighbours' normals point away from it);
+    // 1e-4 (0.03/255) allows float rounding in the halo program's different instruction order
+    // and the black of halos of about 1e-4 in the ball's fringe in front. The field's 3D
+    // neighbourhood also pushes the fringe in front from the surface behind it (the slice
+    // plane's taps never look there); its mean normal faces the viewer up to the ball's
+    // curvature, so (1 − |N·V|)^k_hse lets a trace through: 1.5e-3 (0.4/255; measured 1.1e-3).
+    const float tolerance = mode == "field" ? 1.5e-3f : 1e-4f;
+    for (int x = 40; x <= 56; ++x) {
+      for (int k = 0; k < 4; ++k) {
+        EXPECT_NEAR(halo.frame.color(y, x)[k], plain.frame.color(y, x)[k], tolerance) << "x " << x;
+      }
     }
   }
+}
+
+TEST(HaloField, PushesOutwardJustOutsideABallAndNothingInsideOrFarAway) {
+  // A ball of radius 10 with a flat inside and a 2-voxel ramp, visible above 0.5, k_hr 4 (the
+  // field's neighbours at 3 voxels): just outside its surface, F > 0 and N points outward
+  // (radially); at its centre (no gradient within reach) F = 0; far outside, nothing at all
+  // (alpha 0: no halo and transparent, so samples there leave before the volume fetch).
+  const glm::ivec3 dims(40, 40, 40);
+  const glm::dvec3 centre(19.5, 19.5, 19.5);
+  const Volume volume = test::ballsVolume(dims, {{centre, 10.0}}, 2.0);
+  std::vector<float> samples(std::size_t(dims.x) * dims.y * dims.z);
+  for (std::size_t i = 0; i < samples.size(); ++i) samples[i] = float(volume.value(i));
+  const auto visible = [](float value) { return value > 0.5f; };
+  const std::vector<std::uint8_t> mask = haloMaskVoxels(samples.data(), dims, visible, 4.0);
+  const GradientTexels gradients =
+      computeGradientTexels(samples.data(), dims, glm::dvec3(1.0), /*withValues=*/false);
+  const std::vector<std::uint8_t> field = haloFieldVoxels(
+      gradients, mask, samples.data(), [](float, float hi) { return !(hi > 0.5f); },
+      glm::dvec3(1.0), 4.0, 1.0);
+  const auto at = [&](glm::ivec3 p) {
+    return &field[4 * ((std::size_t(p.z) * dims.y + p.y) * dims.x + p.x)];
+  };
+  // Just outside, along each axis and a diagonal: about 2 voxels beyond radius 10.
+  for (const glm::dvec3 direction : {glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1),
+                                     glm::normalize(glm::dvec3(1, 1, 0))}) {
+    const glm::ivec3 p(glm::floor(centre + direction * 12.0 + 0.5));
+    SCOPED_TRACE(testing::Message() << "voxel " << p.x << "," << p.y << "," << p.z);
+    const std::uint8_t* bytes = at(p);
+    EXPECT_GT(haloFieldStrength(bytes[3]), 0.01f);
+    EXPECT_GT(glm::dot(haloFieldNormal(bytes), glm::vec3(direction)), 0.9f);
+  }
+  EXPECT_EQ(haloFieldStrength(at({19, 19, 19})[3]), 0.0f);  // the centre
+  EXPECT_EQ(at({19, 19, 19})[3], 1);                        // no halo, but visible
+  EXPECT_EQ(at({0, 0, 0})[3], 0);                           // a corner: nothing
 }
 
 TEST(HaloMask, MarksExactlyTheVoxelsWithinTheRadiusOfAVisibleOne) {

@@ -6,7 +6,7 @@
 // In: the volume, its gradient texture (shaders/gradients.glsl: ∇f/max|∇f| in world axes, with
 // the values where it holds them), the transfer function (TRANSFER_TABLE: a 1D texture over the
 // data's range; otherwise the paper's power function over one colour), with HALO the halo mask
-// (halo_mask.h). Out: (c·α, α).
+// (halo_mask.h; HALO_FIELD: the halo field instead, per brick). Out: (c·α, α).
 
 uniform mat3 worldFromEye;  // rotation: eye-space directions into the gradients' axes
 // Samples at or below this value are transparent (the transfer function is 0 up to it): they
@@ -35,7 +35,27 @@ vec4 classify(float value) {
 #endif
 }
 
-#ifdef HALO
+#if defined(HALO) && defined(HALO_FIELD)
+// Feature halos from the halo field (halo_mask.h haloFieldVoxels, halo_mode=field): per voxel
+// F (the neighbours' pushes towards it, summed once per volume over its 3D neighbourhood) and
+// N (their mean outward normal). h = F·(1 − |N·V|)^k_hse·(1 − |∇f(P_i)|): one fetch of the
+// sample's nearest voxel instead of the exact mode's taps. Alpha 0 marks "no halo and
+// transparent": those samples leave before the volume fetch.
+layout(binding = UNIT_AUXILIARY0) uniform sampler3D haloMask;
+uniform float k_hse;
+
+// The voxel nearest to a voxel position (what GL_NEAREST picks), clamped to the volume, as a
+// texel of this piece's brick (the field has the volume texture's layout).
+ivec3 nearestBrickTexel(vec3 voxel) {
+  return clamp(ivec3(floor(voxel + 0.5)), ivec3(0), ivec3(volumeDims) - 1) - ivec3(brickOrigin);
+}
+
+float haloFromField(vec4 field, vec3 v, float gradientMagnitude) {
+  float strength = max(field.a * 255.0 - 1.0, 0.0) / (254.0 * HALO_FIELD_SCALE);
+  vec3 n = (field.rgb * 255.0 - 128.0) / 127.0;
+  return strength * pow(max(1.0 - abs(dot(n, v)), 0.0), k_hse) * (1.0 - gradientMagnitude);
+}
+#elif defined(HALO)
 // Feature halos from a neighbourhood in the slice plane (halos lie mostly in planes across the
 // view): HALO_TAPS taps at offsets within k_hr voxels, the nearest texel of the gradients each.
 // A tap's potential is the paper's h_n = (n_n·d)^k_hpe·(1 − |n_n·V|)^k_hse, d the unit direction
@@ -78,10 +98,17 @@ void main() {
   vec3 voxel = sliceVoxel();
   // The pieces overlap across brick borders (slicer.h slicePieces): the owner draws a sample.
   if (!insideVolume(voxel) || !ownedByBrick(voxel)) discard;
+#ifdef HALO_FIELD
+  vec4 haloField = texelFetch(haloMask, nearestBrickTexel(voxel), 0);
+  if (haloField.a <= 0.0) discard;  // no halo, and transparent whatever the volume holds
+  float nearFeature = haloField.a > 1.5 / 255.0 ? 1.0 : 0.0;  // F > 0
+#endif
   vec4 fetched;
   float value = sampleValue(voxel, fetched);
 #ifdef HALO
+#ifndef HALO_FIELD
   float nearFeature = texelFetch(haloMask, nearestTexel(voxel), 0).r;
+#endif
   if (value <= transparentBelow && nearFeature <= 0.0) discard;
   vec4 material = classify(value);
   if (material.a <= 0.0 && nearFeature <= 0.0) discard;
@@ -123,7 +150,9 @@ void main() {
 #ifdef DISTANCE
   color = distanceBlend(color, sliceDepth);
 #endif
-#ifdef HALO
+#if defined(HALO) && defined(HALO_FIELD)
+  featureHalo(color, opacity, haloFromField(haloField, v, gradientMagnitude));
+#elif defined(HALO)
   float h = haloSize(voxel, v, gradientMagnitude) * nearFeature;
   featureHalo(color, opacity, h);
 #endif

@@ -14,9 +14,22 @@ namespace {
 
 const std::vector<OptionSpec>& illustrateOptions() {
   static const std::vector<OptionSpec> options{
-      effectsOption(), parameterOption(),   styleOption(), transferFunctionOption(),
-      colorOption(),   sketchColorOption(), lightOption()};
+      effectsOption(),
+      parameterOption(),
+      styleOption(),
+      transferFunctionOption(),
+      colorOption(),
+      sketchColorOption(),
+      lightOption(),
+      OptionSpec::choice("halo-mode", "field", {"field", "exact"},
+                         "halo: field (a halo field built once per volume, one fetch per sample; "
+                         "works on bricked volumes) or exact (8 taps per sample in the slice "
+                         "plane; needs one texture)")};
   return options;
+}
+
+HaloMode haloModeFromOptions(const OptionReader& options) {
+  return options.text("halo-mode") == "exact" ? HaloMode::Exact : HaloMode::Field;
 }
 
 std::string upper(std::string text) {
@@ -41,20 +54,26 @@ TechniqueInfo illustrateTechniqueInfo() {
       [] { return std::make_unique<IllustrateTechnique>(); },
       /*usesGradients=*/true,
       /*checkValues=*/{},
-      // The halo taps reach farther than a brick's overlap.
+      // The exact halo's taps reach farther than a brick's overlap (the field needs none).
       /*needsOneTexture=*/
       [](const OptionReader& options) {
-        return illustrationFromOptions(illustrateOptions(), options).effects.has(Effect::Halo);
+        return haloModeFromOptions(options) == HaloMode::Exact &&
+               illustrationFromOptions(illustrateOptions(), options).effects.has(Effect::Halo);
       }};
   info.samplesOffPlanes = true;  // aligned to the box entry (compositing.h)
   return info;
 }
 
-std::vector<std::string> illustrateDefines(const Illustration& illustration) {
+std::vector<std::string> illustrateDefines(const Illustration& illustration, HaloMode haloMode) {
   std::vector<std::string> defines;
   for (const auto& name : illustration.effects.names()) defines.push_back(upper(name));
   if (illustration.effects.has(Effect::Halo)) {
-    defines.push_back("HALO_TAPS " + std::to_string(kHaloTaps));
+    if (haloMode == HaloMode::Field) {
+      defines.push_back("HALO_FIELD");
+      defines.push_back("HALO_FIELD_SCALE " + std::to_string(int(kHaloFieldScale)) + ".0");
+    } else {
+      defines.push_back("HALO_TAPS " + std::to_string(kHaloTaps));
+    }
   }
   if (illustration.transferFunction) defines.emplace_back("TRANSFER_TABLE");
   return defines;
@@ -80,6 +99,7 @@ std::vector<HaloTap> haloTaps(double radiusVoxels) {
 
 ResolvedOptions IllustrateTechnique::resolve(const FrameContext& frame) {
   illustration_ = illustrationFromOptions(illustrateOptions(), *frame.options);
+  haloMode_ = haloModeFromOptions(*frame.options);
   table_.clear();
   if (illustration_.transferFunction) {
     table_ =
@@ -87,15 +107,25 @@ ResolvedOptions IllustrateTechnique::resolve(const FrameContext& frame) {
   }
   if (illustration_.effects.has(Effect::Halo)) {
     // Here, not in beginFrame: the empty-space skipping asks for the mask's bricks before it.
-    requireOneBrick(frame, "illustrate's halo effect",
-                    "leave out the halo effect, or give a larger --max-texture-mib");
+    if (haloMode_ == HaloMode::Exact) {
+      requireOneBrick(frame, "illustrate's exact halo (--halo-mode exact)",
+                      "use --halo-mode field, leave out the halo effect, or give a larger "
+                      "--max-texture-mib");
+    }
     const double radius = illustration_["k_hr"];
-    std::vector<double> key{double(frame.volumeGeneration), radius,
+    const double pushExponent = haloMode_ == HaloMode::Field ? illustration_["k_hpe"] : 0.0;
+    std::vector<double> key{double(frame.volumeGeneration),
+                            radius,
+                            haloMode_ == HaloMode::Field ? 1.0 : 0.0,
+                            pushExponent,
                             illustration_.transferFunction ? 1.0 : 0.0,
-                            illustration_["k_os"] > 0 ? 1.0 : 0.0};
+                            illustration_["k_os"] > 0 ? 1.0 : 0.0,
+                            double(powerOpacityDomain(illustration_, frame.valueRange).min)};
     for (const auto& entry : table_) key.push_back(entry.a > 0 ? 1.0 : 0.0);
-    haloMask_.update(key, *frame.volume, visibleValues(illustration_, table_, frame.valueRange),
-                     radius);
+    haloMask_.update(key, *frame.volume, frame.spacing, haloMode_,
+                     visibleValues(illustration_, table_, frame.valueRange),
+                     transparentValues(illustration_, table_, frame.valueRange), radius,
+                     pushExponent);
   }
   ResolvedOptions resolved;
   resolved.background = illustration_.background;
@@ -113,6 +143,19 @@ std::function<bool(float)> visibleValues(const Illustration& illustration,
   const bool opaque = illustration["k_os"] > 0;
   const float from = powerOpacityDomain(illustration, range).min;
   return [opaque, from](float value) { return opaque && value > from; };
+}
+
+std::function<bool(float, float)> transparentValues(const Illustration& illustration,
+                                                    const std::vector<glm::vec4>& table,
+                                                    ValueRange range) {
+  if (illustration.transferFunction) {
+    return [&table, range](float lo, float hi) {
+      return !TransferFunctionTexture::opaqueSomewhere(table, range, lo, hi);
+    };
+  }
+  const bool opaque = illustration["k_os"] > 0;
+  const float from = powerOpacityDomain(illustration, range).min;
+  return [opaque, from](float, float hi) { return !opaque || hi <= from; };
 }
 
 ValueRange powerOpacityDomain(const Illustration& illustration, ValueRange range) {
@@ -155,7 +198,7 @@ std::vector<bool> IllustrateTechnique::alsoOccupied(const FrameContext&) const {
 
 void IllustrateTechnique::beginFrame(const FrameContext& frame) {
   const GradientTexture& gradients = frame.gradients->texture();
-  std::vector<std::string> defines = illustrateDefines(illustration_);
+  std::vector<std::string> defines = illustrateDefines(illustration_, haloMode_);
   gradients.addDefines(defines);
   defines.emplace_back(kBoxAlignedSampling);
   program_ = &frame.programs->get(gl::slicePassProgram(
@@ -167,7 +210,7 @@ void IllustrateTechnique::beginFrame(const FrameContext& frame) {
     gl::bindTexture(gl::TextureUnit::TransferFunction, GL_TEXTURE_1D, transferTexture_->id());
   }
   gl::bindTexture(gl::TextureUnit::Gradient, GL_TEXTURE_3D, gradients.brickTexture(0));
-  if (illustration_.effects.has(Effect::Halo)) {
+  if (illustration_.effects.has(Effect::Halo)) {  // brick 0; drawSlice binds the others
     gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_3D, haloMask_.id());
   }
   setUniforms(frame);
@@ -202,7 +245,7 @@ void IllustrateTechnique::setUniforms(const FrameContext& frame) {
     program.set("valueScale", span > 0 ? float(1.0 / span) : 0.0f);
     program.set("sampleColor", illustration_.color.rgb01());
   }
-  if (illustration_.effects.has(Effect::Halo)) {
+  if (illustration_.effects.has(Effect::Halo) && haloMode_ == HaloMode::Exact) {
     // Offsets in voxels: a unit step in voxel index space along the view's x and y.
     const glm::dmat3 voxelFromEye = glm::inverse(glm::dmat3(frame.view->eyeFromVoxel));
     std::vector<glm::vec3> offsets, directions;
@@ -221,7 +264,8 @@ void IllustrateTechnique::setUniforms(const FrameContext& frame) {
 }
 
 void IllustrateTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
-  compositor_.drawSlice(frame, slice, *program_);
+  const bool haloBricks = illustration_.effects.has(Effect::Halo) && frame.volume->brickCount() > 1;
+  compositor_.drawSlice(frame, slice, *program_, haloBricks ? &haloMask_.brickTextures() : nullptr);
 }
 
 FrameBuffers IllustrateTechnique::readBack(const FrameContext&) {

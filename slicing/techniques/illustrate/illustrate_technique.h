@@ -24,8 +24,8 @@ namespace vsil {
 
 TechniqueInfo illustrateTechniqueInfo();
 
-// The program variant for a set of effects: its #defines.
-std::vector<std::string> illustrateDefines(const Illustration& illustration);
+// The program variant for a set of effects and halo mode: its #defines.
+std::vector<std::string> illustrateDefines(const Illustration& illustration, HaloMode haloMode);
 
 // Halo taps: in the slice plane, 4 at half the radius along the view's x and y axes and 4 at
 // the radius along the diagonals (8 directions); weights 1/d², summing to 1.
@@ -44,6 +44,10 @@ ValueRange powerOpacityDomain(const Illustration& illustration, ValueRange range
 // transfer function; conservative by one table entry, as the occupancy is.
 std::function<bool(float)> visibleValues(const Illustration& illustration,
                                          const std::vector<glm::vec4>& table, ValueRange range);
+// Whether no value in [lo, hi] is visible (the halo field's "nothing here", halo_mask.h).
+std::function<bool(float, float)> transparentValues(const Illustration& illustration,
+                                                    const std::vector<glm::vec4>& table,
+                                                    ValueRange range);
 // The value at or below which every sample is transparent (composite.frag leaves early there).
 float transparentBelow(const Illustration& illustration, const std::vector<glm::vec4>& table,
                        ValueRange range);
@@ -62,6 +66,7 @@ class IllustrateTechnique : public Technique {
   void setUniforms(const FrameContext& frame);
 
   Illustration illustration_;
+  HaloMode haloMode_ = HaloMode::Field;
   std::vector<glm::vec4> table_;  // the transfer function's table, when there is one
   std::optional<TransferFunctionTexture> transferTexture_;
   HaloMaskTexture haloMask_;
