@@ -117,6 +117,13 @@ class Technique {
   // frame with the other processes' by the technique's rule (TechniqueInfo::composition), so
   // that every process finishes the whole frame. Default: the technique cannot be split.
   virtual void combineSlabs(const FrameContext& frame, SlabRelay& relay);
+  // Slab rendering by relay (Composition::Relay): the targets that hold this sweep's partial
+  // frame (frame.sweep), received from the slab in front after beginSweep and sent on after the
+  // slices. Only the colour and the depth-stencil buffer travel, so the technique must keep
+  // everything a later slice reads there.
+  virtual std::vector<const gl::RenderTarget*> relayTargets(const FrameContext&) const {
+    return {};
+  }
 };
 
 // The occupancy of techniques that look for the iso-surface: a brick may hold a FILLED sample
