@@ -5,6 +5,7 @@
 // from the Renderer's cache. What a technique is called, which options it reads and what it
 // returns is declared once in technique_table.h.
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -149,7 +150,15 @@ void drawScreen(const FrameContext& frame);
 // whose point its brick owns (common.glsl ownedByBrick), and those without a point only on the
 // first brick (brickIsFirst), so that every pixel is written once, by the brick that holds its
 // neighbourhood: the same bytes as one texture.
+// A slab (frame.slab) draws only the bricks it owns, so that it writes only the pixels whose point
+// lies in its slab: relayScreenPass then completes the frame.
 void drawScreenPerBrick(const FrameContext& frame);
+// A screen pass per brick into `targets` (`draw`, e.g. finishRecords) of a frame split into slabs
+// (Composition::Relay): each rank in turn continues from the targets of the one in front and
+// writes the pixels its bricks own, and the last rank's targets go to all; every pixel so holds
+// what the brick owning its point wrote, as in one process. Without a slab, just draw().
+void relayScreenPass(const FrameContext& frame, const std::vector<const gl::RenderTarget*>& targets,
+                     const std::function<void()>& draw);
 
 // GL texture rows run bottom-up; FrameBuffers rows top-down. Reads the target's colour
 // attachment as floats with `channels` channels (1 or 4) and flips it.

@@ -49,11 +49,11 @@ const std::vector<TechniqueInfo>& techniqueTable() {
 void requireSplittable(const TechniqueInfo& info, int ranks) {
   if (ranks <= 1) return;
   // Wired into the frame loop so far: the max reduce (mip) and the relay of the techniques whose
-  // samples and last passes read no voxel beyond their own slab (firsthit, demip, lmip).
-  // rightangle's and illustrate's last passes shade at a pixel's own point, in whichever slab
-  // it lies, and illustrate's and semantic's samples read gradients normalised by the whole
-  // volume's largest (gradient_texture.h) and a neighbourhood beyond the slab: not yet.
-  static const std::vector<std::string> relayed{"firsthit", "demip", "lmip"};
+  // samples read no voxel beyond their own bricks (rightangle, firsthit, demip, lmip; the last
+  // passes that shade at a pixel's own point relay too, technique.h relayScreenPass).
+  // illustrate's and semantic's samples read gradients normalised by the whole volume's largest
+  // (gradient_texture.h) and neighbourhoods beyond the slab: not yet.
+  static const std::vector<std::string> relayed{"rightangle", "firsthit", "demip", "lmip"};
   if (info.composition == Composition::MaxReduce) return;
   if (info.composition == Composition::Relay &&
       std::find(relayed.begin(), relayed.end(), info.name) != relayed.end()) {

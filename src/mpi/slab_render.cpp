@@ -40,11 +40,14 @@ std::vector<float> readColour(const gl::RenderTarget& target) {
 
 void writeColour(const gl::RenderTarget& target, const std::vector<float>& values) {
   const glm::ivec2 size = target.size();
+  // The active unit's binding back afterwards: the passes may have bound their inputs there.
+  GLint bound = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
   VSIL_GL(glBindTexture(GL_TEXTURE_2D, target.texture()));
   VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
   VSIL_GL(glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size.x, size.y, floatFormat(target), GL_FLOAT,
                           values.data()));
-  VSIL_GL(glBindTexture(GL_TEXTURE_2D, 0));
+  VSIL_GL(glBindTexture(GL_TEXTURE_2D, GLuint(bound)));
 }
 
 // The relay (Composition::Relay) over a communicator of the ranks in the frame's depth order;

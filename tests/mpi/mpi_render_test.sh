@@ -5,9 +5,9 @@
 #  - several ranks (2, 3, 4) for mip, the technique wired into the slab renderer: the same bytes,
 #    on one texture, on a bricked volume, perspective close to the volume; a volume over one
 #    rank's --max-memory renders across three; the --meta-out "mpi" object;
-#  - several ranks (2, 3, 4) for the relay (firsthit, demip, lmip): PNG and depth image the same
-#    bytes at an odd view, orthographic, bricked and on the engine dataset; a perspective view
-#    whose rays go both ways along z refuses in one line;
+#  - several ranks (2, 3, 4) for the relay (rightangle, firsthit, demip, lmip): PNG, depth and
+#    state images the same bytes at an odd view, orthographic, bricked and on the engine dataset;
+#    a perspective view whose rays go both ways along z refuses in one line;
 #  - several ranks for the other techniques: one refusal line, printed once, a non-zero exit and
 #    no output file.
 # Usage: mpi_render_test.sh VSIL MPIEXEC
@@ -81,22 +81,29 @@ echo "over one rank's --max-memory: renders across 3"
 # The relay (Composition::Relay): firsthit, demip and lmip pass their targets from slab to slab
 # in the view's depth order; PNG and depth image byte-identical to the single process.
 relay_case() {  # $1: technique, $2: rank counts, then the render's arguments
-  local technique=$1 counts=$2
+  local technique=$1 counts=$2 kind
   shift 2
+  local state=()
+  [[ $technique == rightangle ]] && state=(--state-out)
   "$vsil" render "$@" --technique "$technique" --out "$work/single.png" \
-    --depth-out "$work/single.depth.png" >/dev/null
+    --depth-out "$work/single.depth.png" ${state[@]+"${state[@]}" "$work/single.state.png"} \
+    >/dev/null
   for n in $counts; do
     "$mpiexec" --oversubscribe -np "$n" "$vsil" render "$@" --technique "$technique" \
       --out "$work/many.png" --depth-out "$work/many.depth.png" --meta-out "$work/many.json" \
-      >/dev/null || fail "$technique $*: -np $n failed"
-    cmp -s "$work/single.png" "$work/many.png" || fail "$technique $*: -np $n differs"
-    cmp -s "$work/single.depth.png" "$work/many.depth.png" ||
-      fail "$technique $*: -np $n depth differs"
+      ${state[@]+"${state[@]}" "$work/many.state.png"} >/dev/null ||
+      fail "$technique $*: -np $n failed"
+    for kind in "" .depth .state; do
+      [[ -e $work/single$kind.png ]] || continue
+      cmp -s "$work/single$kind.png" "$work/many$kind.png" ||
+        fail "$technique $*: -np $n differs in $kind.png"
+    done
     grep -q '"compose": "relay"' "$work/many.json" || fail "$technique: no mpi compose relay"
     rm -f "$work"/many*.png
   done
+  rm -f "$work"/single*.png
 }
-for technique in firsthit demip lmip; do
+for technique in rightangle firsthit demip lmip; do
   relay_case "$technique" "2 3 4" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6
   relay_case "$technique" "2 3" gen:spheres:64 --size 128x128 --view 200,55 --zoom 1.3 --ortho
   relay_case "$technique" "2 4" gen:spheres:128 --size 128x128 --view 200,55 --zoom 2.5 \
@@ -106,8 +113,11 @@ engine=${VSIL_DATASETS:-/work/shared/datasets}/engine.vti
 if [[ -e $engine ]]; then
   relay_case demip "3" "$engine" --size 256x256 --view 30,20
   relay_case lmip "2" "$engine" --size 256x256 --view 30,20
+  relay_case rightangle "4" "$engine" --size 256x256 --view 30,20 --fill tone
 fi
-echo "relay (firsthit, demip, lmip): -np 2, 3, 4 byte-identical, PNG and depth"
+# The last passes that shade at a hit's own point, in whichever slab it lies (relayScreenPass).
+relay_case rightangle "3" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6 --fill shaded
+echo "relay (rightangle, firsthit, demip, lmip): -np 2, 3, 4 byte-identical, PNG, depth, state"
 
 # A perspective view whose rays leave the eye both ways along z: no slab order is every ray's.
 if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --technique firsthit \
@@ -129,3 +139,14 @@ for n in 2 3; do
   [[ $count == 1 ]] || { cat "$work/err" >&2; fail "-np $n: the refusal printed $count times"; }
 done
 echo "several ranks: one refusal line, no output"
+
+for technique in illustrate semantic; do
+  if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --technique "$technique" \
+    "${common[@]}" --out "$work/many.png" >"$work/out" 2>"$work/err"; then
+    fail "$technique -np 2: expected a refusal"
+  fi
+  [[ ! -e $work/many.png ]] || fail "$technique -np 2: an output file was written"
+  count=$(grep -c "rendering across 2 MPI ranks is not available yet" "$work/err" || true)
+  [[ $count == 1 ]] || { cat "$work/err" >&2; fail "$technique: the refusal printed $count times"; }
+done
+echo "illustrate, semantic across ranks: one refusal line, no output"
