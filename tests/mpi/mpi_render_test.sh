@@ -105,8 +105,8 @@ relay_case() {  # $1: technique, $2: rank counts, then the render's arguments
 }
 for technique in rightangle firsthit demip lmip; do
   relay_case "$technique" "2 3 4" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6
-  relay_case "$technique" "2 3" gen:spheres:64 --size 128x128 --view 200,55 --zoom 1.3 --ortho
-  relay_case "$technique" "2 4" gen:spheres:128 --size 128x128 --view 200,55 --zoom 2.5 \
+  relay_case "$technique" "3" gen:spheres:64 --size 128x128 --view 200,55 --zoom 1.3 --ortho
+  relay_case "$technique" "4" gen:spheres:128 --size 128x128 --view 200,55 --zoom 2.5 \
     --max-texture-mib 1
 done
 engine=${VSIL_DATASETS:-/work/shared/datasets}/engine.vti
@@ -128,6 +128,15 @@ fi
 count=$(grep -c "rays that leave the eye both ways" "$work/err" || true)
 [[ $count == 1 ]] || { cat "$work/err" >&2; fail "perspective: the refusal printed $count times"; }
 echo "perspective with rays both ways along z: one refusal line, no output"
+
+# Options that need the volume in one texture (a slab is not): refused alike before reading.
+if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --technique rightangle \
+  --pipeline tiles --size 64x64 --out "$work/many.png" >"$work/out" 2>"$work/err"; then
+  fail "--pipeline tiles across ranks: expected a refusal"
+fi
+[[ ! -e $work/many.png ]] || fail "--pipeline tiles: an output file was written"
+count=$(grep -c "need the volume in one texture" "$work/err" || true)
+[[ $count == 1 ]] || { cat "$work/err" >&2; fail "--pipeline tiles: the refusal printed $count times"; }
 
 for n in 2 3; do
   if "$mpiexec" --oversubscribe -np "$n" "$vsil" render "$volume" --technique silhouette \
