@@ -306,17 +306,31 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
                              settings.emptySpaceSkipping, technique.alsoOccupied(frame));
   frame.emptySpace = &*impl_->emptySpace;
 
+  // A relayed frame (Composition::Relay, slab.h): the processes take turns in the view's depth
+  // order, each continuing every sweep from the targets of the slab in front, so that each pixel
+  // blends the single process's samples in its order; the last slab's targets go to all.
+  const bool relayed = slab && info.composition == Composition::Relay;
+  if (relayed) {
+    if (slab->relay == nullptr) throw std::logic_error("Renderer: a slab without a relay");
+    slab->relay->orderByDepth(frameZDirection(result.view));
+  }
   technique.beginFrame(frame);
   const int sweeps = technique.sweepCount(frame);
   for (frame.sweep = 0; frame.sweep < sweeps; ++frame.sweep) {
     technique.beginSweep(frame);
+    if (relayed) slab->relay->receive(technique.relayTargets(frame));
     for (const SliceContext& slice : slices) {
       impl_->uniforms->bindSlice(slice.index);
       technique.drawSlice(frame, slice);
     }
+    if (relayed) {
+      const std::vector<const gl::RenderTarget*> targets = technique.relayTargets(frame);
+      slab->relay->send(targets);
+      slab->relay->shareLast(targets);
+    }
   }
   frame.sweep = sweeps - 1;
-  if (slab) {
+  if (slab && !relayed) {
     if (slab->relay == nullptr) throw std::logic_error("Renderer: a slab without a relay");
     technique.combineSlabs(frame, *slab->relay);
   }

@@ -105,7 +105,8 @@ class Renderer {
   void setVolume(const Volume& volume, std::uint64_t maxTextureBytes = limits::kMaxTextureBytes);
   // One process's slab of a volume split along z across processes (slab.h): uploads only the
   // bricks `part` holds from `slabVolume`; frames draw only the pieces of the bricks it owns and
-  // combine with the other processes' (Technique::combineSlabs) before their last passes. The
+  // combine with the other processes' before their last passes (Technique::combineSlabs, or for
+  // Composition::Relay each sweep's Technique::relayTargets in the view's depth order). The
   // value range and derived defaults are the whole volume's, from `part`.
   void setSlab(const Volume& slabVolume, const SlabPart& part);
   // Bricks of the current volume's texture (0 before setVolume).

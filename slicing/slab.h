@@ -54,6 +54,11 @@ PairPixel combineInZOrder(const PairPixel& lowerZ, const PairPixel& higherZ);
 class SlabRelay {
  public:
   virtual ~SlabRelay() = default;
+  // Orders the processes for receive/send/shareLast by the frame's z direction
+  // (frameZDirection): +1 the slab of lowest z first, -1 the highest first, 0 either. nullopt
+  // (a perspective view whose rays leave the eye both ways along z, so that no order of the
+  // slabs is every ray's order) refuses, alike on every process.
+  virtual void orderByDepth(std::optional<int> zDirection) = 0;
   // Replaces the colour of `targets` with what the process in front sent (nothing on the first).
   virtual void receive(const std::vector<const gl::RenderTarget*>& targets) = 0;
   // Sends `targets` to the process behind (nothing on the last).

@@ -76,12 +76,24 @@ void drawScreen(const FrameContext& frame) {
 
 void drawScreenPerBrick(const FrameContext& frame) {
   for (std::size_t brick = 0; brick < frame.volume->brickCount(); ++brick) {
+    if (frame.slab && !frame.slab->owns(brick)) continue;
     gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, frame.volume->brickTexture(brick));
     frame.uniforms->bindBrick(brick);
     drawScreen(frame);
   }
   gl::bindTexture(gl::TextureUnit::Volume, GL_TEXTURE_3D, frame.volume->brickTexture(0));
   frame.uniforms->bindBrick(0);
+}
+
+void relayScreenPass(const FrameContext& frame, const std::vector<const gl::RenderTarget*>& targets,
+                     const std::function<void()>& draw) {
+  SlabRelay* relay = frame.slab ? frame.slab->relay : nullptr;
+  if (relay) relay->receive(targets);
+  draw();
+  if (relay) {
+    relay->send(targets);
+    relay->shareLast(targets);
+  }
 }
 
 namespace {

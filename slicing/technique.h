@@ -5,6 +5,7 @@
 // from the Renderer's cache. What a technique is called, which options it reads and what it
 // returns is declared once in technique_table.h.
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -121,6 +122,13 @@ class Technique {
   // frame with the other processes' by the technique's rule (TechniqueInfo::composition), so
   // that every process finishes the whole frame. Default: the technique cannot be split.
   virtual void combineSlabs(const FrameContext& frame, SlabRelay& relay);
+  // Slab rendering by relay (Composition::Relay): the targets that hold this sweep's partial
+  // frame (frame.sweep), received from the slab in front after beginSweep and sent on after the
+  // slices. Only the colour and the depth-stencil buffer travel, so the technique must keep
+  // everything a later slice reads there.
+  virtual std::vector<const gl::RenderTarget*> relayTargets(const FrameContext&) const {
+    return {};
+  }
 };
 
 // The occupancy of techniques that look for the iso-surface: a brick may hold a FILLED sample
@@ -150,7 +158,15 @@ void drawScreen(const FrameContext& frame);
 // whose point its brick owns (common.glsl ownedByBrick), and those without a point only on the
 // first brick (brickIsFirst), so that every pixel is written once, by the brick that holds its
 // neighbourhood: the same bytes as one texture.
+// A slab (frame.slab) draws only the bricks it owns, so that it writes only the pixels whose point
+// lies in its slab: relayScreenPass then completes the frame.
 void drawScreenPerBrick(const FrameContext& frame);
+// A screen pass per brick into `targets` (`draw`, e.g. finishRecords) of a frame split into slabs
+// (Composition::Relay): each rank in turn continues from the targets of the one in front and
+// writes the pixels its bricks own, and the last rank's targets go to all; every pixel so holds
+// what the brick owning its point wrote, as in one process. Without a slab, just draw().
+void relayScreenPass(const FrameContext& frame, const std::vector<const gl::RenderTarget*>& targets,
+                     const std::function<void()>& draw);
 
 // GL texture rows run bottom-up; FrameBuffers rows top-down. Reads the target's colour
 // attachment as floats with `channels` channels (1 or 4) and flips it.

@@ -26,7 +26,11 @@ const std::vector<TechniqueInfo>& techniqueTable() {
   // front-to-back "over" of premultiplied RGBA in RGBA32F is not associative in float and early
   // ray termination reads the accumulated alpha, so those frames relay the accumulated targets
   // from slab to slab in depth order (the same float operations in the same order); demip's
-  // second sweep needs the whole ray's maximum, so it relays too.
+  // second sweep needs the whole ray's maximum, so it relays too (each sweep in turn, the first
+  // sweep's maxima shared before the second). lmip relays its record as well: its run summary
+  // reduces exactly (composition.h LocalMaxReduce, proven in composition_test.cpp), but the
+  // relay continues the very records of lmip_slice.frag with no second formula to keep in step,
+  // and costs the same sends as an ordered reduce.
   static const std::vector<TechniqueInfo> table{
       // clang-format off
       composedBy(silhouetteTechniqueInfo(), Composition::PairReduce),
@@ -35,7 +39,7 @@ const std::vector<TechniqueInfo>& techniqueTable() {
       composedBy(illustrateTechniqueInfo(), Composition::Relay),
       composedBy(mipTechniqueInfo(), Composition::MaxReduce),
       composedBy(demipTechniqueInfo(), Composition::Relay),
-      composedBy(lmipTechniqueInfo(), Composition::LocalMaxReduce),
+      composedBy(lmipTechniqueInfo(), Composition::Relay),
       composedBy(semanticTechniqueInfo(), Composition::Relay),
       // clang-format on
   };
@@ -44,14 +48,23 @@ const std::vector<TechniqueInfo>& techniqueTable() {
 
 void requireSplittable(const TechniqueInfo& info, int ranks) {
   if (ranks <= 1) return;
-  // Wired into the frame loop so far: the max reduce (mip) and the silhouette pair.
+  // Wired into the frame loop so far: the max reduce (mip), the silhouette pair and the relay of
+  // the techniques whose samples read no voxel beyond their own bricks (rightangle, firsthit,
+  // demip, lmip; the last passes that shade at a pixel's own point relay too, technique.h
+  // relayScreenPass).
+  // illustrate's and semantic's samples read gradients normalised by the whole volume's largest
+  // (gradient_texture.h) and neighbourhoods beyond the slab: not yet.
+  static const std::vector<std::string> relayed{"rightangle", "firsthit", "demip", "lmip"};
   if (info.composition == Composition::MaxReduce) return;
   if (info.composition == Composition::PairReduce) return;
-  throw UnavailableError("--technique " + info.name + ": rendering across " +
-                         std::to_string(ranks) +
-                         " MPI ranks is not available yet (its combine rule, " +
-                         compositionName(info.composition) +
-                         ", is stated but the slab renderer is not wired in); run one rank");
+  if (info.composition == Composition::Relay &&
+      std::find(relayed.begin(), relayed.end(), info.name) != relayed.end()) {
+    return;
+  }
+  throw UnavailableError(
+      "--technique " + info.name + ": rendering across " + std::to_string(ranks) +
+      " MPI ranks is not available yet (its combine rule, " + compositionName(info.composition) +
+      ", is stated but the slab renderer is not wired in); run one rank");
 }
 
 const OptionSpec* TechniqueInfo::option(const std::string& optionName) const {
@@ -85,9 +98,12 @@ OptionSpec isoOption() {
 
 const char* pipelineName(SlicingPipeline pipeline) {
   switch (pipeline) {
-    case SlicingPipeline::Paper: return "paper";
-    case SlicingPipeline::Tiles: return "tiles";
-    case SlicingPipeline::Fast: break;
+    case SlicingPipeline::Paper:
+      return "paper";
+    case SlicingPipeline::Tiles:
+      return "tiles";
+    case SlicingPipeline::Fast:
+      break;
   }
   return "fast";
 }

@@ -90,7 +90,13 @@ void ToneFill::draw(const FrameContext& frame, const gl::RenderTarget& record) {
   target_->bindForDrawing();
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, record.texture());
-  drawScreenPerBrick(frame);  // the hit's brick shades it (tone_fill.frag)
+  // The hit's brick shades it (tone_fill.frag); across slabs, its slab's rank.
+  relayScreenPass(frame, {&*target_}, [&] {
+    target_->bindForDrawing();
+    program.use();
+    gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, record.texture());
+    drawScreenPerBrick(frame);
+  });
 }
 
 void ToneFill::readBack(FrameBuffers& frame) const {

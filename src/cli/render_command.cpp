@@ -65,8 +65,9 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   RenderRequest request = toRenderRequest(flags);
   request.settings.readDepth = !outputs.depthOut.empty();
   RenderJob::checkRequest(request, loadOptions.limits);
-  // Under mpirun with several ranks: the slab-parallel render is not wired in yet (issue 35);
-  // every rank refuses alike, before reading anything.
+  // Under mpirun with several ranks: techniques whose slabs are not combined yet (issue 35), and
+  // options that need the volume in one texture (a slab is not), refuse alike on every rank
+  // before reading anything.
   try {
     requireSplittable(findTechnique(request.settings.technique), mpi::size());
     if (mpi::size() > 1 && request.postfx.fill == FillMode::Tone) {
@@ -76,6 +77,11 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
     }
   } catch (const UnavailableError& e) {
     throw mpi::EveryRankError(e.what());
+  }
+  if (mpi::size() > 1 && needsOneTexture(request.settings.technique, request.settings.options)) {
+    throw mpi::EveryRankError("--technique " + request.settings.technique +
+                              ": these options need the volume in one texture, which a slab "
+                              "rendered across MPI ranks is not; run one rank");
   }
   OutputBatch batch;
   checkOutputs(flags, outputs, batch);

@@ -16,11 +16,90 @@ void check(int code, const char* what) {
   if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
 }
 
+// A float target's colour: GL_RED for R32F, GL_RGBA for RGBA32F (the relayed targets).
+GLenum floatFormat(const gl::RenderTarget& target) {
+  switch (target.internalFormat()) {
+    case GL_R32F: return GL_RED;
+    case GL_RGBA32F: return GL_RGBA;
+    default: break;
+  }
+  throw std::logic_error("MpiRelay: only R32F and RGBA32F targets travel");
+}
+
+std::vector<float> readColour(const gl::RenderTarget& target) {
+  const glm::ivec2 size = target.size();
+  const GLenum format = floatFormat(target);
+  std::vector<float> values(std::size_t(size.x) * std::size_t(size.y) *
+                            (format == GL_RGBA ? 4 : 1));
+  VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer()));
+  VSIL_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
+  VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
+  VSIL_GL(glReadPixels(0, 0, size.x, size.y, format, GL_FLOAT, values.data()));
+  return values;
+}
+
+void writeColour(const gl::RenderTarget& target, const std::vector<float>& values) {
+  const glm::ivec2 size = target.size();
+  // The active unit's binding back afterwards: the passes may have bound their inputs there.
+  GLint bound = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  VSIL_GL(glBindTexture(GL_TEXTURE_2D, target.texture()));
+  VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
+  VSIL_GL(glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size.x, size.y, floatFormat(target), GL_FLOAT,
+                          values.data()));
+  VSIL_GL(glBindTexture(GL_TEXTURE_2D, GLuint(bound)));
+}
+
+// The relay (Composition::Relay) over a communicator of the ranks in the frame's depth order;
+// the floats travel as read back, so the next rank continues from the very bits.
 class MpiRelay : public SlabRelay {
  public:
-  void receive(const std::vector<const gl::RenderTarget*>&) override { unsupported(); }
-  void send(const std::vector<const gl::RenderTarget*>&) override { unsupported(); }
-  void shareLast(const std::vector<const gl::RenderTarget*>&) override { unsupported(); }
+  ~MpiRelay() override { freeDepthOrder(); }
+
+  void orderByDepth(std::optional<int> zDirection) override {
+    if (!zDirection) {
+      throw EveryRankError(
+          "--view, --zoom: this perspective view has rays that leave the eye both ways along "
+          "the volume's z, so no order of the z slabs is every ray's order; use --ortho, "
+          "another view or one rank");
+    }
+    // Rank r owns the r-th slab from low z (readSlab): the key is its place along the rays.
+    const int key = *zDirection < 0 ? size() - 1 - rank() : rank();
+    freeDepthOrder();
+    check(MPI_Comm_split(MPI_COMM_WORLD, 0, key, &depthOrder_), "MPI_Comm_split");
+    check(MPI_Comm_rank(depthOrder_, &place_), "MPI_Comm_rank");
+    check(MPI_Comm_size(depthOrder_, &count_), "MPI_Comm_size");
+  }
+
+  void receive(const std::vector<const gl::RenderTarget*>& targets) override {
+    if (place() == 0) return;
+    for (const gl::RenderTarget* target : targets) {
+      std::vector<float> values = readColour(*target);  // sized alike; overwritten
+      check(MPI_Recv(values.data(), int(values.size()), MPI_FLOAT, place_ - 1, 0, depthOrder_,
+                     MPI_STATUS_IGNORE),
+            "MPI_Recv (relay)");
+      writeColour(*target, values);
+    }
+  }
+
+  void send(const std::vector<const gl::RenderTarget*>& targets) override {
+    if (place() == count_ - 1) return;
+    for (const gl::RenderTarget* target : targets) {
+      const std::vector<float> values = readColour(*target);
+      check(MPI_Send(values.data(), int(values.size()), MPI_FLOAT, place_ + 1, 0, depthOrder_),
+            "MPI_Send (relay)");
+    }
+  }
+
+  void shareLast(const std::vector<const gl::RenderTarget*>& targets) override {
+    place();
+    for (const gl::RenderTarget* target : targets) {
+      std::vector<float> values = readColour(*target);
+      check(MPI_Bcast(values.data(), int(values.size()), MPI_FLOAT, count_ - 1, depthOrder_),
+            "MPI_Bcast (relay)");
+      if (place_ != count_ - 1) writeColour(*target, values);
+    }
+  }
 
   void maxReduce(const gl::RenderTarget& target) override {
     if (target.internalFormat() != GL_R32F) {
@@ -69,9 +148,16 @@ class MpiRelay : public SlabRelay {
     for (int i = 0; i < *count; ++i) higher[i] = combineInZOrder(lower[i], higher[i]);
   }
 
-  [[noreturn]] static void unsupported() {
-    throw UnavailableError("the relay between MPI ranks is not available yet");
+  int place() const {
+    if (depthOrder_ == MPI_COMM_NULL) throw std::logic_error("MpiRelay: relay before orderByDepth");
+    return place_;
   }
+  void freeDepthOrder() {
+    if (depthOrder_ != MPI_COMM_NULL) MPI_Comm_free(&depthOrder_);
+  }
+
+  MPI_Comm depthOrder_ = MPI_COMM_NULL;
+  int place_ = 0, count_ = 0;  // this rank's place along the rays, of count_
 };
 
 // Bytes per texel the layout is chosen for, from the file's type alone (every rank alike): the

@@ -5,6 +5,9 @@
 #  - several ranks (2, 3, 4) for mip (silhouette: mpi_silhouette_test.sh): the same bytes,
 #    on one texture, on a bricked volume, perspective close to the volume; a volume over one
 #    rank's --max-memory renders across three; the --meta-out "mpi" object;
+#  - several ranks (2, 3, 4) for the relay (rightangle, firsthit, demip, lmip): PNG, depth and
+#    state images the same bytes at an odd view, orthographic, bricked and on the engine dataset;
+#    a perspective view whose rays go both ways along z refuses in one line;
 #  - several ranks for the other techniques: one refusal line, printed once, a non-zero exit and
 #    no output file.
 # Usage: mpi_render_test.sh VSIL MPIEXEC
@@ -75,13 +78,73 @@ fi
 cmp -s "$work/big.png" "$work/big3.png" || fail "--max-memory across 3 ranks differs"
 echo "over one rank's --max-memory: renders across 3"
 
-for n in 2 3; do
-  if "$mpiexec" --oversubscribe -np "$n" "$vsil" render "$volume" --technique rightangle \
-    "${common[@]}" --out "$work/many.png" >"$work/out" 2>"$work/err"; then
-    fail "-np $n: expected a refusal"
-  fi
-  [[ ! -e $work/many.png ]] || fail "-np $n: an output file was written"
-  count=$(grep -c "rendering across $n MPI ranks is not available yet" "$work/err" || true)
-  [[ $count == 1 ]] || { cat "$work/err" >&2; fail "-np $n: the refusal printed $count times"; }
+# The relay (Composition::Relay): firsthit, demip and lmip pass their targets from slab to slab
+# in the view's depth order; PNG and depth image byte-identical to the single process.
+relay_case() {  # $1: technique, $2: rank counts, then the render's arguments
+  local technique=$1 counts=$2 kind
+  shift 2
+  local state=()
+  [[ $technique == rightangle ]] && state=(--state-out)
+  "$vsil" render "$@" --technique "$technique" --out "$work/single.png" \
+    --depth-out "$work/single.depth.png" ${state[@]+"${state[@]}" "$work/single.state.png"} \
+    >/dev/null
+  for n in $counts; do
+    "$mpiexec" --oversubscribe -np "$n" "$vsil" render "$@" --technique "$technique" \
+      --out "$work/many.png" --depth-out "$work/many.depth.png" --meta-out "$work/many.json" \
+      ${state[@]+"${state[@]}" "$work/many.state.png"} >/dev/null ||
+      fail "$technique $*: -np $n failed"
+    for kind in "" .depth .state; do
+      [[ -e $work/single$kind.png ]] || continue
+      cmp -s "$work/single$kind.png" "$work/many$kind.png" ||
+        fail "$technique $*: -np $n differs in $kind.png"
+    done
+    grep -q '"compose": "relay"' "$work/many.json" || fail "$technique: no mpi compose relay"
+    rm -f "$work"/many*.png
+  done
+  rm -f "$work"/single*.png
+}
+for technique in rightangle firsthit demip lmip; do
+  relay_case "$technique" "2 3 4" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6
+  relay_case "$technique" "3" gen:spheres:64 --size 128x128 --view 200,55 --zoom 1.3 --ortho
+  relay_case "$technique" "4" gen:spheres:128 --size 128x128 --view 200,55 --zoom 2.5 \
+    --max-texture-mib 1
 done
-echo "several ranks: one refusal line, no output"
+engine=${VSIL_DATASETS:-/work/shared/datasets}/engine.vti
+if [[ -e $engine ]]; then
+  relay_case demip "3" "$engine" --size 256x256 --view 30,20
+  relay_case lmip "2" "$engine" --size 256x256 --view 30,20
+  relay_case rightangle "4" "$engine" --size 256x256 --view 30,20 --fill tone
+fi
+# The last passes that shade at a hit's own point, in whichever slab it lies (relayScreenPass).
+relay_case rightangle "3" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6 --fill shaded
+echo "relay (rightangle, firsthit, demip, lmip): -np 2, 3, 4 byte-identical, PNG, depth, state"
+
+# A perspective view whose rays leave the eye both ways along z: no slab order is every ray's.
+if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --technique firsthit \
+  --size 64x64 --view 90,0 --zoom 4 --out "$work/many.png" >"$work/out" 2>"$work/err"; then
+  fail "perspective both ways along z: expected a refusal"
+fi
+[[ ! -e $work/many.png ]] || fail "perspective both ways: an output file was written"
+count=$(grep -c "rays that leave the eye both ways" "$work/err" || true)
+[[ $count == 1 ]] || { cat "$work/err" >&2; fail "perspective: the refusal printed $count times"; }
+echo "perspective with rays both ways along z: one refusal line, no output"
+
+# Options that need the volume in one texture (a slab is not): refused alike before reading.
+if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --technique rightangle \
+  --pipeline tiles --size 64x64 --out "$work/many.png" >"$work/out" 2>"$work/err"; then
+  fail "--pipeline tiles across ranks: expected a refusal"
+fi
+[[ ! -e $work/many.png ]] || fail "--pipeline tiles: an output file was written"
+count=$(grep -c "need the volume in one texture" "$work/err" || true)
+[[ $count == 1 ]] || { cat "$work/err" >&2; fail "--pipeline tiles: the refusal printed $count times"; }
+
+for technique in illustrate semantic; do
+  if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --technique "$technique" \
+    "${common[@]}" --out "$work/many.png" >"$work/out" 2>"$work/err"; then
+    fail "$technique -np 2: expected a refusal"
+  fi
+  [[ ! -e $work/many.png ]] || fail "$technique -np 2: an output file was written"
+  count=$(grep -c "rendering across 2 MPI ranks is not available yet" "$work/err" || true)
+  [[ $count == 1 ]] || { cat "$work/err" >&2; fail "$technique: the refusal printed $count times"; }
+done
+echo "illustrate, semantic across ranks: one refusal line, no output"

@@ -18,6 +18,10 @@ class FirstHitTechnique : public Technique {
     hits_.drawSlice(frame, slice);
   }
   void endFrame(const FrameContext& frame) override { hits_.endSlices(frame); }
+  // The record: a later slab's first-hit pass keeps what it holds (blending keeps the first).
+  std::vector<const gl::RenderTarget*> relayTargets(const FrameContext&) const override {
+    return {&hits_.record()};
+  }
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:

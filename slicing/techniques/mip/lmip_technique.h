@@ -23,6 +23,10 @@ class LmipTechnique : public Technique {
   void beginFrame(const FrameContext& frame) override;
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
   void endFrame(const FrameContext& frame) override;
+  // The record lmip_slice.frag continues from (slabs have several bricks: never the march).
+  std::vector<const gl::RenderTarget*> relayTargets(const FrameContext&) const override {
+    return {&targets_->record};
+  }
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:

@@ -37,9 +37,14 @@ class MipTechnique : public Technique {
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
   void endFrame(const FrameContext& frame) override;
   FrameBuffers readBack(const FrameContext& frame) override;
-  // mip: the maxima of every slab (Composition::MaxReduce); demip's second sweep needs the
-  // whole ray's maximum, so it is not split (yet).
+  // mip: the maxima of every slab (Composition::MaxReduce).
   void combineSlabs(const FrameContext& frame, SlabRelay& relay) override;
+  // demip (Composition::Relay): the first sweep's maxima, then (after the last slab's maxima
+  // went to every rank: the second sweep's threshold is the whole ray's) the second's hits.
+  std::vector<const gl::RenderTarget*> relayTargets(const FrameContext& frame) const override {
+    if (frame.sweep == 1) return {&hits_.record()};
+    return {&targets_->values};
+  }
 
  private:
   void uploadSphereMap();  // colourSphere_'s image into sphereMapTexture_

@@ -56,7 +56,8 @@ void RightAngleTechnique::drawSlice(const FrameContext& frame, const SliceContex
 
 void RightAngleTechnique::endFrame(const FrameContext& frame) {
   hits_.endSlices(frame);
-  finishRecords(frame, *finish_, hits_.record(), *finished_);
+  relayScreenPass(frame, {&*finished_},
+                  [&] { finishRecords(frame, *finish_, hits_.record(), *finished_); });
   toneFill_.draw(frame, hits_.record());
 }
 

@@ -21,6 +21,10 @@ class RightAngleTechnique : public Technique {
   void beginFrame(const FrameContext& frame) override;
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
   void endFrame(const FrameContext& frame) override;
+  // The first-hit record, as firsthit's; the last passes relay their own (relayScreenPass).
+  std::vector<const gl::RenderTarget*> relayTargets(const FrameContext&) const override {
+    return {&hits_.record()};
+  }
   FrameBuffers readBack(const FrameContext& frame) override;
 
  private:
