@@ -25,6 +25,10 @@ namespace vsil {
 class SlabRelay {
  public:
   virtual ~SlabRelay() = default;
+  // Wall milliseconds spent in this relay's calls so far (the transfers, the waits for the
+  // other processes, the read-backs they need): the renderer reports a frame's share as
+  // RenderTimings::combine. An implementation adds each call's time to busyMs_.
+  double busyMs() const { return busyMs_; }
   // Replaces the colour of `targets` with what the process in front sent (nothing on the first).
   virtual void receive(const std::vector<const gl::RenderTarget*>& targets) = 0;
   // Sends `targets` to the process behind (nothing on the last).
@@ -34,6 +38,9 @@ class SlabRelay {
   // Replaces every float of `target` by its maximum over all processes (Composition::MaxReduce:
   // float max is exact and commutative, so the order does not matter).
   virtual void maxReduce(const gl::RenderTarget& target) = 0;
+
+ protected:
+  double busyMs_ = 0;
 };
 
 // Slabs along z meet a ray in z order: which way the ray through `pixel` (pixel coordinates, a

@@ -3,7 +3,9 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <chrono>
 
+#include "core/clock.h"
 #include "core/error.h"
 #include "mpi/mpi_world.h"
 #include "slicing/gl.h"
@@ -16,6 +18,19 @@ void check(int code, const char* what) {
   if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
 }
 
+// Adds the wall time from its construction to its end to `busyMs` (SlabRelay::busyMs).
+class BusyTimer {
+ public:
+  explicit BusyTimer(double& busyMs) : busyMs_(busyMs) {}
+  BusyTimer(const BusyTimer&) = delete;
+  BusyTimer& operator=(const BusyTimer&) = delete;
+  ~BusyTimer() { busyMs_ += millisecondsSince(start_); }
+
+ private:
+  double& busyMs_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
 class MpiRelay : public SlabRelay {
  public:
   void receive(const std::vector<const gl::RenderTarget*>&) override { unsupported(); }
@@ -23,6 +38,7 @@ class MpiRelay : public SlabRelay {
   void shareLast(const std::vector<const gl::RenderTarget*>&) override { unsupported(); }
 
   void maxReduce(const gl::RenderTarget& target) override {
+    const BusyTimer timer(busyMs_);
     if (target.internalFormat() != GL_R32F) {
       throw std::logic_error("MpiRelay::maxReduce: only R32F targets");
     }
