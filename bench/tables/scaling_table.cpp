@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <variant>
 
 #include <nlohmann/json.hpp>
 
@@ -25,9 +26,10 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kVolume = "gen:spheres:256";
-// One process needs 156 MiB (what --max-memory counts) for 256³ float samples, its texture
-// and a 256² frame; the larger slab of two needs 125 MiB.
-constexpr int kMaxMemoryMiB = 140;
+// The limit each rank runs under: 90 % of what one process needs for the technique (what
+// --max-memory counts: 156 MiB for mip, whose limit is then 140; the larger slab of two needs
+// 125), read from the single process's refusal under --max-memory 1.
+constexpr double kLimitShare = 0.9;
 // Two ranks split 256³ into bricks of 256·256·128 R16F texels (16 MiB; the split halves the
 // bricks along z until every rank has a layer): a single process with this limit draws the
 // same bricks, which separates the cost of bricking from that of the split.
@@ -43,7 +45,8 @@ const std::vector<std::string> kRootEnvironment = {"OMPI_ALLOW_RUN_AS_ROOT=1",
 struct ScalingCase {
   std::string technique;
   int ranks = 1;
-  bool limited = true;   // under --max-memory
+  bool limited = true;  // under --max-memory maxMemoryMiB
+  int maxMemoryMiB = 0;
   bool bricked = false;  // N = 1 cut into the bricks two ranks use (--max-texture-mib)
   std::vector<double> frameMs, frameCpuMs, reduceMs, wallSeconds;
   double heldBytes = 0, peakBytes = 0;  // the largest rank's
@@ -88,7 +91,7 @@ std::string runOnce(ScalingCase& c, int size, const gl::ContextOptions& gl, cons
   const std::string sizeText = std::to_string(size) + "x" + std::to_string(size);
   std::vector<std::string> render = {"render", kVolume, "--technique", c.technique,  "--size",
                                      sizeText, "--out", png.string(),  "--meta-out", meta.string()};
-  if (c.limited) render.insert(render.end(), {"--max-memory", std::to_string(kMaxMemoryMiB)});
+  if (c.limited) render.insert(render.end(), {"--max-memory", std::to_string(c.maxMemoryMiB)});
   if (c.bricked) {
     render.insert(render.end(), {"--max-texture-mib", std::to_string(kBrickedTextureMiB)});
   }
@@ -157,13 +160,47 @@ std::string runOnce(ScalingCase& c, int size, const gl::ContextOptions& gl, cons
   return "";
 }
 
+// What one process needs for `technique`, from its refusal ("gen:spheres:256: rendering
+// 256x256x256 float32 samples at --size 256x256 needs 156 MiB, over the --max-memory limit
+// ..."), or what went wrong. The frame's images are checked first ("--size 256x256 needs 10
+// MiB"): the probe's limit rises past them.
+std::variant<int, std::string> singleProcessMiB(const std::string& technique, int size,
+                                                const gl::ContextOptions& gl, const fs::path& dir) {
+  int probe = 1;
+  std::string line;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    std::vector<std::string> args = {
+        "render",       kVolume,
+        "--technique",  technique,
+        "--size",       std::to_string(size) + "x" + std::to_string(size),
+        "--out",        (dir / "probe.png").string(),
+        "--max-memory", std::to_string(probe)};
+    const std::vector<std::string> glChoice = glArgs(gl);
+    args.insert(args.end(), glChoice.begin(), glChoice.end());
+    runVsilChild(args, dir / "probe.err");
+    line = firstLine(dir / "probe.err");
+    const std::size_t at = line.find(" needs ");
+    if (at == std::string::npos) break;
+    int need = 0;
+    try {
+      need = std::stoi(line.substr(at + 7));
+    } catch (const std::exception&) {
+      break;
+    }
+    if (line.find(" samples at ") != std::string::npos) return need;
+    probe = need + 1;
+  }
+  return "no --max-memory refusal to read the volume's need from: " + line;
+}
+
 ScalingCase measureCase(const std::string& technique, int ranks, bool limited, bool bricked,
-                        int size, int runs, const gl::ContextOptions& gl, const fs::path& dir,
-                        Progress& progress) {
+                        int maxMemoryMiB, int size, int runs, const gl::ContextOptions& gl,
+                        const fs::path& dir, Progress& progress) {
   ScalingCase c;
   c.technique = technique;
   c.ranks = ranks;
   c.limited = limited;
+  c.maxMemoryMiB = maxMemoryMiB;
   c.bricked = bricked;
   progress.startCase(technique + " N=" + std::to_string(ranks) + (limited ? "" : " (no limit)") +
                      (bricked ? " bricked" : ""));
@@ -198,12 +235,18 @@ TableResult runScalingTable(const BenchOptions& options, Progress& progress) {
   std::vector<ScalingCase> cases;
   for (const std::string& technique : techniques) {
     // The single process without the limit first: the reference bytes and the speed-up's base.
-    cases.push_back(
-        measureCase(technique, 1, false, false, size, runs, options.gl, scratch.path(), progress));
-    cases.push_back(
-        measureCase(technique, 1, false, true, size, runs, options.gl, scratch.path(), progress));
+    const auto need = singleProcessMiB(technique, size, options.gl, scratch.path());
+    if (const auto* problem = std::get_if<std::string>(&need)) {
+      table.failures.push_back(technique + ": " + *problem);
+      continue;
+    }
+    const int limit = int(kLimitShare * std::get<int>(need));
+    cases.push_back(measureCase(technique, 1, false, false, limit, size, runs, options.gl,
+                                scratch.path(), progress));
+    cases.push_back(measureCase(technique, 1, false, true, limit, size, runs, options.gl,
+                                scratch.path(), progress));
     for (int ranks = 1; ranks <= 4; ++ranks) {
-      cases.push_back(measureCase(technique, ranks, true, false, size, runs, options.gl,
+      cases.push_back(measureCase(technique, ranks, true, false, limit, size, runs, options.gl,
                                   scratch.path(), progress));
     }
   }
@@ -230,7 +273,7 @@ TableResult runScalingTable(const BenchOptions& options, Progress& progress) {
     const double frameCpu = rendered ? ScalingCase::median(c.frameCpuMs) : std::nan("");
     const double reduce = rendered ? c.medianReduce() : std::nan("");
     const double share = rendered && frame > 0 ? reduce / frame : std::nan("");
-    const std::string limit = c.limited   ? std::to_string(kMaxMemoryMiB) + " MiB"
+    const std::string limit = c.limited   ? std::to_string(c.maxMemoryMiB) + " MiB"
                               : c.bricked ? "none, bricked"
                                           : "none";
     std::string check = c.problem.empty() ? "ok" : "FAILED: " + c.problem;
@@ -240,7 +283,7 @@ TableResult runScalingTable(const BenchOptions& options, Progress& progress) {
         {"volume", kVolume},
         {"technique", c.technique},
         {"ranks", c.ranks},
-        {"max_memory_mib", c.limited ? nlohmann::json(kMaxMemoryMiB) : nullptr},
+        {"max_memory_mib", c.limited ? nlohmann::json(c.maxMemoryMiB) : nullptr},
         {"max_texture_mib", c.bricked ? nlohmann::json(kBrickedTextureMiB) : nullptr},
         {"width", size},
         {"height", size},

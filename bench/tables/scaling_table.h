@@ -1,8 +1,8 @@
 #pragma once
 // scaling: `mpirun -np N vsil render` (issue 35) against N = 1, 2, 3, 4 for a volume larger than
-// one rank's --max-memory (gen:spheres:256, 156 MiB, under --max-memory 140): N = 1 is refused
-// ("over
-// --max-memory", the point of splitting), the ranks split it into slabs along z. Per N: the
+// one rank's --max-memory (gen:spheres:256 under 90 % of what one process needs: 140 MiB for
+// mip): N = 1 is refused ("over --max-memory", the point of splitting), the ranks split it into
+// slabs along z. Per N: the
 // frame (the slowest rank's, program builds excluded), its speed-up against one process
 // without the limit, the reduction's share of the frame (the combine step: MPI calls, waits,
 // read-backs) and each rank's memory (its slab's samples and textures, its peak resident set).
