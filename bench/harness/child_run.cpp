@@ -42,7 +42,8 @@ ChildRun runChild(const std::string& binary, const std::vector<std::string>& arg
   ChildRun run;
   const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, binary.c_str(), &actions, nullptr, argv.data(), envp.data());
+  const int spawned =
+      posix_spawnp(&pid, binary.c_str(), &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   int status = 0;
   struct rusage usage {};
