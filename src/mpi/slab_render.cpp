@@ -237,8 +237,12 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
       BrickLayout::choose(dims, layoutTexelBytes(first.type()), maxTextureBytes, maxSide);
   glm::ivec3 storage = chosen.bricks()[0].size;
   BrickLayout layout = BrickLayout::withStorage(dims, storage);
-  // At least one brick layer per rank: smaller bricks along z (8 texels at least).
-  while (layout.counts().z < ranks && storage.z > 8) {
+  // At least one brick layer per rank: smaller bricks along z (8 texels at least). Ghost voxels
+  // are held as whole brick layers, so where a technique reads them, four layers per rank keep
+  // the ghosts to about a quarter of a slab on each side (else two ranks would each hold the
+  // whole volume) at the cost of more slice pieces per frame.
+  const int wantedLayers = ranks * (ghostVoxels > 0 && ranks > 1 ? 4 : 1);
+  while (layout.counts().z < wantedLayers && storage.z / 2 >= std::max(8, ghostVoxels)) {
     storage.z /= 2;
     layout = BrickLayout::withStorage(dims, storage);
   }
