@@ -67,6 +67,9 @@ PairPixel combineInZOrder(const PairPixel& lowerZ, const PairPixel& higherZ) {
 
 int techniqueGhostVoxels(const std::string& technique, const View& view, glm::ivec3 dims) {
   if (const char* forced = std::getenv("VSIL_SLAB_GHOST_VOXELS")) return std::atoi(forced);
+  // semantic: the gradients' central differences at every texel of an owned brick (its apron
+  // voxel, then the neighbour): two voxels (GradientTexture's slab constructor checks).
+  if (technique == "semantic") return 2;
   if (technique != "silhouette") return 0;
   // Points of one slice plane at eye distance d for neighbouring pixels differ by d times a
   // fixed vector (perspective; orthographic: by a fixed vector): the farthest box corner

@@ -54,7 +54,8 @@ void requireSplittable(const TechniqueInfo& info, int ranks) {
   // relayScreenPass).
   // illustrate's and semantic's samples read gradients normalised by the whole volume's largest
   // (gradient_texture.h) and neighbourhoods beyond the slab: not yet.
-  static const std::vector<std::string> relayed{"rightangle", "firsthit", "demip", "lmip"};
+  static const std::vector<std::string> relayed{"rightangle", "firsthit", "demip", "lmip",
+                                                "semantic"};
   if (info.composition == Composition::MaxReduce) return;
   if (info.composition == Composition::PairReduce) return;
   if (info.composition == Composition::Relay &&
