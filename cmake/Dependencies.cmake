@@ -135,9 +135,19 @@ find_package(Threads REQUIRED)
 # under `mpirun` and `vsil sweep` (src/mpi). Without it vsil builds and renders as before, and
 # what needs MPI says so in one line. -DVSIL_MPI=OFF builds without it even where it is found.
 option(VSIL_MPI "Build MPI support (slab-parallel render, vsil sweep) where MPI is found" ON)
+# CI's build 1 (.ci/run) sets it: a machine that lost Open MPI must fail there, not quietly
+# build without it and skip the MPI tests.
+option(VSIL_REQUIRE_MPI "Stop configuring when MPI is not found (needs VSIL_MPI)" OFF)
+if(VSIL_REQUIRE_MPI AND NOT VSIL_MPI)
+  message(FATAL_ERROR "-DVSIL_REQUIRE_MPI=ON contradicts -DVSIL_MPI=OFF")
+endif()
 set(VSIL_HAVE_MPI OFF)
 if(VSIL_MPI)
   find_package(MPI QUIET COMPONENTS CXX)
+  if(VSIL_REQUIRE_MPI)
+    vsil_require(MPI_CXX_FOUND "MPI (Open MPI, -DVSIL_REQUIRE_MPI=ON)" libopenmpi-dev)
+    vsil_require(MPIEXEC_EXECUTABLE "an MPI launcher (mpirun, -DVSIL_REQUIRE_MPI=ON)" openmpi-bin)
+  endif()
   if(MPI_CXX_FOUND)
     set(VSIL_HAVE_MPI ON)
   else()

@@ -215,8 +215,8 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
                            "rendered across MPI ranks is not");
   }
   if (!slab && impl_->volumeTexture->brickCount() > 1 &&
-      impl_->bricking == BrickLayout::Bricking::Compact &&
-      info.needsOneTexture && info.needsOneTexture(options)) {
+      impl_->bricking == BrickLayout::Bricking::Compact && info.needsOneTexture &&
+      info.needsOneTexture(options)) {
     impl_->bricking = BrickLayout::Bricking::OneIfItFits;  // asked once per volume
     if (fitsOneTexture(impl_->dims, impl_->volumeTexture->internalFormat(),
                        impl_->maxTextureBytes)) {
@@ -314,6 +314,8 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
     if (slab->relay == nullptr) throw std::logic_error("Renderer: a slab without a relay");
     slab->relay->orderByDepth(frameZDirection(result.view));
   }
+  // The relay's time in this frame (slab.h SlabRelay::busyMs), for timings.combine.
+  const double relayBefore = slab && slab->relay ? slab->relay->busyMs() : 0.0;
   technique.beginFrame(frame);
   const int sweeps = technique.sweepCount(frame);
   for (frame.sweep = 0; frame.sweep < sweeps; ++frame.sweep) {
@@ -329,6 +331,7 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
       technique.drawSlice(frame, slice);
     }
     if (relayed) {
+      VSIL_GL(glFinish());  // the slab's own draws end here, not in the relay's read-back
       const std::vector<const gl::RenderTarget*> targets = technique.relayTargets(frame);
       slab->relay->send(targets);
       if (const gl::RenderTarget* dead = technique.relayDeadMarks(frame)) {
@@ -338,14 +341,26 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
     }
   }
   frame.sweep = sweeps - 1;
+  double relayInCombine = 0;
   if (slab && !relayed) {
     if (slab->relay == nullptr) throw std::logic_error("Renderer: a slab without a relay");
+    // The slab's own slicing ends here: llvmpipe runs the queued draws at the first read-back,
+    // which would otherwise count as combining.
+    VSIL_GL(glFinish());
+    const double relayAtCombine = slab->relay->busyMs();
+    StageClock combineClock;
     technique.combineSlabs(frame, *slab->relay);
+    result.timings.combine = combineClock.elapsed();
+    relayInCombine = slab->relay->busyMs() - relayAtCombine;
   }
   technique.endFrame(frame);
   VSIL_GL(glFinish());
+  if (slab) {
+    // The relay's calls outside combineSlabs (a relay technique receives before its slices).
+    result.timings.combine.wallMs += slab->relay->busyMs() - relayBefore - relayInCombine;
+  }
   result.timings.programs = gl::programBuildTime() - programsBefore;
-  result.timings.render = clock.lap() - result.timings.programs;
+  result.timings.render = clock.lap() - result.timings.programs - result.timings.combine;
 
   result.frame = technique.readBack(frame);
   result.timings.readback = clock.lap();

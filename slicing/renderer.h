@@ -66,8 +66,12 @@ struct RenderTimings {
   // on the first frame that leaves an iso option unset and kept; zero for the others.
   StageTime defaults;
   StageTime programs;  // building the shader programs the frame was the first to use
-  StageTime render;    // slicing, ended by glFinish; program builds excluded
+  StageTime render;    // slicing, ended by glFinish; program builds and `combine` excluded
   StageTime readback;  // GPU targets to CPU images
+  // Across processes (setSlab): combining this process's slab with the others' (wall time in
+  // Technique::combineSlabs and in the relay's calls elsewhere in the frame: the MPI calls, the
+  // waits for the other processes, the read-backs they need). Zero for a whole volume.
+  StageTime combine;
 };
 
 struct RenderResult {

@@ -59,6 +59,10 @@ class SlabRelay {
   // (a perspective view whose rays leave the eye both ways along z, so that no order of the
   // slabs is every ray's order) refuses, alike on every process.
   virtual void orderByDepth(std::optional<int> zDirection) = 0;
+  // Wall milliseconds spent in this relay's calls so far (the transfers, the waits for the
+  // other processes, the read-backs they need): the renderer reports a frame's share as
+  // RenderTimings::combine. An implementation adds each call's time to busyMs_.
+  double busyMs() const { return busyMs_; }
   // Replaces the colour of `targets` with what the process in front sent (nothing on the first).
   virtual void receive(const std::vector<const gl::RenderTarget*>& targets) = 0;
   // Sends `targets` to the process behind (nothing on the last).
@@ -77,6 +81,9 @@ class SlabRelay {
   // in z order (combineInZOrder; the others' `pixels` are left unspecified): the silhouette
   // pair (Composition::PairReduce).
   virtual void pairReduce(std::vector<PairPixel>& pixels) = 0;
+
+ protected:
+  double busyMs_ = 0;
 };
 
 // Slabs along z meet a ray in z order: which way the ray through `pixel` (pixel coordinates, a

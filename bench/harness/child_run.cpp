@@ -12,9 +12,18 @@ extern char** environ;
 
 namespace vsil::bench {
 
+std::string vsilBinary() {
+  return std::filesystem::read_symlink("/proc/self/exe").string();
+}
+
 ChildRun runVsilChild(const std::vector<std::string>& args, const std::filesystem::path& errFile,
                       const std::vector<std::string>& environment) {
-  const std::string binary = std::filesystem::read_symlink("/proc/self/exe").string();
+  return runChild(vsilBinary(), args, errFile, environment);
+}
+
+ChildRun runChild(const std::string& binary, const std::vector<std::string>& args,
+                  const std::filesystem::path& errFile,
+                  const std::vector<std::string>& environment) {
   std::vector<std::string> all = {binary};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -33,7 +42,8 @@ ChildRun runVsilChild(const std::vector<std::string>& args, const std::filesyste
   ChildRun run;
   const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), envp.data());
+  const int spawned =
+      posix_spawnp(&pid, binary.c_str(), &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   int status = 0;
   struct rusage usage {};

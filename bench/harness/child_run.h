@@ -20,4 +20,12 @@ struct ChildRun {
 ChildRun runVsilChild(const std::vector<std::string>& args, const std::filesystem::path& errFile,
                       const std::vector<std::string>& environment = {});
 
+// This very binary's path (/proc/self/exe), for a launcher to start (runChild).
+std::string vsilBinary();
+
+// The same for any program, found on PATH when `program` has no slash (e.g. mpirun).
+ChildRun runChild(const std::string& program, const std::vector<std::string>& args,
+                  const std::filesystem::path& errFile,
+                  const std::vector<std::string>& environment = {});
+
 }  // namespace vsil::bench

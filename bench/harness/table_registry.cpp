@@ -7,6 +7,7 @@
 #include "tables/illustrate_table.h"
 #include "tables/large_table.h"
 #include "tables/nk3_table.h"
+#include "tables/scaling_table.h"
 #include "tables/semantic_table.h"
 #include "tables/startup_table.h"
 
@@ -37,6 +38,10 @@ std::vector<TableDefinition> makeRegistry() {
        "volumes beyond one 3D texture (512³, 1024³, 2048²·1024 uint8): load + upload, "
        "silhouette frame, peak memory",
        largeDatasetNames(), runLargeTable, "", /*onlyWhenNamed=*/true},
+      {"scaling",
+       "mpirun -np N vsil render for N = 1..4 over a volume beyond one rank's --max-memory: "
+       "frame, reduction share, memory per rank (--only: techniques)",
+       scalingTechniqueNames(), runScalingTable, "", /*onlyWhenNamed=*/true},
   };
 }
 

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_parse.h"
+#include "cli/cli_progress.h"
 #include "cli/cli_render_options.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
@@ -97,21 +98,6 @@ std::string frameFileName(int frame, int frames) {
   return name;
 }
 
-// "frame 12/36 [######              ] 8.6 fps, 3 s left"
-std::string progressText(int done, int total, double seconds) {
-  constexpr int kBar = 20;
-  const int filled = int(std::lround(double(kBar) * done / total));
-  std::string text = "frame " + std::to_string(done) + "/" + std::to_string(total) + " [" +
-                     std::string(filled, '#') + std::string(kBar - filled, ' ') + "]";
-  if (seconds > 0 && done > 0) {
-    const double fps = done / seconds;
-    char rate[64];
-    std::snprintf(rate, sizeof rate, " %.1f fps, %.0f s left", fps, (total - done) / fps);
-    text += rate;
-  }
-  return text;
-}
-
 void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
   const auto start = Clock::now();
   const LoadOptions loadOptions = toLoadOptions(renderFlags.volume);
@@ -133,7 +119,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
   const double setupMs = millisecondsSince(start);
 
   const int frames = plan.frames();
-  ProgressLine progress(std::cerr, isatty(STDERR_FILENO) == 1);
+  vsil::ProgressLine progress(std::cerr, isatty(STDERR_FILENO) == 1);
   std::set<std::string> warned;
   nlohmann::ordered_json frameList = nlohmann::ordered_json::array();
   nlohmann::json dataset, glInfo;
@@ -180,7 +166,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
 
     if (!flags.quiet) {
       const double seconds = millisecondsSince(loopStart) / 1000.0;
-      const std::string text = progressText(i + 1, frames, seconds);
+      const std::string text = progressText(i + 1, frames, seconds, {"frame", "fps"});
       if ((i + 1) * 10 / frames > milestone) {
         milestone = (i + 1) * 10 / frames;
         progress.milestone(text);

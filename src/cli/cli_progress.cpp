@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 
 namespace vsil::cli {
@@ -48,6 +50,24 @@ void ProgressLine::finish() {
   if (!terminal_ || shownWidth_ == 0) return;
   std::cerr << "\r" << std::string(shownWidth_, ' ') << "\r" << std::flush;
   shownWidth_ = 0;
+}
+
+std::string progressText(int done, int total, double seconds, ProgressUnit unit,
+                         const std::string& note) {
+  constexpr int kBar = 20;
+  const int filled = total > 0 ? int(std::lround(double(kBar) * done / total)) : kBar;
+  std::string text = std::string(unit.noun) + " " + std::to_string(done) + "/" +
+                     std::to_string(total) + " [" + std::string(filled, '#') +
+                     std::string(kBar - filled, ' ') + "]";
+  if (!note.empty()) text += " " + note;
+  if (seconds > 0 && done > 0) {
+    const double rate = done / seconds;
+    char tail[64];
+    std::snprintf(tail, sizeof tail, " %.1f %s, %.0f s left", rate, unit.rate,
+                  (total - done) / rate);
+    text += tail;
+  }
+  return text;
 }
 
 }  // namespace vsil::cli

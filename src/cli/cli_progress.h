@@ -10,6 +10,18 @@
 
 namespace vsil::cli {
 
+// How progressText names what is counted and its rate: {"frame", "fps"}, {"task", "tasks/s"}.
+struct ProgressUnit {
+  const char* noun;
+  const char* rate;
+};
+
+// The progress of a run of `total` like things, for ProgressLine-style lines (animate, sweep):
+// "task 37/100 [#######             ] 1 failed, 12.3 tasks/s, 5 s left", `note` ("1 failed,")
+// after the bar, the rate and time left once something is done.
+std::string progressText(int done, int total, double seconds, ProgressUnit unit,
+                         const std::string& note = {});
+
 class ProgressLine {
  public:
   explicit ProgressLine(std::string what);

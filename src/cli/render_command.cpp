@@ -19,6 +19,7 @@
 #include "job/render_job.h"
 #include "mpi/mpi_world.h"
 #ifdef VSIL_HAVE_MPI
+#include "mpi/rank_report.h"
 #include "mpi/slab_render.h"
 #endif
 #include "slicing/technique_table.h"
@@ -61,6 +62,9 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   // Start-up: exec to here (loading the shared libraries, static initialisers, parsing flags).
   const StageTime startup{millisecondsSinceProcessStart().value_or(0.0), processCpuMilliseconds()};
   StageClock whole, clock;
+  // Under a launcher a build without MPI would be N copies of the whole render racing for one
+  // file: it says so instead (.ci/run checks the line).
+  if (mpi::launched() && !mpi::built()) mpi::require("vsil render under an MPI launcher");
   const LoadOptions loadOptions = toLoadOptions(flags.volume);
   RenderRequest request = toRenderRequest(flags);
   request.settings.readDepth = !outputs.depthOut.empty();
@@ -68,9 +72,14 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   // Under mpirun with several ranks: techniques whose slabs are not combined yet (issue 35), and
   // options that need the volume in one texture (a slab is not), refuse alike on every rank
   // before reading anything.
+  const TechniqueInfo& technique = findTechnique(request.settings.technique);
+  // The silhouette's slabs run the fast pipeline whatever --pipeline says (the same bytes) and
+  // reduce their pairs on rank 0, which holds no volume to tone-shade the hits with; relayed
+  // techniques tone-shade slab by slab (technique.h relayScreenPass).
+  const bool pairReduced = technique.composition == Composition::PairReduce;
   try {
-    requireSplittable(findTechnique(request.settings.technique), mpi::size());
-    if (mpi::size() > 1 && request.postfx.fill == FillMode::Tone) {
+    requireSplittable(technique, mpi::size());
+    if (mpi::size() > 1 && pairReduced && request.postfx.fill == FillMode::Tone) {
       throw UnavailableError(
           "--fill tone: not across MPI ranks yet (it shades every hit with the volume there); "
           "run one rank");
@@ -78,7 +87,8 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   } catch (const UnavailableError& e) {
     throw mpi::EveryRankError(e.what());
   }
-  if (mpi::size() > 1 && needsOneTexture(request.settings.technique, request.settings.options)) {
+  if (mpi::size() > 1 && !pairReduced &&
+      needsOneTexture(request.settings.technique, request.settings.options)) {
     throw mpi::EveryRankError("--technique " + request.settings.technique +
                               ": these options need the volume in one texture, which a slab "
                               "rendered across MPI ranks is not; run one rank");
@@ -100,6 +110,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   nlohmann::json mpiMeta;
 #ifdef VSIL_HAVE_MPI
   std::optional<mpi::SlabRead> slab;
+  mpi::RankNumbers rankNumbers;
   if (acrossRanks) {
     // Ghost layers wide enough for what the technique reads beside its samples in this view.
     const Volume probe = mpi::probeSlab(flags.input, load);
@@ -112,6 +123,8 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
     mpiMeta["slabs"] = slab->slabs;
     mpiMeta["ghost_voxels"] = slab->part.ghostVoxels();
     mpiMeta["compose"] = compositionName(findTechnique(request.settings.technique).composition);
+    rankNumbers.heldBytes =
+        double(slab->volume.sampleBytes()) + double(mpi::heldTextureBytes(slab->part));
   }
 #endif
   Volume loaded;
@@ -128,20 +141,23 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
 #endif
   progress.finish();
   const StageTime upload = clock.lap();
+  StageClock frameClock;
   RenderOutput output = job.render(request, loadOptions.limits);
+  [[maybe_unused]] const StageTime frame = frameClock.elapsed();  // for the mpi metadata
   for (const auto& warning : output.warnings) std::cerr << "vsil: warning: " << warning << "\n";
 #ifdef VSIL_HAVE_MPI
   if (acrossRanks) {
     // Collectives on every rank; only rank 0 writes.
-    const double memoryMib =
-        double(RenderJob::memoryBytes(request, volume.dims, volume.type(),
-                                      load.limits.maxTextureBytes)) /
-        double(1 << 20);
-    const std::vector<double> renderMs = mpi::gatherOnRoot(output.result.timings.render.wallMs);
-    const std::vector<double> memory = mpi::gatherOnRoot(memoryMib);
+    rankNumbers.frameMs = frame.wallMs - output.result.timings.programs.wallMs;
+    rankNumbers.frameCpuMs = frame.cpuMs - output.result.timings.programs.cpuMs;
+    rankNumbers.renderMs = output.result.timings.render.wallMs;
+    rankNumbers.reduceMs = output.result.timings.combine.wallMs;
+    rankNumbers.peakResidentBytes = mpi::peakResidentBytes();
+    rankNumbers.checkedBytes = double(
+        RenderJob::memoryBytes(request, volume.dims, volume.type(), load.limits.maxTextureBytes));
+    nlohmann::json perRank = mpi::gatherRankNumbers(rankNumbers);
     if (mpi::rank() != 0) return;
-    mpiMeta["render_ms_per_rank"] = renderMs;
-    mpiMeta["memory_mib_per_rank"] = memory;
+    mpiMeta["per_rank"] = std::move(perRank);
   }
 #endif
   clock.restart();

@@ -28,6 +28,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_progress.h"
 #include "cli/cli_render_options.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
@@ -394,22 +395,6 @@ std::string csvText(const std::vector<Json>& rows) {
   return text;
 }
 
-// "task 37/100 [#######             ] 1 failed, 12.3 tasks/s, 5 s left"
-std::string progressText(int done, int total, int failed, double seconds) {
-  constexpr int kBar = 20;
-  const int filled = total ? int(std::lround(double(kBar) * done / total)) : kBar;
-  std::string text = "task " + std::to_string(done) + "/" + std::to_string(total) + " [" +
-                     std::string(filled, '#') + std::string(kBar - filled, ' ') + "]";
-  if (failed) text += " " + std::to_string(failed) + " failed,";
-  if (seconds > 0 && done > 0) {
-    const double rate = done / seconds;
-    char tail[64];
-    std::snprintf(tail, sizeof tail, " %.1f tasks/s, %.0f s left", rate, (total - done) / rate);
-    text += tail;
-  }
-  return text;
-}
-
 void run(const SweepFlags& flags) {
   const auto start = Clock::now();
   // Under a launcher every rank must share the work; a build without MPI cannot, and N copies
@@ -451,7 +436,8 @@ void run(const SweepFlags& flags) {
         if (rows[std::size_t(task)]["status"] != "ok") ++failed;
         if (flags.quiet) return;
         const std::string text =
-            progressText(done, count, failed, millisecondsSince(loopStart) / 1000.0);
+            progressText(done, count, millisecondsSince(loopStart) / 1000.0, {"task", "tasks/s"},
+                         failed ? std::to_string(failed) + " failed," : std::string());
         if (done * 10 / count > milestone) {
           milestone = done * 10 / count;
           progress.milestone(text);

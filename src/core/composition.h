@@ -15,14 +15,14 @@ namespace vsil {
 
 // How a technique's partial frames combine across slabs.
 enum class Composition {
-  PairReduce,         // silhouette: the (first value, state) pair below; exact and associative
-  MaxReduce,          // mip: the maximum and the depth of its first occurrence; exact
-  LocalMaxReduce,     // lmip's run summary below; exact and associative (lmip itself relays:
-                      // technique_table.cpp says why)
-  Relay,              // front-to-back "over" (firsthit, rightangle, illustrate, semantic,
-                      // demip's two sweeps; lmip): float over is not associative, so the
-                      // accumulated image travels from slab to slab in depth order
-  None,               // cannot be split
+  PairReduce,      // silhouette: the (first value, state) pair below; exact and associative
+  MaxReduce,       // mip: the maximum and the depth of its first occurrence; exact
+  LocalMaxReduce,  // lmip's run summary below; exact and associative (lmip itself relays:
+                   // technique_table.cpp says why)
+  Relay,           // front-to-back "over" (firsthit, rightangle, illustrate, semantic,
+                   // demip's two sweeps; lmip): float over is not associative, so the
+                   // accumulated image travels from slab to slab in depth order
+  None,            // cannot be split
 };
 const char* compositionName(Composition composition);  // "pair-reduce", "max-reduce", ...
 

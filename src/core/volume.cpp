@@ -268,7 +268,8 @@ DerivedDefaults derivedDefaultsFromCounts(ValueRange range, const LevelCounts& c
     int j = 0;
     for (int level = 0; level < kLevels; ++level) {
       h.counts[std::size_t(level)] = counts[std::size_t(level)];
-      for (std::uint64_t k = 0; k < counts[std::size_t(level)]; ++k) h.levels(0, j++) = std::uint8_t(level);
+      for (std::uint64_t k = 0; k < counts[std::size_t(level)]; ++k)
+        h.levels(0, j++) = std::uint8_t(level);
     }
     h.total = total;
   }

@@ -3,7 +3,9 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <chrono>
 
+#include "core/clock.h"
 #include "core/error.h"
 #include "mpi/mpi_world.h"
 #include "slicing/gl.h"
@@ -16,12 +18,28 @@ void check(int code, const char* what) {
   if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
 }
 
+// Adds the wall time from its construction to its end to `busyMs` (SlabRelay::busyMs).
+class BusyTimer {
+ public:
+  explicit BusyTimer(double& busyMs) : busyMs_(busyMs) {}
+  BusyTimer(const BusyTimer&) = delete;
+  BusyTimer& operator=(const BusyTimer&) = delete;
+  ~BusyTimer() { busyMs_ += millisecondsSince(start_); }
+
+ private:
+  double& busyMs_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
 // A float target's colour: GL_RED for R32F, GL_RGBA for RGBA32F (the relayed targets).
 GLenum floatFormat(const gl::RenderTarget& target) {
   switch (target.internalFormat()) {
-    case GL_R32F: return GL_RED;
-    case GL_RGBA32F: return GL_RGBA;
-    default: break;
+    case GL_R32F:
+      return GL_RED;
+    case GL_RGBA32F:
+      return GL_RGBA;
+    default:
+      break;
   }
   throw std::logic_error("MpiRelay: only R32F and RGBA32F targets travel");
 }
@@ -72,6 +90,7 @@ class MpiRelay : public SlabRelay {
   }
 
   void receive(const std::vector<const gl::RenderTarget*>& targets) override {
+    const BusyTimer timer(busyMs_);
     if (place() == 0) return;
     for (const gl::RenderTarget* target : targets) {
       std::vector<float> values = readColour(*target);  // sized alike; overwritten
@@ -83,6 +102,7 @@ class MpiRelay : public SlabRelay {
   }
 
   void send(const std::vector<const gl::RenderTarget*>& targets) override {
+    const BusyTimer timer(busyMs_);
     if (place() == count_ - 1) return;
     for (const gl::RenderTarget* target : targets) {
       const std::vector<float> values = readColour(*target);
@@ -92,6 +112,7 @@ class MpiRelay : public SlabRelay {
   }
 
   void shareLast(const std::vector<const gl::RenderTarget*>& targets) override {
+    const BusyTimer timer(busyMs_);
     place();
     for (const gl::RenderTarget* target : targets) {
       std::vector<float> values = readColour(*target);
@@ -148,6 +169,7 @@ class MpiRelay : public SlabRelay {
   }
 
   void maxReduce(const gl::RenderTarget& target) override {
+    const BusyTimer timer(busyMs_);
     if (target.internalFormat() != GL_R32F) {
       throw std::logic_error("MpiRelay::maxReduce: only R32F targets");
     }
@@ -162,12 +184,13 @@ class MpiRelay : public SlabRelay {
           "MPI_Allreduce (max)");
     VSIL_GL(glBindTexture(GL_TEXTURE_2D, target.texture()));
     VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
-    VSIL_GL(glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size.x, size.y, GL_RED, GL_FLOAT,
-                            values.data()));
+    VSIL_GL(
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size.x, size.y, GL_RED, GL_FLOAT, values.data()));
     VSIL_GL(glBindTexture(GL_TEXTURE_2D, 0));
   }
 
   void pairReduce(std::vector<PairPixel>& pixels) override {
+    const BusyTimer timer(busyMs_);
     // The slabs are in z order by rank (readSlab) and every pixel's ray meets them in z order,
     // up or down (slab.h rayZDirection): a reduce in rank order with a non-commutative operator
     // that orients each pixel by its own direction is exact for every view, also perspective
@@ -260,8 +283,12 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
       BrickLayout::choose(dims, layoutTexelBytes(first.type()), maxTextureBytes, maxSide);
   glm::ivec3 storage = chosen.bricks()[0].size;
   BrickLayout layout = BrickLayout::withStorage(dims, storage);
-  // At least one brick layer per rank: smaller bricks along z (8 texels at least).
-  while (layout.counts().z < ranks && storage.z > 8) {
+  // At least one brick layer per rank: smaller bricks along z (8 texels at least). Ghost voxels
+  // are held as whole brick layers, so where a technique reads them, four layers per rank keep
+  // the ghosts to about a quarter of a slab on each side (else two ranks would each hold the
+  // whole volume) at the cost of more slice pieces per frame.
+  const int wantedLayers = ranks * (ghostVoxels > 0 && ranks > 1 ? 4 : 1);
+  while (layout.counts().z < wantedLayers && storage.z / 2 >= std::max(8, ghostVoxels)) {
     storage.z /= 2;
     layout = BrickLayout::withStorage(dims, storage);
   }
@@ -295,13 +322,12 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   const Brick& lastHeld = layerBrick(layout, part.heldZ1 - 1);
   const int voxelZ1 = std::min(lastHeld.origin.z + lastHeld.size.z, dims.z);
   for (int r = 0; r < ranks; ++r) {
-    read.slabs.push_back(
-        ownVoxels(layout, r * layers / ranks, (r + 1) * layers / ranks, dims.z));
+    read.slabs.push_back(ownVoxels(layout, r * layers / ranks, (r + 1) * layers / ranks, dims.z));
   }
 
   LoadOptions slabLoad = load;
-  slabLoad.region.crop = std::array<ReadRegion::Range, 3>{
-      ReadRegion::Range{}, ReadRegion::Range{}, ReadRegion::Range{part.voxelZ0, voxelZ1}};
+  slabLoad.region.crop = std::array<ReadRegion::Range, 3>{ReadRegion::Range{}, ReadRegion::Range{},
+                                                          ReadRegion::Range{part.voxelZ0, voxelZ1}};
   read.volume = loadVolume(spec, slabLoad);
 
   // What every rank must agree on: the texture format, the value range, the derived defaults.
@@ -311,12 +337,11 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   const ValueRange mine = valueRange(read.volume);
   float low = mine.min, high = mine.max;
   check(MPI_Allreduce(MPI_IN_PLACE, &low, 1, MPI_FLOAT, MPI_MIN, MPI_COMM_WORLD), "MPI_Allreduce");
-  check(MPI_Allreduce(MPI_IN_PLACE, &high, 1, MPI_FLOAT, MPI_MAX, MPI_COMM_WORLD),
-        "MPI_Allreduce");
+  check(MPI_Allreduce(MPI_IN_PLACE, &high, 1, MPI_FLOAT, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
   part.valueRange = {low, high};
   const std::array<int, 2> own = read.slabs[std::size_t(me)];
-  LevelCounts counts = levelCounts(read.volume, part.valueRange, own[0] - part.voxelZ0,
-                                   own[1] - part.voxelZ0);
+  LevelCounts counts =
+      levelCounts(read.volume, part.valueRange, own[0] - part.voxelZ0, own[1] - part.voxelZ0);
   check(MPI_Allreduce(MPI_IN_PLACE, counts.data(), int(counts.size()), MPI_UINT64_T, MPI_SUM,
                       MPI_COMM_WORLD),
         "MPI_Allreduce");

@@ -98,7 +98,8 @@ TEST(Composition, MaxAndItsFirstDepthEqualTheSequentialFoldAtEverySplit) {
     const MaxRun whole = foldMax(values, depths);
     const std::span<const float> v(values), d(depths);
     for (std::size_t a = 0; a <= values.size(); ++a) {
-      const MaxRun split = combine(foldMax(v.first(a), d.first(a)), foldMax(v.subspan(a), d.subspan(a)));
+      const MaxRun split =
+          combine(foldMax(v.first(a), d.first(a)), foldMax(v.subspan(a), d.subspan(a)));
       ASSERT_EQ(split.any, whole.any);
       EXPECT_EQ(split.value, whole.value);
       EXPECT_TRUE(sameBits(split.depth, whole.depth));
@@ -130,8 +131,8 @@ TEST(Composition, LmipRunEqualsTheSequentialFoldAtEverySplit) {
         }
       };
       for (std::size_t a = 0; a <= values.size(); ++a) {
-        const std::string what = text + " threshold " + std::to_string(threshold) + " split " +
-                                 std::to_string(a);
+        const std::string what =
+            text + " threshold " + std::to_string(threshold) + " split " + std::to_string(a);
         expectSame(combine(foldLmip(v.first(a), d.first(a), threshold),
                            foldLmip(v.subspan(a), d.subspan(a), threshold)),
                    what);

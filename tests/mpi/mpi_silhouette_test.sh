@@ -80,3 +80,15 @@ fi
 count=$(grep -c -- "--fill tone: not across MPI ranks yet" "$work/err" || true)
 [[ $count == 1 ]] || { cat "$work/err" >&2; fail "--fill tone: the refusal printed $count times"; }
 echo "--fill tone across ranks: one refusal line"
+
+# A volume over one process's --max-memory renders across three ranks, each holding its slab and
+# thin ghost layers (more, smaller brick layers where a technique reads ghosts): the same bytes.
+big=(gen:spheres:128 --technique silhouette --size 128x128 --view 37,-23)
+if "$vsil" render "${big[@]}" --max-memory 30 --out "$work/big1.png" 2>/dev/null; then
+  fail "silhouette: the volume should be over one process's --max-memory 30"
+fi
+"$mpiexec" --oversubscribe -np 3 "$vsil" render "${big[@]}" --max-memory 30 \
+  --out "$work/big3.png" >/dev/null || fail "silhouette: three ranks should each fit --max-memory 30"
+"$vsil" render "${big[@]}" --out "$work/big.png" >/dev/null
+cmp -s "$work/big.png" "$work/big3.png" || fail "silhouette: --max-memory across 3 ranks differs"
+echo "silhouette over one rank's --max-memory: renders across 3"

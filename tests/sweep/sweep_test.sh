@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# vsil sweep without an MPI launcher: every task of a product of axes plus one failing task
-# gets its row, the failure is reported and the rest complete (exit 3); a malformed sweep file
-# stops before any render with one line naming the file (exit 2) and writes no result file.
-# With mpirun (where found, $2), the same sweep over 3 ranks gives the same rows.
+# vsil sweep without an MPI launcher: a 100-task sweep (a product of axes, 99 cheap 32x32
+# renders, plus one failing task) gets a row per task, the failure is reported in its row and
+# on stderr while the other 99 complete (exit 3), the progress comes as milestone lines (not a
+# terminal) up to "task 100/100"; a malformed sweep file stops before any render with one line
+# naming the file (exit 2) and writes no result file. With mpirun (where found, $2), the same
+# sweep over 3 ranks gives the same rows, spread over the ranks.
 set -uo pipefail
 vsil=$1
 mpirun=${2:-}
@@ -12,26 +14,38 @@ fail() { echo "sweep_test: $*" >&2; exit 1; }
 
 cat >"$dir/sweep.json" <<'JSON'
 {"render": {"input": "gen:spheres:32", "size": "32x32"},
- "axes": {"view": ["0,10", "30,20", "60,10", "90,0", "120,-10"], "width": [1, 2, 3, 4]},
+ "axes": {"view": ["0,10", "11,20", "22,10", "33,0", "44,-10", "55,10", "66,20", "77,30",
+                   "88,-20", "99,10", "110,0", "121,10", "132,20", "143,-10", "154,10",
+                   "165,0", "176,20", "187,10", "198,-10", "209,0", "220,10", "231,20",
+                   "242,30", "253,-20", "264,10", "275,0", "286,10", "297,20", "308,-10",
+                   "319,10", "330,0", "341,20", "352,10"],
+          "width": [1, 2, 3]},
  "tasks": [{"input": "missing.nrrd"}]}
 JSON
-"$vsil" sweep "$dir/sweep.json" --json "$dir/one.json" --csv "$dir/one.csv" --quiet 2>"$dir/err"
+"$vsil" sweep "$dir/sweep.json" --json "$dir/one.json" --csv "$dir/one.csv" 2>"$dir/err"
 rc=$?
 [[ $rc == 3 ]] || fail "a sweep with one failing task exited $rc, not 3: $(cat "$dir/err")"
 grep -q "missing.nrrd" "$dir/err" || fail "the failing task's error is not reported: $(cat "$dir/err")"
+# Progress: milestone lines (stderr is no terminal here), the last one complete with the failure.
+grep -Eq "task 100/100 \[#{20}\] 1 failed, [0-9.]+ tasks/s, 0 s left" "$dir/err" ||
+  fail "no final progress line: $(cat "$dir/err")"
+(($(grep -c "task [0-9]*/100 \[" "$dir/err") >= 5)) || fail "fewer than 5 progress lines: $(cat "$dir/err")"
 check_rows() {
   /usr/bin/python3 - "$1" <<'PY' || exit 1
 import json, sys
-rows = json.load(open(sys.argv[1]))["rows"]
-assert len(rows) == 21, f"{len(rows)} rows, not 21"
-assert sorted(r["task"] for r in rows) == list(range(21)), "task indices are not 0..20"
+document = json.load(open(sys.argv[1]))
+rows = document["rows"]
+assert len(rows) == 100, f"{len(rows)} rows, not 100"
+assert sorted(r["task"] for r in rows) == list(range(100)), "task indices are not 0..99"
 failed = [r for r in rows if r["status"] != "ok"]
-assert len(failed) == 1 and failed[0]["task"] == 20, f"failed rows: {failed}"
+assert len(failed) == 1 and failed[0]["task"] == 99, f"failed rows: {failed}"
 assert "missing.nrrd" in failed[0]["error"], failed[0]
+ok = [r for r in rows if r["status"] == "ok"]
+assert all(r["pixels"]["silhouette"] > 0 for r in ok), "a completed task drew no silhouette"
 PY
 }
 check_rows "$dir/one.json"
-[[ $(wc -l <"$dir/one.csv") == 22 ]] || fail "the CSV does not hold a header and 21 rows"
+[[ $(wc -l <"$dir/one.csv") == 101 ]] || fail "the CSV does not hold a header and 100 rows"
 
 echo '{"axes": {"bogus": [1]}}' >"$dir/bad.json"
 "$vsil" sweep "$dir/bad.json" --json "$dir/bad-out.json" 2>"$dir/err"
@@ -43,11 +57,13 @@ rc=$?
 
 if [[ -n $mpirun ]]; then
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
-    "$mpirun" --oversubscribe -np 3 "$vsil" sweep "$dir/sweep.json" --json "$dir/three.json" --quiet \
+    "$mpirun" --oversubscribe -np 3 "$vsil" sweep "$dir/sweep.json" --json "$dir/three.json" \
     2>"$dir/err"
   rc=$?
   [[ $rc == 3 ]] || fail "under mpirun -np 3 the sweep exited $rc, not 3: $(cat "$dir/err")"
   check_rows "$dir/three.json"
+  grep -Eq "task 100/100 \[#{20}\] 1 failed" "$dir/err" ||
+    fail "under mpirun -np 3: no final progress line: $(cat "$dir/err")"
   /usr/bin/python3 - "$dir/one.json" "$dir/three.json" <<'PY' || exit 1
 import json, sys
 one, three = (json.load(open(p))["rows"] for p in sys.argv[1:])
