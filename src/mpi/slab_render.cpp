@@ -288,7 +288,10 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   // the ghosts to about a quarter of a slab on each side (else two ranks would each hold the
   // whole volume) at the cost of more slice pieces per frame.
   const int wantedLayers = ranks * (ghostVoxels > 0 && ranks > 1 ? 4 : 1);
-  while (layout.counts().z < wantedLayers && storage.z / 2 >= std::max(8, ghostVoxels)) {
+  // (Bricks thinner than the ghost width still, where the ranks need them: illustrate's ghost
+  // covers any halo radius.)
+  while (layout.counts().z < wantedLayers && storage.z > 8 &&
+         (layout.counts().z < ranks || storage.z / 2 >= ghostVoxels)) {
     storage.z /= 2;
     layout = BrickLayout::withStorage(dims, storage);
   }
