@@ -177,9 +177,9 @@ GradientTexture::GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing
   const GradientTexels texels =
       computeGradientTexels(samples.data(), readDims, spacing, std::sqrt(largest), valid0 - read0,
                             valid1 - read0, holdsValues_);
-  textures_ = uploadBricked(slab.layout, dims, GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT,
-                            4 * sizeof(std::uint16_t), texels.halves.data(), slab, valid0,
-                            valid1 - valid0);
+  textures_ =
+      uploadBricked(slab.layout, dims, GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT,
+                    4 * sizeof(std::uint16_t), texels.halves.data(), slab, valid0, valid1 - valid0);
   buildMs_ = millisecondsSince(start);
 }
 

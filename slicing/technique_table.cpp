@@ -54,14 +54,9 @@ void requireSplittable(const TechniqueInfo& info, int ranks) {
   // relayScreenPass), and the compositing ones (illustrate, semantic: gradients and the halo
   // field from ghost layers with the whole volume's largest gradient agreed, early ray
   // termination's marks relayed with the colour; mark_dead.frag SLAB_OWNED_MARKS).
-  static const std::vector<std::string> relayed{"rightangle", "firsthit", "demip", "lmip",
-                                                "semantic", "illustrate"};
   if (info.composition == Composition::MaxReduce) return;
   if (info.composition == Composition::PairReduce) return;
-  if (info.composition == Composition::Relay &&
-      std::find(relayed.begin(), relayed.end(), info.name) != relayed.end()) {
-    return;
-  }
+  if (info.composition == Composition::Relay) return;
   throw UnavailableError(
       "--technique " + info.name + ": rendering across " + std::to_string(ranks) +
       " MPI ranks is not available yet (its combine rule, " + compositionName(info.composition) +

@@ -190,8 +190,8 @@ void VolumeTexture::upload(const Volume& volume, std::size_t slabBytes, int zShi
       const int z = slab * depth, slabDepth = std::min(depth, size.z - z);
       std::vector<std::byte>& texels = slabs[slab % 2];
       texels.resize(sliceBytes * std::size_t(slabDepth));
-      convertTexels(volume, brick.origin + glm::ivec3(0, 0, z - zShift), {size.x, size.y, slabDepth},
-                    internalFormat_, texels);
+      convertTexels(volume, brick.origin + glm::ivec3(0, 0, z - zShift),
+                    {size.x, size.y, slabDepth}, internalFormat_, texels);
     };
     const int slabCount = (size.z + depth - 1) / depth;
     convert(0);
@@ -249,7 +249,9 @@ std::vector<gl::TextureName> uploadBrickedPart(const BrickLayout& layout, glm::i
                                                std::size_t bytesPerVoxel, const void* texels,
                                                const SlabPart* slab, int zFirst, int zCount);
 
-std::vector<float> VolumeTexture::readVoxels() const { return readVoxels(0, dims_.z); }
+std::vector<float> VolumeTexture::readVoxels() const {
+  return readVoxels(0, dims_.z);
+}
 
 std::vector<float> VolumeTexture::readVoxels(int zBegin, int zEnd) const {
   const glm::ivec3 d = dims_;
@@ -269,7 +271,8 @@ std::vector<float> VolumeTexture::readVoxels(int zBegin, int zEnd) const {
     lo.z = std::max(lo.z, zBegin);
     hi.z = std::min(hi.z, zEnd);
     if (lo.z >= hi.z) continue;
-    if (textures_[b].id() == 0) throw std::logic_error("VolumeTexture::readVoxels: a brick not held");
+    if (textures_[b].id() == 0)
+      throw std::logic_error("VolumeTexture::readVoxels: a brick not held");
     texels.resize(std::size_t(brick.size.x) * brick.size.y * brick.size.z);
     VSIL_GL(glBindTexture(GL_TEXTURE_3D, textures_[b].id()));
     VSIL_GL(glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, texels.data()));
@@ -300,8 +303,8 @@ std::vector<gl::TextureName> uploadBricked(const BrickLayout& layout, glm::ivec3
                                            GLenum internalFormat, GLenum format, GLenum type,
                                            std::size_t bytesPerVoxel, const void* texels,
                                            const SlabPart& slab, int zFirst, int zCount) {
-  return uploadBrickedPart(layout, dims, internalFormat, format, type, bytesPerVoxel, texels,
-                           &slab, zFirst, zCount);
+  return uploadBrickedPart(layout, dims, internalFormat, format, type, bytesPerVoxel, texels, &slab,
+                           zFirst, zCount);
 }
 
 std::vector<gl::TextureName> uploadBrickedPart(const BrickLayout& layout, glm::ivec3 dims,
@@ -328,8 +331,9 @@ std::vector<gl::TextureName> uploadBrickedPart(const BrickLayout& layout, glm::i
     // One z slice at a time, past the volume's far sides repeating its last voxel.
     slice.resize(std::size_t(size.x) * std::size_t(size.y) * bytesPerVoxel);
     for (int z = 0; z < size.z; ++z) {
-      const int vz = std::clamp(std::min(brick.origin.z + z, dims.z - 1), zFirst,
-                                zFirst + zCount - 1) - zFirst;
+      const int vz =
+          std::clamp(std::min(brick.origin.z + z, dims.z - 1), zFirst, zFirst + zCount - 1) -
+          zFirst;
       for (int y = 0; y < size.y; ++y) {
         const int vy = std::min(brick.origin.y + y, dims.y - 1);
         std::byte* row = slice.data() + std::size_t(y) * size.x * bytesPerVoxel;

@@ -134,8 +134,8 @@ class MpiRelay : public SlabRelay {
     gl::TextureName staging = gl::createTexture();
     VSIL_GL(glBindTexture(GL_TEXTURE_2D, staging.id()));
     VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 4));
-    VSIL_GL(glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH24_STENCIL8, size.x, size.y, 0,
-                         GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8, bits.data()));
+    VSIL_GL(glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH24_STENCIL8, size.x, size.y, 0, GL_DEPTH_STENCIL,
+                         GL_UNSIGNED_INT_24_8, bits.data()));
     VSIL_GL(glBindTexture(GL_TEXTURE_2D, 0));
     gl::FramebufferName from = gl::createFramebuffer();
     VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, from.id()));
@@ -156,8 +156,8 @@ class MpiRelay : public SlabRelay {
     std::vector<std::uint32_t> bits(std::size_t(size.x) * std::size_t(size.y));
     VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer()));
     VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 4));
-    VSIL_GL(glReadPixels(0, 0, size.x, size.y, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8,
-                         bits.data()));
+    VSIL_GL(
+        glReadPixels(0, 0, size.x, size.y, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8, bits.data()));
     check(MPI_Send(bits.data(), int(bits.size()), MPI_UINT32_T, place_ + 1, 1, depthOrder_),
           "MPI_Send (relay depth)");
   }
