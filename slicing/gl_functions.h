@@ -80,6 +80,7 @@
   X(glPixelStorei, PFNGLPIXELSTOREIPROC)                         \
   X(glReadBuffer, PFNGLREADBUFFERPROC)                           \
   X(glReadPixels, PFNGLREADPIXELSPROC)                           \
+  X(glBlitFramebuffer, PFNGLBLITFRAMEBUFFERPROC)                 \
   X(glRenderbufferStorage, PFNGLRENDERBUFFERSTORAGEPROC)         \
   X(glScissor, PFNGLSCISSORPROC)                                 \
   X(glShaderSource, PFNGLSHADERSOURCEPROC)                       \

@@ -59,11 +59,12 @@ glm::vec4 GradientTexels::at(int x, int y, int z) const {
           glm::unpackHalf1x16(halves[i + 2]), glm::unpackHalf1x16(halves[i + 3])};
 }
 
-float maxGradientMagnitude(const float* samples, glm::ivec3 dims, glm::dvec3 spacing) {
+float maxSquaredGradient(const float* samples, glm::ivec3 dims, glm::dvec3 spacing, int zBegin,
+                         int zEnd) {
   const GradientAt gradient{samples, dims, 0.5 / spacing};
-  std::vector<float> slabMax(std::size_t(dims.z), 0.0f);
-  forSlabs(dims.z, [&](int z0, int z1) {
-    for (int z = z0; z < z1; ++z) {
+  std::vector<float> slabMax(std::size_t(std::max(1, zEnd - zBegin)), 0.0f);
+  forSlabs(zEnd - zBegin, [&](int s0, int s1) {
+    for (int z = zBegin + s0; z < zBegin + s1; ++z) {
       float largest = 0;
       for (int y = 0; y < dims.y; ++y) {
         for (int x = 0; x < dims.x; ++x) {
@@ -71,10 +72,14 @@ float maxGradientMagnitude(const float* samples, glm::ivec3 dims, glm::dvec3 spa
           largest = std::max(largest, glm::dot(g, g));
         }
       }
-      slabMax[std::size_t(z)] = largest;
+      slabMax[std::size_t(z - zBegin)] = largest;
     }
   });
-  return std::sqrt(*std::max_element(slabMax.begin(), slabMax.end()));
+  return *std::max_element(slabMax.begin(), slabMax.end());
+}
+
+float maxGradientMagnitude(const float* samples, glm::ivec3 dims, glm::dvec3 spacing) {
+  return std::sqrt(maxSquaredGradient(samples, dims, spacing, 0, dims.z));
 }
 
 GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm::dvec3 spacing,
@@ -131,17 +136,67 @@ GradientTexture::GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing
   buildMs_ = millisecondsSince(start);
 }
 
+namespace {
+// The first voxel z a brick layer owns (cut to the volume), as readVoxels counts them.
+int layerVoxel(const BrickLayout& layout, int layer, bool high, int dimsZ) {
+  const glm::ivec3 counts = layout.counts();
+  const Brick& brick =
+      layout.bricks()[std::size_t(layer) * std::size_t(counts.x) * std::size_t(counts.y)];
+  return int(std::ceil(std::clamp(high ? brick.high.z : brick.low.z, 0.0, double(dimsZ))));
+}
+}  // namespace
+
+GradientTexture::GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing,
+                                 const SlabPart& slab) {
+  const auto start = std::chrono::steady_clock::now();
+  const glm::ivec3 dims = volume.dims();
+  holdsValues_ = gradientsCanHoldValues(volume.internalFormat());
+  // The voxels the held bricks own, [read0, read1); central differences are the whole volume's
+  // from one voxel inside them (or at the volume's own faces), [valid0, valid1).
+  const int read0 = layerVoxel(slab.layout, slab.heldZ0, false, dims.z);
+  const int read1 = layerVoxel(slab.layout, slab.heldZ1 - 1, true, dims.z);
+  const int valid0 = read0 == 0 ? 0 : read0 + 1;
+  const int valid1 = read1 == dims.z ? dims.z : read1 - 1;
+  const int own0 = layerVoxel(slab.layout, slab.ownedZ0, false, dims.z);
+  const int own1 = layerVoxel(slab.layout, slab.ownedZ1 - 1, true, dims.z);
+  // Every texel of an owned brick (its apron included) needs a whole-volume gradient.
+  for (std::size_t b = 0; b < slab.layout.bricks().size(); ++b) {
+    const Brick& brick = slab.layout.bricks()[b];
+    if (slab.owns(b) && (std::max(brick.origin.z, 0) < valid0 ||
+                         std::min(brick.origin.z + brick.size.z, dims.z) > valid1)) {
+      throw std::logic_error("GradientTexture: the slab's ghost layers are too thin");
+    }
+  }
+  const glm::ivec3 readDims(dims.x, dims.y, read1 - read0);
+  const std::vector<float> samples = volume.readVoxels(read0, read1);
+  // M over the whole volume: each process's owned voxels, the largest over all (float max is
+  // exact, and sqrt is monotonic, so M is the single process's to the bit).
+  if (slab.relay == nullptr) throw std::logic_error("GradientTexture: a slab without a relay");
+  const float largest = slab.relay->maxOverProcesses(
+      maxSquaredGradient(samples.data(), readDims, spacing, own0 - read0, own1 - read0));
+  const GradientTexels texels =
+      computeGradientTexels(samples.data(), readDims, spacing, std::sqrt(largest), valid0 - read0,
+                            valid1 - read0, holdsValues_);
+  textures_ =
+      uploadBricked(slab.layout, dims, GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT,
+                    4 * sizeof(std::uint16_t), texels.halves.data(), slab, valid0, valid1 - valid0);
+  buildMs_ = millisecondsSince(start);
+}
+
 void GradientTexture::addDefines(std::vector<std::string>& defines) const {
   if (holdsValues_) defines.emplace_back("GRADIENTS_HOLD_VALUES");
 }
 
-void GradientTextureCache::reset(const VolumeTexture* volume, glm::dvec3 spacing) {
+void GradientTextureCache::reset(const VolumeTexture* volume, glm::dvec3 spacing,
+                                 const SlabPart* slab) {
   texture_.reset();
   volume_ = volume;
   spacing_ = spacing;
+  slab_ = slab;
 }
 
 const GradientTexture& GradientTextureCache::texture() {
+  if (!texture_ && slab_) texture_.emplace(*volume_, spacing_, *slab_);
   if (!texture_) texture_.emplace(*volume_, spacing_);
   return *texture_;
 }

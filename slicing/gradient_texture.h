@@ -46,6 +46,9 @@ struct GradientTexels {
 
 // max |g| over the volume; `samples`: dims.x·dims.y·dims.z floats, x fastest.
 float maxGradientMagnitude(const float* samples, glm::ivec3 dims, glm::dvec3 spacing);
+// max |g|² over the voxels z in [zBegin, zEnd).
+float maxSquaredGradient(const float* samples, glm::ivec3 dims, glm::dvec3 spacing, int zBegin,
+                         int zEnd);
 // The texels of the slices z in [zBegin, zEnd) (texels.dims.z = zEnd − zBegin), gradients
 // divided by `maxMagnitude`, with the samples in alpha when `withValues`.
 GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm::dvec3 spacing,
@@ -57,12 +60,17 @@ GradientTexels computeGradientTexels(const float* samples, glm::ivec3 dims, glm:
 bool gradientsCanHoldValues(GLenum volumeInternalFormat);
 
 class VolumeTexture;
+struct SlabPart;
 
 // One RGBA16F texture per brick of the volume texture, with its layout (core/brick_layout.h).
 class GradientTexture {
  public:
   // Reads the volume texture back and uploads the gradients of its samples.
   GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing);
+  // A slab's (slab.h): the gradients of the bricks it holds, from its held voxels, the whole
+  // volume's at every texel of its owned bricks (the ghost layers give the central differences
+  // their neighbours), divided by the whole volume's M agreed over the processes.
+  GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing, const SlabPart& slab);
   GLuint brickTexture(std::size_t brick) const { return textures_[brick].id(); }
   double buildMs() const { return buildMs_; }
   // shaders/gradients.glsl's define for this texture, added to `defines` where it applies.
@@ -78,7 +86,7 @@ class GradientTexture {
 // changes (reset).
 class GradientTextureCache {
  public:
-  void reset(const VolumeTexture* volume, glm::dvec3 spacing);
+  void reset(const VolumeTexture* volume, glm::dvec3 spacing, const SlabPart* slab = nullptr);
   // The texture (building it now if no frame asked before).
   const GradientTexture& texture();
   bool built() const { return texture_.has_value(); }
@@ -86,6 +94,7 @@ class GradientTextureCache {
  private:
   const VolumeTexture* volume_ = nullptr;
   glm::dvec3 spacing_{1.0};
+  const SlabPart* slab_ = nullptr;
   std::optional<GradientTexture> texture_;
 };
 

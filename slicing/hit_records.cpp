@@ -3,8 +3,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include "slicing/compositing.h"
 #include "slicing/gl_state.h"
 #include "slicing/slicer.h"
+#include "slicing/technique_table.h"
 #include "slicing/texture_units.h"
 #include "slicing/tile_march.h"
 
@@ -16,6 +18,16 @@ void markDeadPixels(const FrameContext& frame, const SliceContext& slice,
   std::vector<std::string> defines;
   if (rule == DeadRule::NeighbourRecords) defines.emplace_back("NEIGHBOURS_FINAL");
   if (rule == DeadRule::Opacity) defines.emplace_back("OPACITY_DEAD");
+  // A relayed slab's compositing (slab.h): marks only where the slice's sample lies in the slab
+  // (the piece's brick owns it), so that a mark relayed to the slabs behind says the ray took
+  // its last sample in front of them (mark_dead.frag SLAB_OWNED_MARKS).
+  if (rule == DeadRule::Opacity && frame.slab) {
+    const TechniqueInfo& info = findTechnique(frame.settings->technique);
+    if (info.composition == Composition::Relay) {
+      defines.emplace_back("SLAB_OWNED_MARKS");
+      if (info.samplesOffPlanes) defines.emplace_back(kBoxAlignedSampling);
+    }
+  }
   gl::Program& markDead = frame.programs->get(
       gl::slicePassProgram(hitRecordSources(), "shaders/mark_dead.frag", defines));
   depthOnly.bindForDrawing();

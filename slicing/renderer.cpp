@@ -155,7 +155,7 @@ void Renderer::setSlab(const Volume& slabVolume, const SlabPart& part) {
   impl_->gradients.reset(nullptr, slabVolume.spacing);
   impl_->volumeTexture.reset();
   impl_->volumeTexture.emplace(slabVolume, part);
-  impl_->gradients.reset(&*impl_->volumeTexture, slabVolume.spacing);
+  impl_->gradients.reset(&*impl_->volumeTexture, slabVolume.spacing, &*impl_->slab);
   if (!impl_->uniforms) impl_->uniforms.emplace();
   impl_->uniforms->uploadBricks(impl_->volumeTexture->layout());
   ++impl_->volumeGeneration;
@@ -320,7 +320,12 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
   const int sweeps = technique.sweepCount(frame);
   for (frame.sweep = 0; frame.sweep < sweeps; ++frame.sweep) {
     technique.beginSweep(frame);
-    if (relayed) slab->relay->receive(technique.relayTargets(frame));
+    if (relayed) {
+      slab->relay->receive(technique.relayTargets(frame));
+      if (const gl::RenderTarget* dead = technique.relayDeadMarks(frame)) {
+        slab->relay->receiveDepthStencil(*dead);
+      }
+    }
     for (const SliceContext& slice : slices) {
       impl_->uniforms->bindSlice(slice.index);
       technique.drawSlice(frame, slice);
@@ -329,6 +334,9 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
       VSIL_GL(glFinish());  // the slab's own draws end here, not in the relay's read-back
       const std::vector<const gl::RenderTarget*> targets = technique.relayTargets(frame);
       slab->relay->send(targets);
+      if (const gl::RenderTarget* dead = technique.relayDeadMarks(frame)) {
+        slab->relay->sendDepthStencil(*dead);
+      }
       slab->relay->shareLast(targets);
     }
   }

@@ -8,6 +8,8 @@
 #include <optional>
 #include <string>
 
+#include "slicing/techniques/illustrate/halo_mask.h"
+
 namespace vsil {
 
 namespace {
@@ -67,6 +69,13 @@ PairPixel combineInZOrder(const PairPixel& lowerZ, const PairPixel& higherZ) {
 
 int techniqueGhostVoxels(const std::string& technique, const View& view, glm::ivec3 dims) {
   if (const char* forced = std::getenv("VSIL_SLAB_GHOST_VOXELS")) return std::atoi(forced);
+  // semantic: the gradients' central differences at every texel of an owned brick (its apron
+  // voxel, then the neighbour): two voxels (GradientTexture's slab constructor checks).
+  if (technique == "semantic") return 2;
+  // illustrate: the halo field at those texels reads up to haloFieldReachVoxels(k_hr) further
+  // (halo_mask.h; k_hr <= 32, whatever the style sets), plus the brick's apron and padding
+  // (HaloMaskTexture checks, refusing in one line where a layer falls short).
+  if (technique == "illustrate") return haloFieldReachVoxels(32) + 4;
   if (technique != "silhouette") return 0;
   // Points of one slice plane at eye distance d for neighbouring pixels differ by d times a
   // fixed vector (perspective; orthographic: by a fixed vector): the farthest box corner

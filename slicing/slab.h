@@ -67,11 +67,16 @@ class SlabRelay {
   virtual void receive(const std::vector<const gl::RenderTarget*>& targets) = 0;
   // Sends `targets` to the process behind (nothing on the last).
   virtual void send(const std::vector<const gl::RenderTarget*>& targets) = 0;
+  // The same for the depth-stencil buffer of `target` (the bits as they are).
+  virtual void receiveDepthStencil(const gl::RenderTarget& target) = 0;
+  virtual void sendDepthStencil(const gl::RenderTarget& target) = 0;
   // The last process's `targets` to every process.
   virtual void shareLast(const std::vector<const gl::RenderTarget*>& targets) = 0;
   // Replaces every float of `target` by its maximum over all processes (Composition::MaxReduce:
   // float max is exact and commutative, so the order does not matter).
   virtual void maxReduce(const gl::RenderTarget& target) = 0;
+  // The largest `value` over all processes, on every process (the volume's largest gradient).
+  virtual float maxOverProcesses(float value) = 0;
   // Replaces `pixels` on the process of the lowest z by the combine of every process's pixels
   // in z order (combineInZOrder; the others' `pixels` are left unspecified): the silhouette
   // pair (Composition::PairReduce).

@@ -129,6 +129,11 @@ class Technique {
   virtual std::vector<const gl::RenderTarget*> relayTargets(const FrameContext&) const {
     return {};
   }
+  // The target whose depth-stencil buffer holds the pixels retired by early ray termination
+  // (compositing.h), relayed with relayTargets: a pixel the slab in front retired there took
+  // its last sample in front (mark_dead.frag marks a slab's pixels only at slices whose sample
+  // lies in the slab), so no later slab adds to it, as in one process. nullptr: none travels.
+  virtual const gl::RenderTarget* relayDeadMarks(const FrameContext&) const { return nullptr; }
 };
 
 // The occupancy of techniques that look for the iso-surface: a brick may hold a FILLED sample

@@ -51,16 +51,12 @@ void requireSplittable(const TechniqueInfo& info, int ranks) {
   // Wired into the frame loop so far: the max reduce (mip), the silhouette pair and the relay of
   // the techniques whose samples read no voxel beyond their own bricks (rightangle, firsthit,
   // demip, lmip; the last passes that shade at a pixel's own point relay too, technique.h
-  // relayScreenPass).
-  // illustrate's and semantic's samples read gradients normalised by the whole volume's largest
-  // (gradient_texture.h) and neighbourhoods beyond the slab: not yet.
-  static const std::vector<std::string> relayed{"rightangle", "firsthit", "demip", "lmip"};
+  // relayScreenPass), and the compositing ones (illustrate, semantic: gradients and the halo
+  // field from ghost layers with the whole volume's largest gradient agreed, early ray
+  // termination's marks relayed with the colour; mark_dead.frag SLAB_OWNED_MARKS).
   if (info.composition == Composition::MaxReduce) return;
   if (info.composition == Composition::PairReduce) return;
-  if (info.composition == Composition::Relay &&
-      std::find(relayed.begin(), relayed.end(), info.name) != relayed.end()) {
-    return;
-  }
+  if (info.composition == Composition::Relay) return;
   throw UnavailableError(
       "--technique " + info.name + ": rendering across " + std::to_string(ranks) +
       " MPI ranks is not available yet (its combine rule, " + compositionName(info.composition) +

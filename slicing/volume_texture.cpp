@@ -190,8 +190,8 @@ void VolumeTexture::upload(const Volume& volume, std::size_t slabBytes, int zShi
       const int z = slab * depth, slabDepth = std::min(depth, size.z - z);
       std::vector<std::byte>& texels = slabs[slab % 2];
       texels.resize(sliceBytes * std::size_t(slabDepth));
-      convertTexels(volume, brick.origin + glm::ivec3(0, 0, z - zShift), {size.x, size.y, slabDepth},
-                    internalFormat_, texels);
+      convertTexels(volume, brick.origin + glm::ivec3(0, 0, z - zShift),
+                    {size.x, size.y, slabDepth}, internalFormat_, texels);
     };
     const int slabCount = (size.z + depth - 1) / depth;
     convert(0);
@@ -243,24 +243,39 @@ VolumeTexture::VolumeTexture(const Volume& slabVolume, const SlabPart& slab, std
   upload(slabVolume, slabBytes, slab.voxelZ0, &slab);
 }
 
+// uploadBricked's work: every brick, or a slab's held ones.
+std::vector<gl::TextureName> uploadBrickedPart(const BrickLayout& layout, glm::ivec3 dims,
+                                               GLenum internalFormat, GLenum format, GLenum type,
+                                               std::size_t bytesPerVoxel, const void* texels,
+                                               const SlabPart* slab, int zFirst, int zCount);
+
 std::vector<float> VolumeTexture::readVoxels() const {
+  return readVoxels(0, dims_.z);
+}
+
+std::vector<float> VolumeTexture::readVoxels(int zBegin, int zEnd) const {
   const glm::ivec3 d = dims_;
-  std::vector<float> voxels(std::size_t(d.x) * std::size_t(d.y) * std::size_t(d.z));
+  std::vector<float> voxels(std::size_t(d.x) * std::size_t(d.y) * std::size_t(zEnd - zBegin));
   GLint bound = 0;
   glGetIntegerv(GL_TEXTURE_BINDING_3D, &bound);
   VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
   std::vector<float> texels;
   for (std::size_t b = 0; b < textures_.size(); ++b) {
     const Brick& brick = layout_.bricks()[b];
-    texels.resize(std::size_t(brick.size.x) * brick.size.y * brick.size.z);
-    VSIL_GL(glBindTexture(GL_TEXTURE_3D, textures_[b].id()));
-    VSIL_GL(glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, texels.data()));
     // The voxels this brick owns (its overlap belongs to its neighbours).
     glm::ivec3 lo, hi;
     for (int a = 0; a < 3; ++a) {
       lo[a] = int(std::ceil(std::clamp(brick.low[a], 0.0, double(d[a]))));
       hi[a] = int(std::ceil(std::clamp(brick.high[a], 0.0, double(d[a]))));
     }
+    lo.z = std::max(lo.z, zBegin);
+    hi.z = std::min(hi.z, zEnd);
+    if (lo.z >= hi.z) continue;
+    if (textures_[b].id() == 0)
+      throw std::logic_error("VolumeTexture::readVoxels: a brick not held");
+    texels.resize(std::size_t(brick.size.x) * brick.size.y * brick.size.z);
+    VSIL_GL(glBindTexture(GL_TEXTURE_3D, textures_[b].id()));
+    VSIL_GL(glGetTexImage(GL_TEXTURE_3D, 0, GL_RED, GL_FLOAT, texels.data()));
     for (int z = lo.z; z < hi.z; ++z) {
       for (int y = lo.y; y < hi.y; ++y) {
         const float* from =
@@ -269,7 +284,7 @@ std::vector<float> VolumeTexture::readVoxels() const {
                  brick.size.x +
              std::size_t(lo.x - brick.origin.x));
         std::copy(from, from + (hi.x - lo.x),
-                  voxels.data() + (std::size_t(z) * d.y + std::size_t(y)) * d.x + lo.x);
+                  voxels.data() + (std::size_t(z - zBegin) * d.y + std::size_t(y)) * d.x + lo.x);
       }
     }
   }
@@ -280,13 +295,34 @@ std::vector<float> VolumeTexture::readVoxels() const {
 std::vector<gl::TextureName> uploadBricked(const BrickLayout& layout, glm::ivec3 dims,
                                            GLenum internalFormat, GLenum format, GLenum type,
                                            std::size_t bytesPerVoxel, const void* texels) {
+  return uploadBrickedPart(layout, dims, internalFormat, format, type, bytesPerVoxel, texels,
+                           nullptr, 0, dims.z);
+}
+
+std::vector<gl::TextureName> uploadBricked(const BrickLayout& layout, glm::ivec3 dims,
+                                           GLenum internalFormat, GLenum format, GLenum type,
+                                           std::size_t bytesPerVoxel, const void* texels,
+                                           const SlabPart& slab, int zFirst, int zCount) {
+  return uploadBrickedPart(layout, dims, internalFormat, format, type, bytesPerVoxel, texels, &slab,
+                           zFirst, zCount);
+}
+
+std::vector<gl::TextureName> uploadBrickedPart(const BrickLayout& layout, glm::ivec3 dims,
+                                               GLenum internalFormat, GLenum format, GLenum type,
+                                               std::size_t bytesPerVoxel, const void* texels,
+                                               const SlabPart* slab, int zFirst, int zCount) {
   GLint bound = 0;
   glGetIntegerv(GL_TEXTURE_BINDING_3D, &bound);
   VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
   const auto* voxels = static_cast<const std::byte*>(texels);
   std::vector<gl::TextureName> textures;
   std::vector<std::byte> slice;
-  for (const Brick& brick : layout.bricks()) {
+  for (std::size_t b = 0; b < layout.bricks().size(); ++b) {
+    const Brick& brick = layout.bricks()[b];
+    if (slab && !slab->holds(b)) {
+      textures.emplace_back();
+      continue;
+    }
     const glm::ivec3 size = brick.size;
     gl::TextureName texture = gl::createTexture();
     VSIL_GL(glBindTexture(GL_TEXTURE_3D, texture.id()));
@@ -295,7 +331,9 @@ std::vector<gl::TextureName> uploadBricked(const BrickLayout& layout, glm::ivec3
     // One z slice at a time, past the volume's far sides repeating its last voxel.
     slice.resize(std::size_t(size.x) * std::size_t(size.y) * bytesPerVoxel);
     for (int z = 0; z < size.z; ++z) {
-      const int vz = std::min(brick.origin.z + z, dims.z - 1);
+      const int vz =
+          std::clamp(std::min(brick.origin.z + z, dims.z - 1), zFirst, zFirst + zCount - 1) -
+          zFirst;
       for (int y = 0; y < size.y; ++y) {
         const int vy = std::min(brick.origin.y + y, dims.y - 1);
         std::byte* row = slice.data() + std::size_t(y) * size.x * bytesPerVoxel;

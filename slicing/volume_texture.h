@@ -64,6 +64,9 @@ class VolumeTexture {
   // Every voxel as a float, x fastest (the texels read back from the bricks: what gradients and
   // halo masks are built from).
   std::vector<float> readVoxels() const;
+  // The voxels of z in [zBegin, zEnd) (dims.x·dims.y·(zEnd − zBegin) floats), from the bricks
+  // this texture holds: a slab's (slab.h), which must hold every brick owning those voxels.
+  std::vector<float> readVoxels(int zBegin, int zEnd) const;
 
  private:
   // Uploads the layout's bricks from `volume`, whose z = 0 is the whole volume's `zShift`;
@@ -81,5 +84,12 @@ class VolumeTexture {
 std::vector<gl::TextureName> uploadBricked(const BrickLayout& layout, glm::ivec3 dims,
                                            GLenum internalFormat, GLenum format, GLenum type,
                                            std::size_t bytesPerVoxel, const void* texels);
+// A slab's (slab.h): only the bricks `slab` holds (0 for the others), from `texels` of the
+// voxels z in [zFirst, zFirst + zCount) of the volume; texels of held bricks beyond them repeat
+// the nearest (no owned piece samples them: the caller checks).
+std::vector<gl::TextureName> uploadBricked(const BrickLayout& layout, glm::ivec3 dims,
+                                           GLenum internalFormat, GLenum format, GLenum type,
+                                           std::size_t bytesPerVoxel, const void* texels,
+                                           const SlabPart& slab, int zFirst, int zCount);
 
 }  // namespace vsil

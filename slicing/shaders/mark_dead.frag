@@ -7,6 +7,7 @@
 // it has accumulated (the record's alpha) reached deadOpacity: early ray termination. Either
 // way a pixel is dead once the slices are past the last occupied brick on its ray
 // (slicing/empty_space.h): every later sample there is one the technique skips anyway.
+// SLAB_OWNED_MARKS (a slab of a relayed frame): see main.
 // In: the record (hit_records.glsl), the exit depth (window depth where the ray leaves occupied
 // space for good). Out: depth only.
 layout(binding = UNIT_RECORD) uniform sampler2D recordTexture;
@@ -18,6 +19,13 @@ uniform float deadOpacity;
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
+#if defined(SLAB_OWNED_MARKS)
+  // A relayed slab (slicing/slab.h): only where this slice's sample lies in the slab (this
+  // piece's brick owns it, as in the slice pass). Before it, the accumulated opacity is the
+  // slab in front's whole ray, not the samples up to this slice; after it, the slab has no
+  // sample left to skip, and the slab behind decides with the samples up to this slice.
+  if (!ownedByBrick(sliceVoxel())) discard;
+#endif
   if (sliceWindowDepth >= texelFetch(exitDepthTexture, pixel, 0).r) return;
 #if defined(OPACITY_DEAD)
   if (texelFetch(recordTexture, pixel, 0).a < deadOpacity) discard;

@@ -122,6 +122,52 @@ class MpiRelay : public SlabRelay {
     }
   }
 
+  void receiveDepthStencil(const gl::RenderTarget& target) override {
+    if (place() == 0) return;
+    const glm::ivec2 size = target.size();
+    std::vector<std::uint32_t> bits(std::size_t(size.x) * std::size_t(size.y));
+    check(MPI_Recv(bits.data(), int(bits.size()), MPI_UINT32_T, place_ - 1, 1, depthOrder_,
+                   MPI_STATUS_IGNORE),
+          "MPI_Recv (relay depth)");
+    // Into the target's renderbuffer: through a texture of the same format and a blit, which
+    // copies depth and stencil bits unchanged.
+    gl::TextureName staging = gl::createTexture();
+    VSIL_GL(glBindTexture(GL_TEXTURE_2D, staging.id()));
+    VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 4));
+    VSIL_GL(glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH24_STENCIL8, size.x, size.y, 0, GL_DEPTH_STENCIL,
+                         GL_UNSIGNED_INT_24_8, bits.data()));
+    VSIL_GL(glBindTexture(GL_TEXTURE_2D, 0));
+    gl::FramebufferName from = gl::createFramebuffer();
+    VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, from.id()));
+    VSIL_GL(glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
+                                   staging.id(), 0));
+    VSIL_GL(glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer()));
+    GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    VSIL_GL(glBlitFramebuffer(0, 0, size.x, size.y, 0, 0, size.x, size.y,
+                              GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT, GL_NEAREST));
+    if (scissor) glEnable(GL_SCISSOR_TEST);
+    VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, 0));
+  }
+
+  void sendDepthStencil(const gl::RenderTarget& target) override {
+    if (place() == count_ - 1) return;
+    const glm::ivec2 size = target.size();
+    std::vector<std::uint32_t> bits(std::size_t(size.x) * std::size_t(size.y));
+    VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer()));
+    VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 4));
+    VSIL_GL(
+        glReadPixels(0, 0, size.x, size.y, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8, bits.data()));
+    check(MPI_Send(bits.data(), int(bits.size()), MPI_UINT32_T, place_ + 1, 1, depthOrder_),
+          "MPI_Send (relay depth)");
+  }
+
+  float maxOverProcesses(float value) override {
+    check(MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_FLOAT, MPI_MAX, MPI_COMM_WORLD),
+          "MPI_Allreduce (max)");
+    return value;
+  }
+
   void maxReduce(const gl::RenderTarget& target) override {
     const BusyTimer timer(busyMs_);
     if (target.internalFormat() != GL_R32F) {
@@ -242,7 +288,10 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   // the ghosts to about a quarter of a slab on each side (else two ranks would each hold the
   // whole volume) at the cost of more slice pieces per frame.
   const int wantedLayers = ranks * (ghostVoxels > 0 && ranks > 1 ? 4 : 1);
-  while (layout.counts().z < wantedLayers && storage.z / 2 >= std::max(8, ghostVoxels)) {
+  // (Bricks thinner than the ghost width still, where the ranks need them: illustrate's ghost
+  // covers any halo radius.)
+  while (layout.counts().z < wantedLayers && storage.z > 8 &&
+         (layout.counts().z < ranks || storage.z / 2 >= ghostVoxels)) {
     storage.z /= 2;
     layout = BrickLayout::withStorage(dims, storage);
   }

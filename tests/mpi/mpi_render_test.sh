@@ -83,15 +83,16 @@ echo "over one rank's --max-memory: renders across 3"
 relay_case() {  # $1: technique, $2: rank counts, then the render's arguments
   local technique=$1 counts=$2 kind
   shift 2
-  local state=()
+  local state=() depth=(--depth-out)
   [[ $technique == rightangle ]] && state=(--state-out)
+  [[ $technique == illustrate || $technique == semantic ]] && depth=()  # no depth image
   "$vsil" render "$@" --technique "$technique" --out "$work/single.png" \
-    --depth-out "$work/single.depth.png" ${state[@]+"${state[@]}" "$work/single.state.png"} \
-    >/dev/null
+    ${depth[@]+"${depth[@]}" "$work/single.depth.png"} \
+    ${state[@]+"${state[@]}" "$work/single.state.png"} >/dev/null
   for n in $counts; do
     "$mpiexec" --oversubscribe -np "$n" "$vsil" render "$@" --technique "$technique" \
-      --out "$work/many.png" --depth-out "$work/many.depth.png" --meta-out "$work/many.json" \
-      ${state[@]+"${state[@]}" "$work/many.state.png"} >/dev/null ||
+      --out "$work/many.png" ${depth[@]+"${depth[@]}" "$work/many.depth.png"} \
+      --meta-out "$work/many.json" ${state[@]+"${state[@]}" "$work/many.state.png"} >/dev/null ||
       fail "$technique $*: -np $n failed"
     for kind in "" .depth .state; do
       [[ -e $work/single$kind.png ]] || continue
@@ -119,6 +120,27 @@ fi
 relay_case rightangle "3" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6 --fill shaded
 echo "relay (rightangle, firsthit, demip, lmip): -np 2, 3, 4 byte-identical, PNG, depth, state"
 
+# Compositing across ranks (semantic): gradients divided by the whole volume's largest (agreed
+# over the ranks), ghost layers for the central differences, and the early-ray-termination marks
+# relayed with the colour (a slab marks only at slices whose sample it owns).
+relay_case semantic "2 3 4" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6
+relay_case semantic "3" gen:spheres:128 --size 128x128 --view 37,-23 --zoom 1.6 --max-texture-mib 1
+echo "semantic (default rules): -np 2, 3, 4 byte-identical, one texture and bricked"
+# illustrate: also its halo field (precomputed per volume, from the ghost layers, with the
+# agreed gradient maximum).
+every_effect=boundary,silhouette,fading,sketch,distance,halo,tone
+relay_case illustrate "2 3 4" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6
+relay_case illustrate "2 4" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6 \
+  --effects "$every_effect"
+relay_case illustrate "3" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6 \
+  --style fig6-distance-halo
+relay_case illustrate "3" gen:spheres:128 --size 128x128 --view 37,-23 --zoom 1.6 \
+  --max-texture-mib 1 --effects "$every_effect"
+if [[ -e $engine ]]; then
+  relay_case illustrate "4" "$engine" --size 256x256 --effects "$every_effect"
+fi
+echo "illustrate (default, every effect, fig6 halo style): -np 2, 3, 4 byte-identical"
+
 # A perspective view whose rays leave the eye both ways along z: no slab order is every ray's.
 if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --technique firsthit \
   --size 64x64 --view 90,0 --zoom 4 --out "$work/many.png" >"$work/out" 2>"$work/err"; then
@@ -138,13 +160,13 @@ fi
 count=$(grep -c "need the volume in one texture" "$work/err" || true)
 [[ $count == 1 ]] || { cat "$work/err" >&2; fail "--pipeline tiles: the refusal printed $count times"; }
 
-for technique in illustrate semantic; do
-  if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --technique "$technique" \
-    "${common[@]}" --out "$work/many.png" >"$work/out" 2>"$work/err"; then
-    fail "$technique -np 2: expected a refusal"
-  fi
-  [[ ! -e $work/many.png ]] || fail "$technique -np 2: an output file was written"
-  count=$(grep -c "rendering across 2 MPI ranks is not available yet" "$work/err" || true)
-  [[ $count == 1 ]] || { cat "$work/err" >&2; fail "$technique: the refusal printed $count times"; }
-done
-echo "illustrate, semantic across ranks: one refusal line, no output"
+# illustrate's exact halos (taps in the slice plane) need the volume in one texture.
+if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --technique illustrate \
+  --effects halo --halo-mode exact "${common[@]}" --out "$work/many.png" >"$work/out" \
+  2>"$work/err"; then
+  fail "illustrate --halo-mode exact -np 2: expected a refusal"
+fi
+[[ ! -e $work/many.png ]] || fail "illustrate --halo-mode exact -np 2: an output file was written"
+count=$(grep -c "need the volume in one texture" "$work/err" || true)
+[[ $count == 1 ]] || { cat "$work/err" >&2; fail "--halo-mode exact: the refusal printed $count times"; }
+echo "illustrate --halo-mode exact across ranks: one refusal line, no output"

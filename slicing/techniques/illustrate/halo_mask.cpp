@@ -1,5 +1,6 @@
 #include "slicing/techniques/illustrate/halo_mask.h"
 
+#include "core/error.h"
 #include "slicing/empty_space.h"
 #include "slicing/gradient_texture.h"
 #include "slicing/volume_texture.h"
@@ -220,8 +221,16 @@ void HaloMaskTexture::update(const std::vector<double>& key, const VolumeTexture
                              glm::dvec3 spacing, HaloMode mode,
                              const std::function<bool(float)>& visible,
                              const std::function<bool(float, float)>& transparentRange,
-                             double radius, double pushExponent) {
+                             double radius, double pushExponent, const SlabPart* slab) {
   if (!textures_.empty() && key == key_) return;
+  if (slab && mode == HaloMode::Field) {
+    GLint bound = 0;
+    glGetIntegerv(GL_TEXTURE_BINDING_3D, &bound);
+    updateSlab(volume, spacing, *slab, visible, transparentRange, radius, pushExponent);
+    VSIL_GL(glBindTexture(GL_TEXTURE_3D, GLuint(bound)));
+    key_ = key;
+    return;
+  }
   const glm::ivec3 dims = volume.dims();
   std::vector<float> samples = volume.readVoxels();
   GLint bound = 0;
@@ -253,6 +262,65 @@ void HaloMaskTexture::update(const std::vector<double>& key, const VolumeTexture
   }
   VSIL_GL(glBindTexture(GL_TEXTURE_3D, GLuint(bound)));
   key_ = key;
+}
+
+int haloFieldReachVoxels(double radius) {
+  // The mask's radius (the neighbours lie within kHaloFieldReach·radius, rounded), one voxel
+  // for their gradients' central differences and one for rounding.
+  return int(std::ceil(radius)) + 2;
+}
+
+namespace {
+// The first voxel z a brick layer owns, or the end of its voxels (cut to the volume), as
+// VolumeTexture::readVoxels counts them.
+int layerVoxelZ(const BrickLayout& layout, int layer, bool high, int dimsZ) {
+  const glm::ivec3 counts = layout.counts();
+  const Brick& brick =
+      layout.bricks()[std::size_t(layer) * std::size_t(counts.x) * std::size_t(counts.y)];
+  return int(std::ceil(std::clamp(high ? brick.high.z : brick.low.z, 0.0, double(dimsZ))));
+}
+}  // namespace
+
+void HaloMaskTexture::updateSlab(const VolumeTexture& volume, glm::dvec3 spacing,
+                                 const SlabPart& slab, const std::function<bool(float)>& visible,
+                                 const std::function<bool(float, float)>& transparentRange,
+                                 double radius, double pushExponent) {
+  const glm::ivec3 dims = volume.dims();
+  const int read0 = layerVoxelZ(slab.layout, slab.heldZ0, false, dims.z);
+  const int read1 = layerVoxelZ(slab.layout, slab.heldZ1 - 1, true, dims.z);
+  const int own0 = layerVoxelZ(slab.layout, slab.ownedZ0, false, dims.z);
+  const int own1 = layerVoxelZ(slab.layout, slab.ownedZ1 - 1, true, dims.z);
+  // The field is the whole volume's from `reach` voxels inside the held ones (or at the
+  // volume's own faces), where everything it reads lies in them.
+  const int reach = haloFieldReachVoxels(radius);
+  const int valid0 = read0 == 0 ? 0 : read0 + reach;
+  const int valid1 = read1 == dims.z ? dims.z : read1 - reach;
+  for (std::size_t b = 0; b < slab.layout.bricks().size(); ++b) {
+    const Brick& brick = slab.layout.bricks()[b];
+    if (slab.owns(b) && (std::max(brick.origin.z, 0) < valid0 ||
+                         std::min(brick.origin.z + brick.size.z, dims.z) > valid1)) {
+      throw UnavailableError("--param k_hr: a halo radius of " + std::to_string(radius) +
+                             " voxels reaches beyond the slab's ghost layers; run one rank");
+    }
+  }
+  const glm::ivec3 readDims(dims.x, dims.y, read1 - read0);
+  const std::vector<float> samples = volume.readVoxels(read0, read1);
+  std::vector<std::uint8_t> mask = haloMaskVoxels(samples.data(), readDims, visible, radius);
+  // The gradients divided by the whole volume's M (agreed over the processes, as
+  // GradientTexture's slab constructor does).
+  if (slab.relay == nullptr) throw std::logic_error("HaloMaskTexture: a slab without a relay");
+  const float largest = slab.relay->maxOverProcesses(
+      maxSquaredGradient(samples.data(), readDims, spacing, own0 - read0, own1 - read0));
+  const GradientTexels gradients = computeGradientTexels(
+      samples.data(), readDims, spacing, std::sqrt(largest), 0, readDims.z, /*withValues=*/false);
+  const std::vector<std::uint8_t> field = haloFieldVoxels(
+      gradients, mask, samples.data(), transparentRange, spacing, radius, pushExponent);
+  // Empty-space skipping stays off for slabs (Renderer::render): every brick counts.
+  bricks_.assign(slab.layout.bricks().size(), true);
+  const std::size_t plane = std::size_t(dims.x) * std::size_t(dims.y);
+  textures_ = uploadBricked(slab.layout, dims, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4,
+                            field.data() + 4 * plane * std::size_t(valid0 - read0), slab, valid0,
+                            valid1 - valid0);
 }
 
 }  // namespace vsil

@@ -31,6 +31,12 @@
 namespace vsil {
 
 class VolumeTexture;
+struct SlabPart;
+
+// How far, in voxels, the halo field at a voxel reads the volume beyond it (the mask's radius,
+// the neighbours' reach and their gradients' central differences): a slab needs that much
+// beyond its owned bricks' texels (the ghost width, slab.h techniqueGhostVoxels).
+int haloFieldReachVoxels(double radius);
 
 // 1 at the voxels within `radius` voxels (Euclidean, in voxel index space) of one that
 // `visible` holds for, 0 elsewhere.
@@ -79,7 +85,7 @@ class HaloMaskTexture {
   void update(const std::vector<double>& key, const VolumeTexture& volume, glm::dvec3 spacing,
               HaloMode mode, const std::function<bool(float)>& visible,
               const std::function<bool(float, float)>& transparentRange, double radius,
-              double pushExponent);
+              double pushExponent, const SlabPart* slab = nullptr);
   // The texture of brick `brick` of the volume's layout (exact: one texture, brick 0).
   GLuint id(std::size_t brick = 0) const { return textures_[brick].id(); }
   const std::vector<gl::TextureName>& brickTextures() const { return textures_; }
@@ -88,6 +94,12 @@ class HaloMaskTexture {
   const std::vector<bool>& bricks() const { return bricks_; }
 
  private:
+  // A slab's field (slab.h): from its held voxels, exact at its owned bricks' texels.
+  void updateSlab(const VolumeTexture& volume, glm::dvec3 spacing, const SlabPart& slab,
+                  const std::function<bool(float)>& visible,
+                  const std::function<bool(float, float)>& transparentRange, double radius,
+                  double pushExponent);
+
   std::vector<double> key_;
   std::vector<bool> bricks_;
   std::vector<gl::TextureName> textures_;

@@ -125,7 +125,7 @@ ResolvedOptions IllustrateTechnique::resolve(const FrameContext& frame) {
     haloMask_.update(key, *frame.volume, frame.spacing, haloMode_,
                      visibleValues(illustration_, table_, frame.valueRange),
                      transparentValues(illustration_, table_, frame.valueRange), radius,
-                     pushExponent);
+                     pushExponent, frame.slab);
   }
   ResolvedOptions resolved;
   resolved.background = illustration_.background;

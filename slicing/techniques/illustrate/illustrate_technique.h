@@ -61,6 +61,13 @@ class IllustrateTechnique : public Technique {
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
   void endFrame(const FrameContext&) override {}
   FrameBuffers readBack(const FrameContext& frame) override;
+  // Across ranks (slab.h): the accumulated colour and the retired pixels travel in depth order.
+  std::vector<const gl::RenderTarget*> relayTargets(const FrameContext&) const override {
+    return {&compositor_.target()};
+  }
+  const gl::RenderTarget* relayDeadMarks(const FrameContext&) const override {
+    return &compositor_.target();
+  }
 
  private:
   void setUniforms(const FrameContext& frame);

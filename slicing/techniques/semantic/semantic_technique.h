@@ -40,6 +40,15 @@ class SemanticTechnique : public Technique {
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
   void endFrame(const FrameContext&) override {}
   FrameBuffers readBack(const FrameContext& frame) override;
+  // Across ranks (slab.h): the accumulated colour (flat mode: with the priorities) and the
+  // retired pixels travel in depth order.
+  std::vector<const gl::RenderTarget*> relayTargets(const FrameContext&) const override {
+    if (flat_) return {&flatTargets_->color, &flatTargets_->priority};
+    return {&compositor_.target()};
+  }
+  const gl::RenderTarget* relayDeadMarks(const FrameContext&) const override {
+    return flat_ ? &flatTargets_->color : &compositor_.target();
+  }
 
  private:
   void uploadTables();
