@@ -109,8 +109,8 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
   // The frame's stages in wall time and in the process's CPU time; the caller adds its own
   // (render_command.cpp: start-up, context, read, upload, write, total).
   const RenderTimings& timings = result.timings;
-  for (const auto& [key, time] : {std::pair{"timings_ms", &StageTime::wallMs},
-                                  std::pair{"cpu_ms", &StageTime::cpuMs}}) {
+  for (const auto& [key, time] :
+       {std::pair{"timings_ms", &StageTime::wallMs}, std::pair{"cpu_ms", &StageTime::cpuMs}}) {
     meta[key] = {{"defaults", timings.defaults.*time},
                  {"programs", timings.programs.*time},
                  {"render", timings.render.*time},
@@ -228,8 +228,8 @@ const Volume& RenderJob::setVolume(Volume volume, const std::string& input,
   return *impl_->volume;
 }
 
-std::uint64_t RenderJob::memoryBytes(const RenderRequest& request, glm::ivec3 dims,
-                                     SampleType type, std::uint64_t maxTextureBytes) {
+std::uint64_t RenderJob::memoryBytes(const RenderRequest& request, glm::ivec3 dims, SampleType type,
+                                     std::uint64_t maxTextureBytes) {
   return renderBytes(request, dims, type, maxTextureBytes);
 }
 
@@ -328,8 +328,7 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
   // The value range of the samples the frame rendered, found once when they were uploaded.
   const ValueRange range = impl_->renderer->valueRange();
   output.metadata = metadata(request, impl_->input, volume, range, output.result,
-                             impl_->context.info(),
-                             output.postfx);
+                             impl_->context.info(), output.postfx);
   output.warnings = warnings(request, volume);
   return output;
 }

@@ -31,7 +31,7 @@ struct RenderRequest {
 
 struct RenderOutput {
   RenderResult result;
-  cv::Mat image;  // the illustration, 8-bit BGR or BGRA (compose.h)
+  cv::Mat image;     // the illustration, 8-bit BGR or BGRA (compose.h)
   StageTime postfx;  // broadening and composition
   // What `--meta-out` writes: parameters (the shared ones, the technique's options, postfx),
   // dataset, slices, camera, pixel counts, timings, the GL context (back end, renderer). The caller
