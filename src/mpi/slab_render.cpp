@@ -284,14 +284,11 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   glm::ivec3 storage = chosen.bricks()[0].size;
   BrickLayout layout = BrickLayout::withStorage(dims, storage);
   // At least one brick layer per rank: smaller bricks along z (8 texels at least). Ghost voxels
-  // are held as whole brick layers, so where a technique reads them, four layers per rank keep
-  // the ghosts to about a quarter of a slab on each side (else two ranks would each hold the
-  // whole volume) at the cost of more slice pieces per frame.
+  // are held as whole brick layers (as many as cover the ghost width), so where a technique
+  // reads them, four layers per rank keep the ghosts near a quarter of a slab on each side
+  // (else two ranks would each hold the whole volume) at the cost of more slice pieces.
   const int wantedLayers = ranks * (ghostVoxels > 0 && ranks > 1 ? 4 : 1);
-  // (Bricks thinner than the ghost width still, where the ranks need them: illustrate's ghost
-  // covers any halo radius.)
-  while (layout.counts().z < wantedLayers && storage.z > 8 &&
-         (layout.counts().z < ranks || storage.z / 2 >= ghostVoxels)) {
+  while (layout.counts().z < wantedLayers && storage.z > 8) {
     storage.z /= 2;
     layout = BrickLayout::withStorage(dims, storage);
   }
