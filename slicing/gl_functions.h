@@ -22,6 +22,7 @@
   X(glBlendEquationSeparate, PFNGLBLENDEQUATIONSEPARATEPROC)     \
   X(glBlendFunc, PFNGLBLENDFUNCPROC)                             \
   X(glBlendFuncSeparate, PFNGLBLENDFUNCSEPARATEPROC)             \
+  X(glBlitFramebuffer, PFNGLBLITFRAMEBUFFERPROC)                 \
   X(glBufferData, PFNGLBUFFERDATAPROC)                           \
   X(glCheckFramebufferStatus, PFNGLCHECKFRAMEBUFFERSTATUSPROC)   \
   X(glClearBufferfi, PFNGLCLEARBUFFERFIPROC)                     \
@@ -80,7 +81,6 @@
   X(glPixelStorei, PFNGLPIXELSTOREIPROC)                         \
   X(glReadBuffer, PFNGLREADBUFFERPROC)                           \
   X(glReadPixels, PFNGLREADPIXELSPROC)                           \
-  X(glBlitFramebuffer, PFNGLBLITFRAMEBUFFERPROC)                 \
   X(glRenderbufferStorage, PFNGLRENDERBUFFERSTORAGEPROC)         \
   X(glScissor, PFNGLSCISSORPROC)                                 \
   X(glShaderSource, PFNGLSHADERSOURCEPROC)                       \
