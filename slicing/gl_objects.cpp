@@ -1,5 +1,6 @@
 #include "slicing/gl_objects.h"
 
+#include <stdexcept>
 #include <string>
 
 namespace vsil::gl {
@@ -99,6 +100,37 @@ RenderTarget::RenderTarget(glm::ivec2 size, GLenum internalFormat, bool withDept
 
 void RenderTarget::bindForDrawing() const {
   VSIL_GL(glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id()));
+}
+
+namespace {
+// The pixel format of a float target's colour: GL_RED for R32F, GL_RGBA for RGBA32F.
+GLenum floatFormat(GLenum internalFormat) {
+  if (internalFormat == GL_R32F) return GL_RED;
+  if (internalFormat == GL_RGBA32F) return GL_RGBA;
+  throw std::logic_error("RenderTarget: floats only from R32F and RGBA32F targets");
+}
+}  // namespace
+
+std::vector<float> RenderTarget::readFloats() const {
+  const GLenum format = floatFormat(internalFormat_);
+  std::vector<float> values(std::size_t(size_.x) * std::size_t(size_.y) *
+                            (format == GL_RGBA ? 4 : 1));
+  VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id()));
+  VSIL_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
+  VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
+  VSIL_GL(glReadPixels(0, 0, size_.x, size_.y, format, GL_FLOAT, values.data()));
+  return values;
+}
+
+void RenderTarget::writeFloats(const std::vector<float>& values) const {
+  // The active unit's binding back afterwards: the passes may have bound their inputs there.
+  GLint bound = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  VSIL_GL(glBindTexture(GL_TEXTURE_2D, texture_.id()));
+  VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
+  VSIL_GL(glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size_.x, size_.y, floatFormat(internalFormat_),
+                          GL_FLOAT, values.data()));
+  VSIL_GL(glBindTexture(GL_TEXTURE_2D, GLuint(bound)));
 }
 
 EmptyFramebuffer::EmptyFramebuffer(glm::ivec2 size, GLuint depthStencilRenderbuffer) : size_(size) {

@@ -2,6 +2,7 @@
 // Move-only owners of GL objects: each deletes exactly the name it owns, leaves 0 behind when
 // moved from, and cannot be copied. A GL context must be current when they are made and destroyed.
 #include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -77,6 +78,10 @@ class RenderTarget {
   GLenum internalFormat() const { return internalFormat_; }
   GLuint depthStencil() const { return depthStencil_.id(); }  // 0 without one
   void bindForDrawing() const;
+  // The colour of an R32F or RGBA32F target as floats (1 or 4 a texel, rows from the bottom),
+  // read back and written again bit for bit (the MPI relay, the silhouette's slab records).
+  std::vector<float> readFloats() const;
+  void writeFloats(const std::vector<float>& values) const;
 
  private:
   glm::ivec2 size_;

@@ -31,43 +31,6 @@ class BusyTimer {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-// A float target's colour: GL_RED for R32F, GL_RGBA for RGBA32F (the relayed targets).
-GLenum floatFormat(const gl::RenderTarget& target) {
-  switch (target.internalFormat()) {
-    case GL_R32F:
-      return GL_RED;
-    case GL_RGBA32F:
-      return GL_RGBA;
-    default:
-      break;
-  }
-  throw std::logic_error("MpiRelay: only R32F and RGBA32F targets travel");
-}
-
-std::vector<float> readColour(const gl::RenderTarget& target) {
-  const glm::ivec2 size = target.size();
-  const GLenum format = floatFormat(target);
-  std::vector<float> values(std::size_t(size.x) * std::size_t(size.y) *
-                            (format == GL_RGBA ? 4 : 1));
-  VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer()));
-  VSIL_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
-  VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
-  VSIL_GL(glReadPixels(0, 0, size.x, size.y, format, GL_FLOAT, values.data()));
-  return values;
-}
-
-void writeColour(const gl::RenderTarget& target, const std::vector<float>& values) {
-  const glm::ivec2 size = target.size();
-  // The active unit's binding back afterwards: the passes may have bound their inputs there.
-  GLint bound = 0;
-  glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
-  VSIL_GL(glBindTexture(GL_TEXTURE_2D, target.texture()));
-  VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
-  VSIL_GL(glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size.x, size.y, floatFormat(target), GL_FLOAT,
-                          values.data()));
-  VSIL_GL(glBindTexture(GL_TEXTURE_2D, GLuint(bound)));
-}
-
 // The relay (Composition::Relay) over a communicator of the ranks in the frame's depth order;
 // the floats travel as read back, so the next rank continues from the very bits.
 class MpiRelay : public SlabRelay {
@@ -93,11 +56,11 @@ class MpiRelay : public SlabRelay {
     const BusyTimer timer(busyMs_);
     if (place() == 0) return;
     for (const gl::RenderTarget* target : targets) {
-      std::vector<float> values = readColour(*target);  // sized alike; overwritten
+      std::vector<float> values = target->readFloats();  // sized alike; overwritten
       check(MPI_Recv(values.data(), int(values.size()), MPI_FLOAT, place_ - 1, 0, depthOrder_,
                      MPI_STATUS_IGNORE),
             "MPI_Recv (relay)");
-      writeColour(*target, values);
+      target->writeFloats(values);
     }
   }
 
@@ -105,7 +68,7 @@ class MpiRelay : public SlabRelay {
     const BusyTimer timer(busyMs_);
     if (place() == count_ - 1) return;
     for (const gl::RenderTarget* target : targets) {
-      const std::vector<float> values = readColour(*target);
+      const std::vector<float> values = target->readFloats();
       check(MPI_Send(values.data(), int(values.size()), MPI_FLOAT, place_ + 1, 0, depthOrder_),
             "MPI_Send (relay)");
     }
@@ -115,10 +78,10 @@ class MpiRelay : public SlabRelay {
     const BusyTimer timer(busyMs_);
     place();
     for (const gl::RenderTarget* target : targets) {
-      std::vector<float> values = readColour(*target);
+      std::vector<float> values = target->readFloats();
       check(MPI_Bcast(values.data(), int(values.size()), MPI_FLOAT, count_ - 1, depthOrder_),
             "MPI_Bcast (relay)");
-      if (place_ != count_ - 1) writeColour(*target, values);
+      if (place_ != count_ - 1) target->writeFloats(values);
     }
   }
 

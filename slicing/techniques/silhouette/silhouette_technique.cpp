@@ -36,26 +36,6 @@ std::vector<std::string> sources() {
 // bonsai's 427 slices) was slower on bonsai for this march and the first-hit one.
 constexpr MarchShape kMarchShape{{32, 1}, {30, 30}};
 
-// An RGBA32F target's texels, bottom row first (GL's order), and back.
-std::vector<float> readTexels(const gl::RenderTarget& target) {
-  const glm::ivec2 size = target.size();
-  std::vector<float> texels(std::size_t(size.x) * std::size_t(size.y) * 4);
-  VSIL_GL(glBindFramebuffer(GL_READ_FRAMEBUFFER, target.framebuffer()));
-  VSIL_GL(glReadBuffer(GL_COLOR_ATTACHMENT0));
-  VSIL_GL(glPixelStorei(GL_PACK_ALIGNMENT, 1));
-  VSIL_GL(glReadPixels(0, 0, size.x, size.y, GL_RGBA, GL_FLOAT, texels.data()));
-  return texels;
-}
-
-void writeTexels(const gl::RenderTarget& target, const std::vector<float>& texels) {
-  const glm::ivec2 size = target.size();
-  VSIL_GL(glBindTexture(GL_TEXTURE_2D, target.texture()));
-  VSIL_GL(glPixelStorei(GL_UNPACK_ALIGNMENT, 1));
-  VSIL_GL(
-      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, size.x, size.y, GL_RGBA, GL_FLOAT, texels.data()));
-  VSIL_GL(glBindTexture(GL_TEXTURE_2D, 0));
-}
-
 // Cleared coverage: above any slice index and depth, so that MIN blending keeps the first.
 constexpr float kNoCoverage = 1e30f;
 
@@ -297,9 +277,9 @@ void SilhouetteTechnique::combineSlabs(const FrameContext& frame, SlabRelay& rel
   targets_->records[1].bindForDrawing();
   VSIL_GL(glClearBufferfv(GL_COLOR, 0, kZeroF));
   finishRecords(frame, *programs_.finish, targets_->records[0], targets_->records[1]);
-  const std::vector<float> records = readTexels(targets_->records[0]);
-  const std::vector<float> shaded = readTexels(targets_->records[1]);
-  const std::vector<float> coverage = readTexels(*targets_->coverage);
+  const std::vector<float> records = targets_->records[0].readFloats();
+  const std::vector<float> shaded = targets_->records[1].readFloats();
+  const std::vector<float> coverage = targets_->coverage->readFloats();
   std::vector<PairPixel> pixels(std::size_t(size.x) * std::size_t(size.y));
   for (int row = 0; row < size.y; ++row) {
     // GL's rows run bottom-up; the view's pixels top-down.
@@ -323,7 +303,7 @@ void SilhouetteTechnique::combineSlabs(const FrameContext& frame, SlabRelay& rel
     finished[4 * i + 1] = run.depth();
     finished[4 * i + 2] = pixels[i].shade;
   }
-  writeTexels(targets_->records[1], finished);
+  targets_->records[1].writeFloats(finished);
   current_ = 1;
   slabCombined_ = true;
 }
