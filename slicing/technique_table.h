@@ -57,8 +57,9 @@ struct TechniqueInfo {
 const std::vector<TechniqueInfo>& techniqueTable();
 // Throws UnavailableError "--technique NAME: rendering across N MPI ranks is not available
 // yet (...)" when `ranks` > 1 and the technique's combine rule is not wired into the slab
-// renderer (slicing/slab.h) yet: MaxReduce (mip) and PairReduce (silhouette) are. A single rank
-// renders as without MPI.
+// renderer (slicing/slab.h): MaxReduce, PairReduce and Relay are, so every technique of the
+// table renders across ranks; LocalMaxReduce (proven, unused) is not. A single rank renders as
+// without MPI.
 void requireSplittable(const TechniqueInfo& info, int ranks);
 // The entry named `name`; InputError "--technique: unknown technique 'x' (known: ...)".
 const TechniqueInfo& findTechnique(const std::string& name);

@@ -69,9 +69,9 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   RenderRequest request = toRenderRequest(flags);
   request.settings.readDepth = !outputs.depthOut.empty();
   RenderJob::checkRequest(request, loadOptions.limits);
-  // Under mpirun with several ranks: techniques whose slabs are not combined yet (issue 35), and
-  // options that need the volume in one texture (a slab is not), refuse alike on every rank
-  // before reading anything.
+  // Under mpirun with several ranks: a combine rule the slab renderer does not run, and options
+  // that need the volume in one texture (a slab is not), refuse alike on every rank before
+  // reading anything.
   const TechniqueInfo& technique = findTechnique(request.settings.technique);
   // The silhouette's slabs run the fast pipeline whatever --pipeline says (the same bytes) and
   // reduce their pairs on rank 0, which holds no volume to tone-shade the hits with; relayed
