@@ -136,16 +136,6 @@ GradientTexture::GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing
   buildMs_ = millisecondsSince(start);
 }
 
-namespace {
-// The first voxel z a brick layer owns (cut to the volume), as readVoxels counts them.
-int layerVoxel(const BrickLayout& layout, int layer, bool high, int dimsZ) {
-  const glm::ivec3 counts = layout.counts();
-  const Brick& brick =
-      layout.bricks()[std::size_t(layer) * std::size_t(counts.x) * std::size_t(counts.y)];
-  return int(std::ceil(std::clamp(high ? brick.high.z : brick.low.z, 0.0, double(dimsZ))));
-}
-}  // namespace
-
 GradientTexture::GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing,
                                  const SlabPart& slab) {
   const auto start = std::chrono::steady_clock::now();
@@ -153,12 +143,12 @@ GradientTexture::GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing
   holdsValues_ = gradientsCanHoldValues(volume.internalFormat());
   // The voxels the held bricks own, [read0, read1); central differences are the whole volume's
   // from one voxel inside them (or at the volume's own faces), [valid0, valid1).
-  const int read0 = layerVoxel(slab.layout, slab.heldZ0, false, dims.z);
-  const int read1 = layerVoxel(slab.layout, slab.heldZ1 - 1, true, dims.z);
+  const int read0 = layerVoxelZ(slab.layout, slab.heldZ0, false, dims.z);
+  const int read1 = layerVoxelZ(slab.layout, slab.heldZ1 - 1, true, dims.z);
   const int valid0 = read0 == 0 ? 0 : read0 + 1;
   const int valid1 = read1 == dims.z ? dims.z : read1 - 1;
-  const int own0 = layerVoxel(slab.layout, slab.ownedZ0, false, dims.z);
-  const int own1 = layerVoxel(slab.layout, slab.ownedZ1 - 1, true, dims.z);
+  const int own0 = layerVoxelZ(slab.layout, slab.ownedZ0, false, dims.z);
+  const int own1 = layerVoxelZ(slab.layout, slab.ownedZ1 - 1, true, dims.z);
   // Every texel of an owned brick (its apron included) needs a whole-volume gradient.
   for (std::size_t b = 0; b < slab.layout.bricks().size(); ++b) {
     const Brick& brick = slab.layout.bricks()[b];

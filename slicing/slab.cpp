@@ -12,13 +12,15 @@
 
 namespace vsil {
 
-namespace {
-// The brick of layer z (the first along x and y: every brick of a layer has its z bounds).
 const Brick& brickOfLayer(const BrickLayout& layout, int z) {
   const glm::ivec3 counts = layout.counts();
   return layout.bricks()[std::size_t(z) * std::size_t(counts.x) * std::size_t(counts.y)];
 }
-}  // namespace
+
+int layerVoxelZ(const BrickLayout& layout, int layer, bool high, int dimsZ) {
+  const Brick& brick = brickOfLayer(layout, layer);
+  return int(std::ceil(std::clamp(high ? brick.high.z : brick.low.z, 0.0, double(dimsZ))));
+}
 
 composition::NkRun runOf(const PairPixel& pixel) {
   composition::NkRun run;

@@ -86,6 +86,12 @@ class SlabRelay {
   double busyMs_ = 0;
 };
 
+// The first brick of layer z (Brick::index.z; every brick of a layer has its z bounds).
+const Brick& brickOfLayer(const BrickLayout& layout, int z);
+// The first voxel z that layer `layer` owns (high: the end of its voxels), cut to the volume,
+// as VolumeTexture::readVoxels counts them.
+int layerVoxelZ(const BrickLayout& layout, int layer, bool high, int dimsZ);
+
 // Slabs along z meet a ray in z order: which way the ray through `pixel` (pixel coordinates, a
 // centre at +0.5) runs along the volume's z, +1 towards higher z, -1 towards lower, 0 along a
 // plane of constant z (it never leaves its slab, so any order is its order).

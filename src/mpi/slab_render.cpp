@@ -198,15 +198,10 @@ std::size_t layoutTexelBytes(SampleType type) {
   return type == SampleType::UInt8 || type == SampleType::Int8 ? 2 : 4;
 }
 
-const Brick& layerBrick(const BrickLayout& layout, int z) {
-  const glm::ivec3 counts = layout.counts();
-  return layout.bricks()[std::size_t(z) * std::size_t(counts.x) * std::size_t(counts.y)];
-}
-
 // The layer's own voxels along z: [low + 0.5, high + 0.5) cut to the volume.
 std::array<int, 2> ownVoxels(const BrickLayout& layout, int z0, int z1, int dimsZ) {
-  const double low = std::max(layerBrick(layout, z0).low.z, -0.5);
-  const double high = std::min(layerBrick(layout, z1 - 1).high.z, dimsZ - 0.5);
+  const double low = std::max(brickOfLayer(layout, z0).low.z, -0.5);
+  const double high = std::min(brickOfLayer(layout, z1 - 1).high.z, dimsZ - 0.5);
   return {int(low + 0.5), int(high + 0.5)};
 }
 
@@ -271,18 +266,18 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   // owned samples (their textures carry the filter's apron themselves).
   part.heldZ0 = part.ownedZ0;
   part.heldZ1 = part.ownedZ1;
-  const double ownedLow = layerBrick(layout, part.ownedZ0).low.z;
-  const double ownedHigh = layerBrick(layout, part.ownedZ1 - 1).high.z;
+  const double ownedLow = brickOfLayer(layout, part.ownedZ0).low.z;
+  const double ownedHigh = brickOfLayer(layout, part.ownedZ1 - 1).high.z;
   while (ghostVoxels > 0 && part.heldZ0 > 0 &&
-         layerBrick(layout, part.heldZ0).low.z > ownedLow - ghostVoxels) {
+         brickOfLayer(layout, part.heldZ0).low.z > ownedLow - ghostVoxels) {
     --part.heldZ0;
   }
   while (ghostVoxels > 0 && part.heldZ1 < layers &&
-         layerBrick(layout, part.heldZ1 - 1).high.z < ownedHigh + ghostVoxels) {
+         brickOfLayer(layout, part.heldZ1 - 1).high.z < ownedHigh + ghostVoxels) {
     ++part.heldZ1;
   }
-  part.voxelZ0 = layerBrick(layout, part.heldZ0).origin.z;
-  const Brick& lastHeld = layerBrick(layout, part.heldZ1 - 1);
+  part.voxelZ0 = brickOfLayer(layout, part.heldZ0).origin.z;
+  const Brick& lastHeld = brickOfLayer(layout, part.heldZ1 - 1);
   const int voxelZ1 = std::min(lastHeld.origin.z + lastHeld.size.z, dims.z);
   for (int r = 0; r < ranks; ++r) {
     read.slabs.push_back(ownVoxels(layout, r * layers / ranks, (r + 1) * layers / ranks, dims.z));

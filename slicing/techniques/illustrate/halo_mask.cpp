@@ -270,17 +270,6 @@ int haloFieldReachVoxels(double radius) {
   return int(std::ceil(radius)) + 2;
 }
 
-namespace {
-// The first voxel z a brick layer owns, or the end of its voxels (cut to the volume), as
-// VolumeTexture::readVoxels counts them.
-int layerVoxelZ(const BrickLayout& layout, int layer, bool high, int dimsZ) {
-  const glm::ivec3 counts = layout.counts();
-  const Brick& brick =
-      layout.bricks()[std::size_t(layer) * std::size_t(counts.x) * std::size_t(counts.y)];
-  return int(std::ceil(std::clamp(high ? brick.high.z : brick.low.z, 0.0, double(dimsZ))));
-}
-}  // namespace
-
 void HaloMaskTexture::updateSlab(const VolumeTexture& volume, glm::dvec3 spacing,
                                  const SlabPart& slab, const std::function<bool(float)>& visible,
                                  const std::function<bool(float, float)>& transparentRange,
