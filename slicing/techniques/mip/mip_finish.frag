@@ -9,6 +9,9 @@
 //   c = colour * (1 - depthWeight) + 2 * depthWeight * (1 - depth), clamped to [0, 1],
 //   colour = c * (1 - sphereWeight) + sphereColour * sphereWeight.
 // With depthWeight = sphereWeight = 0 the result is exactly mip's (x*1 + 0 in float).
+// COLOUR_SPHERE: sphereWeight > 0. Without it the sphere's term, c * 1 + sphereColour * 0, is c
+// exactly (the sphere's colours are finite), and the pass skips the sphere's work (a third of
+// the finish's time at 512²).
 layout(binding = UNIT_AUXILIARY0) uniform sampler2D valueTexture;
 #ifdef TRANSFER_TABLE
 layout(binding = UNIT_TRANSFER_FUNCTION) uniform sampler1D transferTable;
@@ -34,6 +37,7 @@ float shownValue(ivec2 pixel) { return texelFetch(valueTexture, pixel, 0).r; }
 #ifdef DEMIP
 layout(binding = UNIT_RECORD) uniform sampler2D recordTexture;
 uniform float depthWeight;
+#ifdef COLOUR_SPHERE
 uniform float sphereWeight;
 #ifdef SPHERE_MAP_IMAGE
 // An equirectangular map (colour_sphere.h: u = 0.5 + λ/2π, v = 0.5 − φ/π, v = 0 the top row),
@@ -46,6 +50,7 @@ uniform vec3 sphereFrontColour;
 uniform vec3 sphereBackColour;
 #endif
 uniform vec3 volumeCentreEye;
+#endif
 uniform vec2 depthRangeEye;  // eye distances of normalized depth 0 and 1
 
 // Where this pixel's ray enters the volume's box, in normalized depth (0 if in front of it):
@@ -82,6 +87,7 @@ float weightingDepth(float hitDepth) {
 #endif
 }
 
+#ifdef COLOUR_SPHERE
 // The colour sphere toward the hit from the volume's centre (colour_sphere.h).
 vec3 sphereColour(float hitEyeDistance) {
   vec3 fromCentre = eyePointAt(hitEyeDistance) - volumeCentreEye;
@@ -105,6 +111,7 @@ vec3 sphereColour(float hitEyeDistance) {
   return mix(sphereBackColour, sphereFrontColour, 0.5 + 0.5 * facing);
 #endif
 }
+#endif
 #endif
 
 void main() {
@@ -132,7 +139,11 @@ void main() {
   vec4 record = texelFetch(recordTexture, pixel, 0);
   vec3 c = clamp(colour * (1.0 - depthWeight) + 2.0 * depthWeight * (1.0 - weightingDepth(record.g)),
                  0.0, 1.0);
+#ifdef COLOUR_SPHERE
   colour = c * (1.0 - sphereWeight) + sphereColour(record.b) * sphereWeight;
+#else
+  colour = c;
+#endif
 #endif
   result = vec4(colour * opacity, opacity);
 }

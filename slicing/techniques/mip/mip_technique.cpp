@@ -214,12 +214,14 @@ void MipTechnique::endFrame(const FrameContext& frame) {
   const GLuint values = targets_->values.texture();
   const GLuint hitRecord = marching ? targets_->values.texture() : hits_.record().texture();
   std::vector<std::string> defines;
+  const bool withSphere = depthEnhanced_ && options.number("sphere-weight") > 0;
   if (depthEnhanced_) {
     defines.push_back("DEMIP");
     const DepthMode mode = depthMode(options);
     if (mode == DepthMode::Steps) defines.push_back("DEPTH_STEPS");
     if (mode == DepthMode::EntryPlusSteps) defines.push_back("DEPTH_ENTRY_PLUS_STEPS");
-    if (colourSphere_.image) {
+    if (withSphere) defines.push_back("COLOUR_SPHERE");
+    if (withSphere && colourSphere_.image) {
       defines.push_back("SPHERE_MAP_IMAGE");
       uploadSphereMap();
     }
@@ -229,16 +231,18 @@ void MipTechnique::endFrame(const FrameContext& frame) {
   if (depthEnhanced_) {
     const View& view = *frame.view;
     finish.set("depthWeight", float(options.number("depth-weight")));
-    finish.set("sphereWeight", float(options.number("sphere-weight")));
-    if (colourSphere_.image) {
-      finish.set("sphereFromEye", glm::transpose(sphereFrameEye(options, view)));
-      gl::bindTexture(gl::TextureUnit::Auxiliary1, GL_TEXTURE_2D, sphereMapTexture_.id());
-    } else {
-      finish.set("sphereFrontEye", sphereFrontEye(options, view));
-      finish.set("sphereFrontColour", colourSphere_.front);
-      finish.set("sphereBackColour", colourSphere_.back);
+    if (withSphere) {
+      finish.set("sphereWeight", float(options.number("sphere-weight")));
+      if (colourSphere_.image) {
+        finish.set("sphereFromEye", glm::transpose(sphereFrameEye(options, view)));
+        gl::bindTexture(gl::TextureUnit::Auxiliary1, GL_TEXTURE_2D, sphereMapTexture_.id());
+      } else {
+        finish.set("sphereFrontEye", sphereFrontEye(options, view));
+        finish.set("sphereFrontColour", colourSphere_.front);
+        finish.set("sphereBackColour", colourSphere_.back);
+      }
+      finish.set("volumeCentreEye", glm::vec3(view.eyeFromWorld * glm::dvec4(0, 0, 0, 1)));
     }
-    finish.set("volumeCentreEye", glm::vec3(view.eyeFromWorld * glm::dvec4(0, 0, 0, 1)));
     finish.set("depthRangeEye", glm::vec2(float(view.nearEye), float(view.farEye)));
     gl::bindTexture(gl::TextureUnit::Record, GL_TEXTURE_2D, hitRecord);
   }
