@@ -11,6 +11,7 @@
 
 #include "core/image_file.h"
 #include "generators/generators.h"
+#include "frame_compare.h"
 #include "gl_harness.h"
 #include "reference_table.h"
 #include "slicing/renderer.h"
@@ -212,6 +213,30 @@ TEST_F(ColourSphereGl, APngDrawnFromTheRedBlueFormulaLooksLikeRedBlue) {
     // centres 1.4° apart (a few 1e-5).
     EXPECT_LT(d.largest, 1.0 / 255);
   }
+}
+
+TEST_F(ColourSphereGl, AMapFileIsReadOncePerNameNotPerFrame) {
+  const auto uniformMap = [](const std::string& name, glm::dvec3 colour) {
+    return writeMap(name, 8, 4, [colour](double, double) { return colour; });
+  };
+  const std::string first = uniformMap("once_a.png", {1, 0, 0});
+  const Volume volume = generateVolume("blobs:48");
+  Renderer renderer(test::sharedGlContext());
+  renderer.setVolume(volume);
+  const RenderSettings settings = demipSettings({{"sphere-map", first}, {"sphere-weight", 1.0}});
+  const RenderResult before = renderer.render(settings);
+  // A later frame with the same map does not read the file again (nor upload it): blue
+  // written over it under the same name does not show.
+  uniformMap("once_a.png", {0, 0, 1});
+  const RenderResult again = renderer.render(settings);
+  EXPECT_EQ(test::differingPixels(before.frame, again.frame), 0);
+  // Another name is read.
+  const std::string second = uniformMap("once_b.png", {0, 0, 1});
+  const RenderResult other =
+      renderer.render(demipSettings({{"sphere-map", second}, {"sphere-weight", 1.0}}));
+  const ShownDifference d = compareShown(before.frame.color, other.frame.color);
+  EXPECT_GT(d.shown, 1000);
+  EXPECT_GT(d.largest, 0.99) << "red, then blue";
 }
 
 TEST_F(ColourSphereGl, TheLegendDrawsThePngMapAsUsed) {

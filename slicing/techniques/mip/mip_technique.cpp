@@ -51,7 +51,13 @@ ResolvedOptions resolveMipFamily(const OptionReader& options) {
 ResolvedOptions MipTechnique::resolve(const FrameContext& frame) {
   ResolvedOptions resolved = resolveMipFamily(*frame.options);
   if (!depthEnhanced_) return resolved;
-  colourSphere_ = colourSphere(frame.options->text("sphere-map"));
+  // A map file is read once per name, not once per frame (vsil animate, the bench).
+  const std::string sphereMap = frame.options->text("sphere-map");
+  if (!colourSphereRead_ || colourSphere_.name != sphereMap) {
+    colourSphere_ = colourSphere(sphereMap);
+    colourSphereRead_ = true;
+    sphereMapUploaded_ = false;
+  }
   if (const auto& image = colourSphere_.image) {
     resolved.details["sphere_map_file"] = {{"path", colourSphere_.name},
                                            {"size", {image->width, image->height}}};
@@ -223,7 +229,8 @@ void MipTechnique::endFrame(const FrameContext& frame) {
     if (withSphere) defines.push_back("COLOUR_SPHERE");
     if (withSphere && colourSphere_.image) {
       defines.push_back("SPHERE_MAP_IMAGE");
-      uploadSphereMap();
+      if (!sphereMapUploaded_) uploadSphereMap();
+      sphereMapUploaded_ = true;
     }
   }
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
