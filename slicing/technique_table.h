@@ -49,9 +49,18 @@ struct TechniqueInfo {
   // vsil render`, core/composition.h, where each rule is proved against the sequential fold).
   // Set in the table (technique_table.cpp techniqueTable).
   Composition composition = Composition::None;
+  // A slab's frame runs the fast pipeline whatever --pipeline says (the silhouette: its tile
+  // march needs one texture and its paper pipeline's screen passes would clear pixels another
+  // process owns; silhouette_technique.cpp beginFrame).
+  bool slabRunsFastPipeline = false;
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }
+  // Whether a slab's frame (rendered across MPI ranks) with the `given` options needs the volume
+  // in one texture, which a slab is not, so that it refuses: needsOneTexture with the options the
+  // slab's frame runs with (--pipeline fast where slabRunsFastPipeline). The CLI asks before
+  // reading, the renderer again per frame.
+  bool needsOneTextureInSlab(OptionValues given) const;
 };
 
 const std::vector<TechniqueInfo>& techniqueTable();

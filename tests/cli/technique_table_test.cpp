@@ -76,6 +76,23 @@ TEST(TechniqueTable, DefaultTilesGiveWayToFastOverBricks) {
   EXPECT_FALSE(optionsForBricks(findTechnique("mip"), {}, 2).contains("pipeline"));
 }
 
+// Across MPI ranks (a slab is never one texture): the silhouette's slab runs the fast pipeline
+// whatever --pipeline says, so tiles asked for by name is no reason to refuse there; the other
+// techniques' reasons stay (the CLI and the renderer both ask needsOneTextureInSlab).
+TEST(TechniqueTable, ASlabNeedsOneTextureOnlyWhereItsFrameWould) {
+  const OptionValues tiles{{"pipeline", std::string("tiles")}};
+  const OptionValues exactHalo{{"effects", std::string("halo")},
+                               {"halo-mode", std::string("exact")}};
+  EXPECT_FALSE(findTechnique("silhouette").needsOneTextureInSlab(tiles));
+  EXPECT_TRUE(findTechnique("rightangle").needsOneTextureInSlab(tiles));
+  EXPECT_FALSE(findTechnique("rightangle").needsOneTextureInSlab({}));
+  EXPECT_TRUE(findTechnique("illustrate").needsOneTextureInSlab(exactHalo));
+  EXPECT_FALSE(findTechnique("illustrate").needsOneTextureInSlab({}));
+  for (const auto& technique : techniqueTable()) {
+    EXPECT_FALSE(technique.needsOneTextureInSlab({})) << technique.name << " at its defaults";
+  }
+}
+
 TEST(TechniqueTable, RenderHelpListsEveryTechniqueAndOption) {
   const auto help = test::runVsil("render --help");
   ASSERT_EQ(help.exitCode, 0) << help.err;
