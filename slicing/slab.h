@@ -19,10 +19,13 @@
 #include "core/brick_layout.h"
 #include "core/camera.h"
 #include "core/composition.h"
+#include "core/options.h"
 #include "core/volume.h"
 #include "slicing/gl_objects.h"
 
 namespace vsil {
+
+struct TechniqueInfo;
 
 // One pixel of a slab's silhouette run (Composition::PairReduce), as it travels between the
 // processes: composition::NkRun with plain fields, plus what the run's samples cannot say
@@ -102,15 +105,19 @@ int rayZDirection(const View& view, glm::dvec2 pixel);
 // direction is affine in the pixel, so the four corner pixels decide.
 std::optional<int> frameZDirection(const View& view);
 
-// How far, in voxels along z, the samples of one slice that a technique reads for a pixel reach
-// beyond the pixel's own sample, for the frame's view (0: it reads only its own samples). A
-// process holds that many voxels of ghost bricks beyond the slab it owns (mpi/slab_render.h
-// readSlab), so that it draws those samples itself. silhouette: the contour test reads the 8
-// neighbours' footprints on the slice (one pixel's footprint in voxels, taken at the slice
-// farthest from the eye, where a perspective pixel is widest), plus one voxel for trilinear
-// filtering. The environment variable VSIL_SLAB_GHOST_VOXELS, when set, replaces the width
-// (for tests that show what too thin a ghost layer breaks).
-int techniqueGhostVoxels(const std::string& technique, const View& view, glm::ivec3 dims);
+// How far apart, in voxels along z, the points of one slice plane for neighbouring pixels
+// (diagonal ones too) lie, at the slice farthest from the eye, where a perspective pixel is
+// widest: one pixel's footprint along z.
+double pixelFootprintVoxelsZ(const View& view, glm::ivec3 dims);
+
+// The ghost width, in voxels along z, of a slab of `technique`'s frames with the `given` options
+// and the frame's view: TechniqueInfo::slabGhostVoxels (0 where unset). A process holds that
+// many voxels of ghost bricks beyond the slab it owns (mpi/slab_render.h readSlab), so that it
+// draws or reads those samples itself. The test hook VSIL_SLAB_GHOST_VOXELS (an environment
+// variable, read here only), when set, replaces the width (for tests that show what too thin a
+// ghost layer breaks: tests/mpi/mpi_silhouette_test.sh).
+int techniqueGhostVoxels(const TechniqueInfo& technique, const OptionValues& given,
+                         const View& view, glm::ivec3 dims);
 
 struct SlabPart {
   glm::ivec3 dims{0};            // the whole volume's

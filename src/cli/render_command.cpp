@@ -114,7 +114,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
     const Volume probe = mpi::probeSlab(flags.input, load);
     const glm::ivec3 dims = mpi::fileDims(probe);
     const int ghost = techniqueGhostVoxels(
-        request.settings.technique,
+        technique, request.settings.options,
         makeView(request.settings.camera, dims, probe.spacing, request.settings.size), dims);
     slab.emplace(mpi::readSlab(flags.input, load, load.limits.maxTextureBytes, ghost));
     mpiMeta["ranks"] = mpi::size();

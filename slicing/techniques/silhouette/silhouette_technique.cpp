@@ -87,6 +87,11 @@ TechniqueInfo silhouetteTechniqueInfo() {
                      /*checkValues=*/checkToneFillValues,
                      /*needsOneTexture=*/tilesNeedOneTexture};
   info.slabRunsFastPipeline = true;  // beginFrame
+  // The contour test reads the 8 neighbours' footprints on the slice (one pixel's footprint
+  // along z), plus one voxel for trilinear filtering.
+  info.slabGhostVoxels = [](const OptionReader&, const View& view, glm::ivec3 dims) {
+    return int(std::ceil(pixelFootprintVoxelsZ(view, dims))) + 1;
+  };
   return info;
 }
 
