@@ -22,6 +22,10 @@ int layerVoxelZ(const BrickLayout& layout, int layer, bool high, int dimsZ) {
   return int(std::ceil(std::clamp(high ? brick.high.z : brick.low.z, 0.0, double(dimsZ))));
 }
 
+std::array<int, 2> layersVoxels(const BrickLayout& layout, int z0, int z1, int dimsZ) {
+  return {layerVoxelZ(layout, z0, false, dimsZ), layerVoxelZ(layout, z1 - 1, true, dimsZ)};
+}
+
 composition::NkRun runOf(const PairPixel& pixel) {
   composition::NkRun run;
   if (pixel.first >= 0) run.first = PixelState(pixel.first);
@@ -133,6 +137,10 @@ double SlabPart::ownedLowZ() const {
 
 double SlabPart::ownedHighZ() const {
   return brickOfLayer(layout, ownedZ1 - 1).high.z;
+}
+
+std::array<int, 2> SlabPart::ownedVoxels() const {
+  return layersVoxels(layout, ownedZ0, ownedZ1, dims.z);
 }
 
 int SlabPart::ghostVoxels() const {

@@ -10,6 +10,7 @@
 // Bricks sample exactly alike in any texture, so a process's samples are the single process's
 // samples. Slab borders are brick planes z = b − 0.5; a sample belongs to the slab its point's z
 // lies in (the first and last slab reach to ∓infinity, as bricks do).
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -94,6 +95,9 @@ const Brick& brickOfLayer(const BrickLayout& layout, int z);
 // The first voxel z that layer `layer` owns (high: the end of its voxels), cut to the volume,
 // as VolumeTexture::readVoxels counts them.
 int layerVoxelZ(const BrickLayout& layout, int layer, bool high, int dimsZ);
+// The voxels z that layers [z0, z1) own, [first, end), cut to the volume (layerVoxelZ of each
+// end).
+std::array<int, 2> layersVoxels(const BrickLayout& layout, int z0, int z1, int dimsZ);
 
 // Slabs along z meet a ray in z order: which way the ray through `pixel` (pixel coordinates, a
 // centre at +0.5) runs along the volume's z, +1 towards higher z, -1 towards lower, 0 along a
@@ -138,9 +142,12 @@ struct SlabPart {
     const int z = layout.bricks()[brick].index.z;
     return z >= heldZ0 && z < heldZ1;
   }
-  // The sample positions (voxel z) the owned bricks own: [low, high).
+  // The sample positions (voxel z) the owned bricks own: [low, high) (±1e30 at the volume's
+  // ends, as bricks have them).
   double ownedLowZ() const;
   double ownedHighZ() const;
+  // The voxels z they own, [first, end), cut to the volume (layersVoxels).
+  std::array<int, 2> ownedVoxels() const;
   // Voxel z the ghost layers reach beyond the owned bricks on the thinner side (0 without).
   int ghostVoxels() const;
 };
