@@ -147,8 +147,7 @@ GradientTexture::GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing
   const int read1 = layerVoxelZ(slab.layout, slab.heldZ1 - 1, true, dims.z);
   const int valid0 = read0 == 0 ? 0 : read0 + 1;
   const int valid1 = read1 == dims.z ? dims.z : read1 - 1;
-  const int own0 = layerVoxelZ(slab.layout, slab.ownedZ0, false, dims.z);
-  const int own1 = layerVoxelZ(slab.layout, slab.ownedZ1 - 1, true, dims.z);
+  const auto [own0, own1] = slab.ownedVoxels();
   // Every texel of an owned brick (its apron included) needs a whole-volume gradient.
   for (std::size_t b = 0; b < slab.layout.bricks().size(); ++b) {
     const Brick& brick = slab.layout.bricks()[b];

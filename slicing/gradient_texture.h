@@ -62,6 +62,11 @@ bool gradientsCanHoldValues(GLenum volumeInternalFormat);
 class VolumeTexture;
 struct SlabPart;
 
+// The ghost width (TechniqueInfo::slabGhostVoxels) a slab's gradients need: the central
+// differences at every texel of an owned brick (its apron voxel, then the neighbour), two
+// voxels (the slab constructor below checks).
+inline constexpr int kGradientGhostVoxels = 2;
+
 // One RGBA16F texture per brick of the volume texture, with its layout (core/brick_layout.h).
 class GradientTexture {
  public:

@@ -206,10 +206,7 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
   const OptionReader options(info.options, given, derived);
   // Bricks the frame cannot follow: the volume in one texture when it fits (else the
   // technique refuses). It stays so for later frames (the same bytes either way).
-  // (The silhouette's pair reduce runs a slab's frame in the fast pipeline whatever --pipeline
-  // says: silhouette_technique.cpp beginFrame.)
-  if (slab && info.composition != Composition::PairReduce && info.needsOneTexture &&
-      info.needsOneTexture(options)) {
+  if (slab && info.needsOneTextureInSlab(given)) {
     throw UnavailableError("--technique " + info.name +
                            ": these options need the volume in one texture, which a slab "
                            "rendered across MPI ranks is not");

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "slicing/techniques/illustrate/halo_mask.h"
+#include "slicing/technique_table.h"
 
 namespace vsil {
 
@@ -20,6 +20,10 @@ const Brick& brickOfLayer(const BrickLayout& layout, int z) {
 int layerVoxelZ(const BrickLayout& layout, int layer, bool high, int dimsZ) {
   const Brick& brick = brickOfLayer(layout, layer);
   return int(std::ceil(std::clamp(high ? brick.high.z : brick.low.z, 0.0, double(dimsZ))));
+}
+
+std::array<int, 2> layersVoxels(const BrickLayout& layout, int z0, int z1, int dimsZ) {
+  return {layerVoxelZ(layout, z0, false, dimsZ), layerVoxelZ(layout, z1 - 1, true, dimsZ)};
 }
 
 composition::NkRun runOf(const PairPixel& pixel) {
@@ -69,16 +73,23 @@ PairPixel combineInZOrder(const PairPixel& lowerZ, const PairPixel& higherZ) {
   return lowerZ.zDirection < 0 ? inRayOrder(higherZ, lowerZ) : inRayOrder(lowerZ, higherZ);
 }
 
-int techniqueGhostVoxels(const std::string& technique, const View& view, glm::ivec3 dims) {
-  if (const char* forced = std::getenv("VSIL_SLAB_GHOST_VOXELS")) return std::atoi(forced);
-  // semantic: the gradients' central differences at every texel of an owned brick (its apron
-  // voxel, then the neighbour): two voxels (GradientTexture's slab constructor checks).
-  if (technique == "semantic") return 2;
-  // illustrate: the halo field at those texels reads up to haloFieldReachVoxels(k_hr) further
-  // (halo_mask.h; k_hr <= 32, whatever the style sets), plus the brick's apron and padding
-  // (HaloMaskTexture checks, refusing in one line where a layer falls short).
-  if (technique == "illustrate") return haloFieldReachVoxels(32) + 4;
-  if (technique != "silhouette") return 0;
+namespace {
+// The test hook (slab.h techniqueGhostVoxels): the width VSIL_SLAB_GHOST_VOXELS forces, if set.
+std::optional<int> ghostVoxelsForcedByTest() {
+  const char* forced = std::getenv("VSIL_SLAB_GHOST_VOXELS");
+  if (forced == nullptr) return std::nullopt;
+  return std::atoi(forced);
+}
+}  // namespace
+
+int techniqueGhostVoxels(const TechniqueInfo& technique, const OptionValues& given,
+                         const View& view, glm::ivec3 dims) {
+  if (const std::optional<int> forced = ghostVoxelsForcedByTest()) return *forced;
+  if (!technique.slabGhostVoxels) return 0;
+  return technique.slabGhostVoxels(OptionReader(technique.options, given, {}), view, dims);
+}
+
+double pixelFootprintVoxelsZ(const View& view, glm::ivec3 dims) {
   // Points of one slice plane at eye distance d for neighbouring pixels differ by d times a
   // fixed vector (perspective; orthographic: by a fixed vector): the farthest box corner
   // bounds the reach.
@@ -97,7 +108,7 @@ int techniqueGhostVoxels(const std::string& technique, const View& view, glm::iv
   for (const glm::dvec2 step : {glm::dvec2(1, 1), glm::dvec2(1, -1)}) {
     reach = std::max(reach, std::abs(voxelZ(centre + step) - voxelZ(centre)));
   }
-  return int(std::ceil(reach)) + 1;
+  return reach;
 }
 
 int rayZDirection(const View& view, glm::dvec2 pixel) {
@@ -126,6 +137,10 @@ double SlabPart::ownedLowZ() const {
 
 double SlabPart::ownedHighZ() const {
   return brickOfLayer(layout, ownedZ1 - 1).high.z;
+}
+
+std::array<int, 2> SlabPart::ownedVoxels() const {
+  return layersVoxels(layout, ownedZ0, ownedZ1, dims.z);
 }
 
 int SlabPart::ghostVoxels() const {

@@ -10,6 +10,7 @@
 // Bricks sample exactly alike in any texture, so a process's samples are the single process's
 // samples. Slab borders are brick planes z = b − 0.5; a sample belongs to the slab its point's z
 // lies in (the first and last slab reach to ∓infinity, as bricks do).
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -19,10 +20,13 @@
 #include "core/brick_layout.h"
 #include "core/camera.h"
 #include "core/composition.h"
+#include "core/options.h"
 #include "core/volume.h"
 #include "slicing/gl_objects.h"
 
 namespace vsil {
+
+struct TechniqueInfo;
 
 // One pixel of a slab's silhouette run (Composition::PairReduce), as it travels between the
 // processes: composition::NkRun with plain fields, plus what the run's samples cannot say
@@ -91,6 +95,9 @@ const Brick& brickOfLayer(const BrickLayout& layout, int z);
 // The first voxel z that layer `layer` owns (high: the end of its voxels), cut to the volume,
 // as VolumeTexture::readVoxels counts them.
 int layerVoxelZ(const BrickLayout& layout, int layer, bool high, int dimsZ);
+// The voxels z that layers [z0, z1) own, [first, end), cut to the volume (layerVoxelZ of each
+// end).
+std::array<int, 2> layersVoxels(const BrickLayout& layout, int z0, int z1, int dimsZ);
 
 // Slabs along z meet a ray in z order: which way the ray through `pixel` (pixel coordinates, a
 // centre at +0.5) runs along the volume's z, +1 towards higher z, -1 towards lower, 0 along a
@@ -102,15 +109,19 @@ int rayZDirection(const View& view, glm::dvec2 pixel);
 // direction is affine in the pixel, so the four corner pixels decide.
 std::optional<int> frameZDirection(const View& view);
 
-// How far, in voxels along z, the samples of one slice that a technique reads for a pixel reach
-// beyond the pixel's own sample, for the frame's view (0: it reads only its own samples). A
-// process holds that many voxels of ghost bricks beyond the slab it owns (mpi/slab_render.h
-// readSlab), so that it draws those samples itself. silhouette: the contour test reads the 8
-// neighbours' footprints on the slice (one pixel's footprint in voxels, taken at the slice
-// farthest from the eye, where a perspective pixel is widest), plus one voxel for trilinear
-// filtering. The environment variable VSIL_SLAB_GHOST_VOXELS, when set, replaces the width
-// (for tests that show what too thin a ghost layer breaks).
-int techniqueGhostVoxels(const std::string& technique, const View& view, glm::ivec3 dims);
+// How far apart, in voxels along z, the points of one slice plane for neighbouring pixels
+// (diagonal ones too) lie, at the slice farthest from the eye, where a perspective pixel is
+// widest: one pixel's footprint along z.
+double pixelFootprintVoxelsZ(const View& view, glm::ivec3 dims);
+
+// The ghost width, in voxels along z, of a slab of `technique`'s frames with the `given` options
+// and the frame's view: TechniqueInfo::slabGhostVoxels (0 where unset). A process holds that
+// many voxels of ghost bricks beyond the slab it owns (mpi/slab_render.h readSlab), so that it
+// draws or reads those samples itself. The test hook VSIL_SLAB_GHOST_VOXELS (an environment
+// variable, read here only), when set, replaces the width (for tests that show what too thin a
+// ghost layer breaks: tests/mpi/mpi_silhouette_test.sh).
+int techniqueGhostVoxels(const TechniqueInfo& technique, const OptionValues& given,
+                         const View& view, glm::ivec3 dims);
 
 struct SlabPart {
   glm::ivec3 dims{0};            // the whole volume's
@@ -131,9 +142,12 @@ struct SlabPart {
     const int z = layout.bricks()[brick].index.z;
     return z >= heldZ0 && z < heldZ1;
   }
-  // The sample positions (voxel z) the owned bricks own: [low, high).
+  // The sample positions (voxel z) the owned bricks own: [low, high) (±1e30 at the volume's
+  // ends, as bricks have them).
   double ownedLowZ() const;
   double ownedHighZ() const;
+  // The voxels z they own, [first, end), cut to the volume (layersVoxels).
+  std::array<int, 2> ownedVoxels() const;
   // Voxel z the ghost layers reach beyond the owned bricks on the thinner side (0 without).
   int ghostVoxels() const;
 };

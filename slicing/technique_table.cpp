@@ -134,6 +134,12 @@ bool needsOneTexture(const std::string& technique, const OptionValues& given) {
   return info.needsOneTexture && info.needsOneTexture(OptionReader(info.options, given, {}));
 }
 
+bool TechniqueInfo::needsOneTextureInSlab(OptionValues given) const {
+  if (!needsOneTexture) return false;
+  if (slabRunsFastPipeline) given["pipeline"] = std::string(pipelineName(SlicingPipeline::Fast));
+  return needsOneTexture(OptionReader(options, given, {}));
+}
+
 SlicingPipeline pipelineOf(const OptionReader& options) {
   const std::string& name = options.text("pipeline");
   if (name == "paper") return SlicingPipeline::Paper;

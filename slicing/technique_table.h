@@ -10,12 +10,15 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "core/composition.h"
 #include "core/options.h"
 
 namespace vsil {
 
 class Technique;
+struct View;
 
 // What a technique's frames hold (core/frame.h FrameBuffers).
 struct FrameOutputs {
@@ -49,9 +52,25 @@ struct TechniqueInfo {
   // vsil render`, core/composition.h, where each rule is proved against the sequential fold).
   // Set in the table (technique_table.cpp techniqueTable).
   Composition composition = Composition::None;
+  // A slab's frame runs the fast pipeline whatever --pipeline says (the silhouette: its tile
+  // march needs one texture and its paper pipeline's screen passes would clear pixels another
+  // process owns; silhouette_technique.cpp beginFrame).
+  bool slabRunsFastPipeline = false;
+  // How far, in voxels along z, what a frame with these options reads beside its samples
+  // reaches beyond them, for the frame's view of a volume of `dims` voxels: a slab holds that
+  // many voxels of ghost bricks beyond those it owns (slab.h techniqueGhostVoxels,
+  // mpi/slab_render.h readSlab). Unset: 0 (it reads only its own samples, the bricks' overlap
+  // covering the filter).
+  std::function<int(const OptionReader& options, const View& view, glm::ivec3 dims)>
+      slabGhostVoxels = nullptr;
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }
+  // Whether a slab's frame (rendered across MPI ranks) with the `given` options needs the volume
+  // in one texture, which a slab is not, so that it refuses: needsOneTexture with the options the
+  // slab's frame runs with (--pipeline fast where slabRunsFastPipeline). The CLI asks before
+  // reading, the renderer again per frame.
+  bool needsOneTextureInSlab(OptionValues given) const;
 };
 
 const std::vector<TechniqueInfo>& techniqueTable();

@@ -32,9 +32,9 @@ constexpr int kDefaultSize = 512;  // vsil render's default --size
 // The stages `vsil render --meta-out` times (render_command.cpp, render_job.cpp), in the order
 // they run; "rest" is the total less their sum (checks, metadata), "exit" the process's time
 // after the metadata was written (freeing, unloading) and, in wall time, the spawn.
-const std::vector<std::string> kStages = {"startup", "context",  "read",     "upload",
-                                          "defaults", "programs", "render",   "readback",
-                                          "postfx",  "write",    "rest",     "exit"};
+const std::vector<std::string> kStages = {"startup",  "context",  "read",   "upload",
+                                          "defaults", "programs", "render", "readback",
+                                          "postfx",   "write",    "rest",   "exit"};
 
 // Mesa's on-disk shader cache as the environment has it, and turned off.
 struct CacheSetting {
@@ -74,8 +74,8 @@ std::optional<RunTimes> runOnce(const fs::path& file, int size, const CacheSetti
   fs::remove(out);
   fs::remove(meta);
   const std::string sizeText = std::to_string(size) + "x" + std::to_string(size);
-  std::vector<std::string> args = {"render", file.string(), "--out", out.string(), "--meta-out",
-                                   meta.string()};
+  std::vector<std::string> args = {"render",     file.string(), "--out",
+                                   out.string(), "--meta-out",  meta.string()};
   if (size != kDefaultSize) args.insert(args.end(), {"--size", sizeText});
   args.insert(args.end(), {"--gl", gl::backendName(gl.backend)});
   if (gl.eglDevice) args.insert(args.end(), {"--gl-device", std::to_string(*gl.eglDevice)});
@@ -138,8 +138,11 @@ std::string checkText(const StartupCase& c) {
 }
 
 nlohmann::json jsonRow(const StartupCase& c) {
-  nlohmann::json row = {{"table", "startup"}, {"dataset", c.dataset}, {"width", c.size},
-                        {"height", c.size},   {"shader_cache", c.cache}};
+  nlohmann::json row = {{"table", "startup"},
+                        {"dataset", c.dataset},
+                        {"width", c.size},
+                        {"height", c.size},
+                        {"shader_cache", c.cache}};
   if (!c.measured()) {
     row["missing"] = c.missing;
     return row;
@@ -270,8 +273,8 @@ TableResult runStartupTable(const BenchOptions& options, Progress& progress) {
       "cpu = the process's CPU time (every thread, getrusage and CLOCK_PROCESS_CPUTIME_ID), which "
       "load from other processes does not inflate; wall includes waiting for a core; shader "
       "cache off = MESA_SHADER_CACHE_DISABLE=true; medians over " +
-      std::to_string(options.frames) + " runs per setting after " +
-      std::to_string(options.warmup) + " warm-up runs, the settings taking turns");
+      std::to_string(options.frames) + " runs per setting after " + std::to_string(options.warmup) +
+      " warm-up runs, the settings taking turns");
   table.text = text.plain();
   table.markdown = text.markdown();
   return table;

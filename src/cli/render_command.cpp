@@ -73,13 +73,12 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   // that need the volume in one texture (a slab is not), refuse alike on every rank before
   // reading anything.
   const TechniqueInfo& technique = findTechnique(request.settings.technique);
-  // The silhouette's slabs run the fast pipeline whatever --pipeline says (the same bytes) and
-  // reduce their pairs on rank 0, which holds no volume to tone-shade the hits with; relayed
-  // techniques tone-shade slab by slab (technique.h relayScreenPass).
-  const bool pairReduced = technique.composition == Composition::PairReduce;
   try {
     requireSplittable(technique, mpi::size());
-    if (mpi::size() > 1 && pairReduced && request.postfx.fill == FillMode::Tone) {
+    // The silhouette's slabs reduce their pairs on rank 0, which holds no volume to tone-shade
+    // the hits with; relayed techniques tone-shade slab by slab (technique.h relayScreenPass).
+    if (mpi::size() > 1 && technique.composition == Composition::PairReduce &&
+        request.postfx.fill == FillMode::Tone) {
       throw UnavailableError(
           "--fill tone: not across MPI ranks yet (it shades every hit with the volume there); "
           "run one rank");
@@ -87,8 +86,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   } catch (const UnavailableError& e) {
     throw mpi::EveryRankError(e.what());
   }
-  if (mpi::size() > 1 && !pairReduced &&
-      needsOneTexture(request.settings.technique, request.settings.options)) {
+  if (mpi::size() > 1 && technique.needsOneTextureInSlab(request.settings.options)) {
     throw mpi::EveryRankError("--technique " + request.settings.technique +
                               ": these options need the volume in one texture, which a slab "
                               "rendered across MPI ranks is not; run one rank");
@@ -116,7 +114,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
     const Volume probe = mpi::probeSlab(flags.input, load);
     const glm::ivec3 dims = mpi::fileDims(probe);
     const int ghost = techniqueGhostVoxels(
-        request.settings.technique,
+        technique, request.settings.options,
         makeView(request.settings.camera, dims, probe.spacing, request.settings.size), dims);
     slab.emplace(mpi::readSlab(flags.input, load, load.limits.maxTextureBytes, ghost));
     mpiMeta["ranks"] = mpi::size();

@@ -198,13 +198,6 @@ std::size_t layoutTexelBytes(SampleType type) {
   return type == SampleType::UInt8 || type == SampleType::Int8 ? 2 : 4;
 }
 
-// The layer's own voxels along z: [low + 0.5, high + 0.5) cut to the volume.
-std::array<int, 2> ownVoxels(const BrickLayout& layout, int z0, int z1, int dimsZ) {
-  const double low = std::max(brickOfLayer(layout, z0).low.z, -0.5);
-  const double high = std::min(brickOfLayer(layout, z1 - 1).high.z, dimsZ - 0.5);
-  return {int(low + 0.5), int(high + 0.5)};
-}
-
 }  // namespace
 
 std::vector<double> gatherOnRoot(double value) {
@@ -266,8 +259,8 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   // owned samples (their textures carry the filter's apron themselves).
   part.heldZ0 = part.ownedZ0;
   part.heldZ1 = part.ownedZ1;
-  const double ownedLow = brickOfLayer(layout, part.ownedZ0).low.z;
-  const double ownedHigh = brickOfLayer(layout, part.ownedZ1 - 1).high.z;
+  const double ownedLow = part.ownedLowZ();
+  const double ownedHigh = part.ownedHighZ();
   while (ghostVoxels > 0 && part.heldZ0 > 0 &&
          brickOfLayer(layout, part.heldZ0).low.z > ownedLow - ghostVoxels) {
     --part.heldZ0;
@@ -280,7 +273,8 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   const Brick& lastHeld = brickOfLayer(layout, part.heldZ1 - 1);
   const int voxelZ1 = std::min(lastHeld.origin.z + lastHeld.size.z, dims.z);
   for (int r = 0; r < ranks; ++r) {
-    read.slabs.push_back(ownVoxels(layout, r * layers / ranks, (r + 1) * layers / ranks, dims.z));
+    read.slabs.push_back(
+        layersVoxels(layout, r * layers / ranks, (r + 1) * layers / ranks, dims.z));
   }
 
   LoadOptions slabLoad = load;
@@ -297,7 +291,7 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   check(MPI_Allreduce(MPI_IN_PLACE, &low, 1, MPI_FLOAT, MPI_MIN, MPI_COMM_WORLD), "MPI_Allreduce");
   check(MPI_Allreduce(MPI_IN_PLACE, &high, 1, MPI_FLOAT, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
   part.valueRange = {low, high};
-  const std::array<int, 2> own = read.slabs[std::size_t(me)];
+  const std::array<int, 2> own = part.ownedVoxels();
   LevelCounts counts =
       levelCounts(read.volume, part.valueRange, own[0] - part.voxelZ0, own[1] - part.voxelZ0);
   check(MPI_Allreduce(MPI_IN_PLACE, counts.data(), int(counts.size()), MPI_UINT64_T, MPI_SUM,

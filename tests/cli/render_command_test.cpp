@@ -102,8 +102,8 @@ TEST(RenderCommand, WritesImageStateDepthAndMetadata) {
 // total; the default iso value's histogram is computed only when --iso is not given.
 TEST(RenderCommand, MetadataTimesEveryStageAndSkipsTheHistogramWhenIsoIsGiven) {
   const auto dir = test::scratchDir();
-  const char* stages[] = {"startup", "context",  "read",     "upload", "defaults",
-                          "programs", "render", "readback", "postfx", "write"};
+  const char* stages[] = {"startup",  "context", "read",     "upload", "defaults",
+                          "programs", "render",  "readback", "postfx", "write"};
   for (const std::string iso : {"", " --iso 0.5"}) {
     const auto meta = dir / "meta.json";
     const auto result = test::runVsil("render gen:blobs:96 --size 64x64" + iso + " --out " +

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/camera.h"
+#include "slicing/slab.h"
 #include "slicing/technique_table.h"
 #include "test_support.h"
 
@@ -74,6 +76,55 @@ TEST(TechniqueTable, DefaultTilesGiveWayToFastOverBricks) {
   EXPECT_TRUE(needsOneTexture("silhouette", tiles));
   EXPECT_FALSE(optionsForBricks(findTechnique("rightangle"), {}, 2).contains("pipeline"));
   EXPECT_FALSE(optionsForBricks(findTechnique("mip"), {}, 2).contains("pipeline"));
+}
+
+// Across MPI ranks (a slab is never one texture): the silhouette's slab runs the fast pipeline
+// whatever --pipeline says, so tiles asked for by name is no reason to refuse there; the other
+// techniques' reasons stay (the CLI and the renderer both ask needsOneTextureInSlab).
+TEST(TechniqueTable, ASlabNeedsOneTextureOnlyWhereItsFrameWould) {
+  const OptionValues tiles{{"pipeline", std::string("tiles")}};
+  const OptionValues exactHalo{{"effects", std::string("halo")},
+                               {"halo-mode", std::string("exact")}};
+  EXPECT_FALSE(findTechnique("silhouette").needsOneTextureInSlab(tiles));
+  EXPECT_TRUE(findTechnique("rightangle").needsOneTextureInSlab(tiles));
+  EXPECT_FALSE(findTechnique("rightangle").needsOneTextureInSlab({}));
+  EXPECT_TRUE(findTechnique("illustrate").needsOneTextureInSlab(exactHalo));
+  EXPECT_FALSE(findTechnique("illustrate").needsOneTextureInSlab({}));
+  for (const auto& technique : techniqueTable()) {
+    EXPECT_FALSE(technique.needsOneTextureInSlab({})) << technique.name << " at its defaults";
+  }
+}
+
+// A slab's ghost width (slab.h techniqueGhostVoxels) is the table's: what each technique reads
+// beside its samples. illustrate's halo field reads ceil(k_hr) + 2 voxels beyond an owned
+// brick's texels (halo_mask.h haloFieldReachVoxels), plus 4; without halos, the gradients alone
+// (2, as semantic). silhouette's grows as a pixel spans more voxels (zoomed out).
+TEST(TechniqueTable, ASlabsGhostWidthFollowsWhatTheTechniqueReads) {
+  const glm::ivec3 dims(64);
+  const auto viewAt = [&](double zoom) {
+    return makeView(CameraSpec{.azimuthDeg = 37, .elevationDeg = -23, .zoom = zoom}, dims,
+                    glm::dvec3(1.0), {96, 96});
+  };
+  const View view = viewAt(1.6);
+  const auto ghost = [&](const std::string& technique, const OptionValues& given = {}) {
+    return techniqueGhostVoxels(findTechnique(technique), given, view, dims);
+  };
+  for (const char* name : {"mip", "demip", "lmip", "rightangle", "firsthit"}) {
+    EXPECT_EQ(ghost(name), 0) << name;
+  }
+  EXPECT_EQ(ghost("semantic"), 2);
+  EXPECT_EQ(ghost("illustrate"), 2);
+  const auto halos = [](const std::string& params) {
+    return OptionValues{{"effects", std::string("halo")},
+                        {"param", std::vector<std::string>{params}}};
+  };
+  EXPECT_EQ(ghost("illustrate", {{"effects", std::string("halo")}}), 10);  // k_hr 4
+  EXPECT_EQ(ghost("illustrate", halos("k_hr=6.5")), 13);
+  EXPECT_EQ(ghost("illustrate", halos("k_hr=32")), 38);  // the largest radius
+  const int near = ghost("silhouette");
+  const int far = techniqueGhostVoxels(findTechnique("silhouette"), {}, viewAt(0.3), dims);
+  EXPECT_GE(near, 2);
+  EXPECT_GT(far, near);
 }
 
 TEST(TechniqueTable, RenderHelpListsEveryTechniqueAndOption) {

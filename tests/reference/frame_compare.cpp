@@ -2,8 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <numbers>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/illustration.h"
+#include "gl_harness.h"
 
 namespace vsil::test {
 
@@ -138,6 +146,26 @@ ToneSides toneSides(const cv::Mat3f& colours, glm::dvec3 light) {
     }
   }
   return sides;
+}
+
+void expectIvoryToneWarmWhereLitCoolWhereNotAndNotClipped(const Volume& volume,
+                                                          RenderSettings settings) {
+  settings.options["light"] = std::vector<std::string>{"0,90"};  // straight above
+  const RenderResult above = renderOnce(volume, settings);
+  const ToneSides sides = toneSides(objectColours(above.frame), {0, 1, 0});
+  EXPECT_GT(sides.lit, 300);
+  EXPECT_EQ(sides.litWarm, sides.lit) << "R > B wherever n·L > 0.25";
+  EXPECT_GT(sides.unlit, 300);
+  EXPECT_EQ(sides.unlitCool, sides.unlit) << "B > R wherever n·L < -0.25";
+  // The default light (0,60), as the presets have it: its highlight faces the viewer.
+  settings.options.erase("light");
+  const RenderResult lit = renderOnce(volume, settings);
+  const ToneSides clip = toneSides(objectColours(lit.frame), Light{}.directionEye());
+  std::cout << "[ info ] " << clip.atWhite << " of " << clip.object
+            << " pixels with a channel at 255, brightest " << clip.brightest << "\n";
+  EXPECT_GT(clip.object, 1000);
+  EXPECT_LT(clip.atWhite, clip.object / 100) << "under 1 % at 255";
+  EXPECT_GT(clip.brightest, 0.9f) << "the highlight nearly white";
 }
 
 OptionValues isoOptions(const TechniqueInfo& technique, double iso) {

@@ -4,6 +4,8 @@
 
 #include "core/frame.h"
 #include "core/options.h"
+#include "core/volume.h"
+#include "slicing/renderer.h"
 #include "slicing/technique_table.h"
 
 namespace vsil::test {
@@ -39,5 +41,13 @@ struct ToneSides {
 };
 // `light`: the unit direction towards the light in eye space (x right, y up, z to the viewer).
 ToneSides toneSides(const cv::Mat3f& objectColours, glm::dvec3 light);
+
+// An ivory sphere tone-shaded: `settings` show `volume` (gen:sphere) head-on, orthographic, in
+// ivory (illustrate's tone effect, or a state technique's --fill tone). The paper's sum over
+// ivory exceeds 1 where the sphere faces the light (1 + 0.3 + 0.6 at its Figure 7 values):
+// scaled by its peak, the lit side stays warm, not white, and the far side cool, every pixel of
+// each (light straight above), and the highlight still reaches nearly white (the default light).
+void expectIvoryToneWarmWhereLitCoolWhereNotAndNotClipped(const Volume& volume,
+                                                          RenderSettings settings);
 
 }  // namespace vsil::test

@@ -250,8 +250,8 @@ TEST_F(SemanticTest, FlatnessOneShowsTheTopPriorityThroughTheOccluder) {
 
 // How far the edge between the cube's top face and its front face (gen:cube:64, fig6-cube at
 // flatness 1, 256², view 30, 20, zoom 1) strays from a straight line: per column, the edge's
-// position (the row below the cube's top row plus the summed fraction of the top face's tone over the
-// front face's, from the top row to 6 rows past where the front face's tone begins), then the
+// position (the row below the cube's top row plus the summed fraction of the top face's tone over
+// the front face's, from the top row to 6 rows past where the front face's tone begins), then the
 // RMS residual from a least-squares line, in pixels. The faces are flat in tone (one normal
 // each), so a straight edge gives the staircase of its pixels only, ~0.25 px; samples on the
 // slice planes give a rope of top-face samples under the edge whose period follows the planes.

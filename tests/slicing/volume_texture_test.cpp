@@ -3,6 +3,7 @@
 // slab borders must not show). convertTexels converts any box on its own (a brick).
 #include "slicing/volume_texture.h"
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -167,6 +168,11 @@ TEST_F(VolumeTextureUpload, ASlabHoldsItsBricksAsTheWholeVolumeDoes) {
       });
   EXPECT_EQ(part.ownedLowZ(), 11.5);
   EXPECT_EQ(part.ownedHighZ(), 23.5);
+  EXPECT_EQ(part.ownedVoxels(), (std::array<int, 2>{12, 24}));
+  // The first and last layers reach to ∓1e30: their voxels are cut to the volume.
+  EXPECT_EQ(layersVoxels(part.layout, 0, 1, dims.z), (std::array<int, 2>{0, 12}));
+  EXPECT_EQ(layersVoxels(part.layout, 3, 4, dims.z), (std::array<int, 2>{36, 40}));
+  EXPECT_EQ(layersVoxels(part.layout, 0, 4, dims.z), (std::array<int, 2>{0, 40}));
   EXPECT_EQ(part.ghostVoxels(), 12);
 
   const VolumeTexture texture(slab, part);

@@ -61,6 +61,15 @@ TechniqueInfo illustrateTechniqueInfo() {
                illustrationFromOptions(illustrateOptions(), options).effects.has(Effect::Halo);
       }};
   info.samplesOffPlanes = true;  // aligned to the box entry (compositing.h)
+  // The gradients (as semantic's), and with halos the halo field at an owned brick's texels,
+  // which reads up to haloFieldReachVoxels(k_hr) further (halo_mask.h), plus the brick's apron
+  // and padding: 4, as the fixed width for the largest k_hr (32: 38 voxels) had it.
+  // HaloMaskTexture::update checks, refusing in one line where a layer falls short.
+  info.slabGhostVoxels = [](const OptionReader& options, const View&, glm::ivec3) {
+    const Illustration illustration = illustrationFromOptions(illustrateOptions(), options);
+    if (!illustration.effects.has(Effect::Halo)) return kGradientGhostVoxels;
+    return haloFieldReachVoxels(illustration["k_hr"]) + 4;
+  };
   return info;
 }
 

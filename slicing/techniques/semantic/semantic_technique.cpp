@@ -72,6 +72,9 @@ TechniqueInfo semanticTechniqueInfo() {
       /*checkValues=*/{},
       /*needsOneTexture=*/{}};
   info.samplesOffPlanes = true;  // aligned to the box entry (compositing.h)
+  info.slabGhostVoxels = [](const OptionReader&, const View&, glm::ivec3) {
+    return kGradientGhostVoxels;
+  };
   return info;
 }
 

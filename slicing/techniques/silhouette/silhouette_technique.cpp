@@ -78,14 +78,21 @@ PairPixel pairPixel(const float* record, const float* coverage, float shade) {
 }  // namespace
 
 TechniqueInfo silhouetteTechniqueInfo() {
-  return {"silhouette",
-          "Nagy–Klein one-pixel iso-surface silhouettes (OPS), broadened to --width",
-          withToneFillOptions({isoOption(), pipelineOption(SlicingPipeline::Tiles)}),
-          FrameOutputs{.state = true, .color = false, .depth = true},
-          [] { return std::make_unique<SilhouetteTechnique>(); },
-          /*usesGradients=*/false,
-          /*checkValues=*/checkToneFillValues,
-          /*needsOneTexture=*/tilesNeedOneTexture};
+  TechniqueInfo info{"silhouette",
+                     "Nagy–Klein one-pixel iso-surface silhouettes (OPS), broadened to --width",
+                     withToneFillOptions({isoOption(), pipelineOption(SlicingPipeline::Tiles)}),
+                     FrameOutputs{.state = true, .color = false, .depth = true},
+                     [] { return std::make_unique<SilhouetteTechnique>(); },
+                     /*usesGradients=*/false,
+                     /*checkValues=*/checkToneFillValues,
+                     /*needsOneTexture=*/tilesNeedOneTexture};
+  info.slabRunsFastPipeline = true;  // beginFrame
+  // The contour test reads the 8 neighbours' footprints on the slice (one pixel's footprint
+  // along z), plus one voxel for trilinear filtering.
+  info.slabGhostVoxels = [](const OptionReader&, const View& view, glm::ivec3 dims) {
+    return int(std::ceil(pixelFootprintVoxelsZ(view, dims))) + 1;
+  };
+  return info;
 }
 
 ResolvedOptions SilhouetteTechnique::resolve(const FrameContext& frame) {
@@ -116,7 +123,8 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
   // A slab runs the fast pipeline, whatever --pipeline says (the three give the same pixels):
   // the tile march walks every slice in one texture, and the paper pipeline's screen passes
   // apply EMPTY at pixels whose sample another process owns. (Without --pipeline, a slab's
-  // bricks already choose fast: technique_table.cpp optionsForBricks.)
+  // bricks already choose fast: technique_table.cpp optionsForBricks.) The table says so
+  // (TechniqueInfo::slabRunsFastPipeline), so that --pipeline tiles is not refused in a slab.
   if (frame.slab) pipeline_ = SlicingPipeline::Fast;
   const float iso = float(frame.options->number("iso"));
   programs_.finish = &finishProgram(frame, {"techniques/silhouette/silhouette.glsl"});
