@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "core/image_file.h"
-#include "generators/generators.h"
 #include "frame_compare.h"
+#include "generators/generators.h"
 #include "gl_harness.h"
 #include "reference_table.h"
 #include "slicing/renderer.h"
