@@ -136,7 +136,9 @@ TEST(DefaultPictures, TheDefaultWindowIsRecordedAndLmipFollowsIt) {
     EXPECT_DOUBLE_EQ(a, low) << technique;
     EXPECT_DOUBLE_EQ(b, high) << technique;
     EXPECT_EQ(p["background"], "#000000ff") << technique;
-    if (technique == "lmip") EXPECT_DOUBLE_EQ(p["lmip_threshold"].get<double>(), low);
+    if (technique == "lmip") {
+      EXPECT_DOUBLE_EQ(p["lmip_threshold"].get<double>(), low);
+    }
   }
   // A given window: lmip's threshold is its low end; a given threshold wins.
   auto run = test::runVsil("render " + input + " --technique lmip --window 120,200" + kSize +

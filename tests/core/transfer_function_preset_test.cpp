@@ -34,7 +34,9 @@ TEST(TransferFunctionPresets, EveryPresetParsesAndHasItsName) {
       EXPECT_EQ(tf.source, "preset " + name);
       double most = 0;
       for (std::size_t i = 0; i < tf.points.size(); ++i) {
-        if (i > 0) EXPECT_GE(tf.points[i].value, tf.points[i - 1].value) << name;
+        if (i > 0) {
+          EXPECT_GE(tf.points[i].value, tf.points[i - 1].value) << name;
+        }
         most = std::max(most, tf.points[i].opacity);
       }
       EXPECT_GT(most, 0.2) << name << " shows something";
