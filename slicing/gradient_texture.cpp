@@ -143,8 +143,7 @@ GradientTexture::GradientTexture(const VolumeTexture& volume, glm::dvec3 spacing
   holdsValues_ = gradientsCanHoldValues(volume.internalFormat());
   // The voxels the held bricks own, [read0, read1); central differences are the whole volume's
   // from one voxel inside them (or at the volume's own faces), [valid0, valid1).
-  const int read0 = layerVoxelZ(slab.layout, slab.heldZ0, false, dims.z);
-  const int read1 = layerVoxelZ(slab.layout, slab.heldZ1 - 1, true, dims.z);
+  const auto [read0, read1] = slab.heldVoxels();
   const int valid0 = read0 == 0 ? 0 : read0 + 1;
   const int valid1 = read1 == dims.z ? dims.z : read1 - 1;
   const auto [own0, own1] = slab.ownedVoxels();

@@ -143,6 +143,10 @@ std::array<int, 2> SlabPart::ownedVoxels() const {
   return layersVoxels(layout, ownedZ0, ownedZ1, dims.z);
 }
 
+std::array<int, 2> SlabPart::heldVoxels() const {
+  return layersVoxels(layout, heldZ0, heldZ1, dims.z);
+}
+
 int SlabPart::ghostVoxels() const {
   // How far the held voxels reach beyond the owned ones (cut to the volume) on each side that
   // has ghost layers; the thinner side.

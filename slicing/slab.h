@@ -148,6 +148,8 @@ struct SlabPart {
   double ownedHighZ() const;
   // The voxels z they own, [first, end), cut to the volume (layersVoxels).
   std::array<int, 2> ownedVoxels() const;
+  // The voxels z the held bricks own (ghost layers too), [first, end), cut to the volume.
+  std::array<int, 2> heldVoxels() const;
   // Voxel z the ghost layers reach beyond the owned bricks on the thinner side (0 without).
   int ghostVoxels() const;
 };

@@ -275,8 +275,7 @@ void HaloMaskTexture::updateSlab(const VolumeTexture& volume, glm::dvec3 spacing
                                  const std::function<bool(float, float)>& transparentRange,
                                  double radius, double pushExponent) {
   const glm::ivec3 dims = volume.dims();
-  const int read0 = layerVoxelZ(slab.layout, slab.heldZ0, false, dims.z);
-  const int read1 = layerVoxelZ(slab.layout, slab.heldZ1 - 1, true, dims.z);
+  const auto [read0, read1] = slab.heldVoxels();
   const auto [own0, own1] = slab.ownedVoxels();
   // The field is the whole volume's from `reach` voxels inside the held ones (or at the
   // volume's own faces), where everything it reads lies in them.
