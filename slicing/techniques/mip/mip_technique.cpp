@@ -51,11 +51,11 @@ ResolvedOptions resolveMipFamily(const OptionReader& options) {
 ResolvedOptions MipTechnique::resolve(const FrameContext& frame) {
   ResolvedOptions resolved = resolveMipFamily(*frame.options);
   if (!depthEnhanced_) return resolved;
-  // A map file is read once per name, not once per frame (vsil animate, the bench).
+  // A map file is read once per name, not once per frame (vsil animate, the bench). Before the
+  // first frame the name is empty, which no valid --sphere-map is.
   const std::string sphereMap = frame.options->text("sphere-map");
-  if (!colourSphereRead_ || colourSphere_.name != sphereMap) {
+  if (colourSphere_.name != sphereMap) {
     colourSphere_ = colourSphere(sphereMap);
-    colourSphereRead_ = true;
     sphereMapUploaded_ = false;
   }
   if (const auto& image = colourSphere_.image) {
@@ -230,7 +230,6 @@ void MipTechnique::endFrame(const FrameContext& frame) {
     if (withSphere && colourSphere_.image) {
       defines.push_back("SPHERE_MAP_IMAGE");
       if (!sphereMapUploaded_) uploadSphereMap();
-      sphereMapUploaded_ = true;
     }
   }
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
@@ -269,6 +268,7 @@ void MipTechnique::uploadSphereMap() {
   VSIL_GL(glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, image.width, image.height, 0, GL_RGB, GL_FLOAT,
                        image.texels.data()));
   VSIL_GL(glBindTexture(GL_TEXTURE_2D, 0));
+  sphereMapUploaded_ = true;
 }
 
 FrameBuffers MipTechnique::readBack(const FrameContext& frame) {

@@ -67,7 +67,6 @@ class MipTechnique : public Technique {
   gl::Program* maximumPass_ = nullptr;
   std::optional<TransferFunctionTexture> transferTable_;  // --tf
   ColourSphere colourSphere_;                             // demip's --sphere-map
-  bool colourSphereRead_ = false;                         // colourSphere_ holds the option's map
   gl::TextureName sphereMapTexture_;                      // its image, when it has one
   bool sphereMapUploaded_ = false;                        // sphereMapTexture_ holds that image
 };
