@@ -212,8 +212,7 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
                            "rendered across MPI ranks is not");
   }
   if (!slab && impl_->volumeTexture->brickCount() > 1 &&
-      impl_->bricking == BrickLayout::Bricking::Compact && info.needsOneTexture &&
-      info.needsOneTexture(options)) {
+      impl_->bricking == BrickLayout::Bricking::Compact && info.needsOneTextureWith(given)) {
     impl_->bricking = BrickLayout::Bricking::OneIfItFits;  // asked once per volume
     if (fitsOneTexture(impl_->dims, impl_->volumeTexture->internalFormat(),
                        impl_->maxTextureBytes)) {

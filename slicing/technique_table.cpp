@@ -129,15 +129,13 @@ OptionValues optionsForBricks(const TechniqueInfo& info, OptionValues given, std
   return given;
 }
 
-bool needsOneTexture(const std::string& technique, const OptionValues& given) {
-  const TechniqueInfo& info = findTechnique(technique);
-  return info.needsOneTexture && info.needsOneTexture(OptionReader(info.options, given, {}));
+bool TechniqueInfo::needsOneTextureWith(const OptionValues& given) const {
+  return needsOneTexture && needsOneTexture(OptionReader(options, given, {}));
 }
 
 bool TechniqueInfo::needsOneTextureInSlab(OptionValues given) const {
-  if (!needsOneTexture) return false;
   if (slabRunsFastPipeline) given["pipeline"] = std::string(pipelineName(SlicingPipeline::Fast));
-  return needsOneTexture(OptionReader(options, given, {}));
+  return needsOneTextureWith(given);
 }
 
 SlicingPipeline pipelineOf(const OptionReader& options) {

@@ -66,8 +66,11 @@ struct TechniqueInfo {
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }
+  // Whether a frame with the `given` options needs the volume in one texture (needsOneTexture;
+  // derived defaults do not matter to it).
+  bool needsOneTextureWith(const OptionValues& given) const;
   // Whether a slab's frame (rendered across MPI ranks) with the `given` options needs the volume
-  // in one texture, which a slab is not, so that it refuses: needsOneTexture with the options the
+  // in one texture, which a slab is not, so that it refuses: needsOneTextureWith the options the
   // slab's frame runs with (--pipeline fast where slabRunsFastPipeline). The CLI asks before
   // reading, the renderer again per frame.
   bool needsOneTextureInSlab(OptionValues given) const;
@@ -106,8 +109,5 @@ bool tilesNeedOneTexture(const OptionReader& options);
 // volume takes several bricks (the tiles march needs one texture; uploading the volume again
 // would cost the time and memory the default is meant to save). The metadata then records fast.
 OptionValues optionsForBricks(const TechniqueInfo& info, OptionValues given, std::size_t bricks);
-// Whether a render of `technique` with `given` options needs one texture (derived defaults
-// do not matter to it).
-bool needsOneTexture(const std::string& technique, const OptionValues& given);
 
 }  // namespace vsil

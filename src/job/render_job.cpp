@@ -125,9 +125,10 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
 std::uint64_t renderBytes(const RenderRequest& request, glm::ivec3 dims, SampleType type,
                           std::uint64_t maxTextureBytes) {
   const RenderSettings& settings = request.settings;
-  return limits::renderVolumeBytes(dims, sampleTypeSize(type),
-                                   findTechnique(settings.technique).usesGradients, maxTextureBytes,
-                                   needsOneTexture(settings.technique, settings.options)) +
+  const TechniqueInfo& technique = findTechnique(settings.technique);
+  return limits::renderVolumeBytes(dims, sampleTypeSize(type), technique.usesGradients,
+                                   maxTextureBytes,
+                                   technique.needsOneTextureWith(settings.options)) +
          limits::renderImageBytes(settings.size, maxLineWidth(request.postfx));
 }
 

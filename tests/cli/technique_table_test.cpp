@@ -53,7 +53,7 @@ TEST(TechniqueTable, EachTechniqueDefaultsToItsFastestPipeline) {
     if (!pipeline) continue;
     ASSERT_TRUE(expected.contains(technique.name)) << technique.name << " has a pipeline";
     EXPECT_EQ(std::get<std::string>(*pipeline->defaultValue), expected.at(technique.name));
-    EXPECT_FALSE(needsOneTexture(technique.name, {}))
+    EXPECT_FALSE(technique.needsOneTextureWith({}))
         << technique.name << ": a default pipeline gives way to fast over bricks";
   }
   const auto help = test::runVsil("render --help");
@@ -73,7 +73,7 @@ TEST(TechniqueTable, DefaultTilesGiveWayToFastOverBricks) {
   EXPECT_EQ(std::get<std::string>(optionsForBricks(silhouette, {}, 2).at("pipeline")), "fast");
   const OptionValues tiles{{"pipeline", std::string("tiles")}};
   EXPECT_EQ(std::get<std::string>(optionsForBricks(silhouette, tiles, 2).at("pipeline")), "tiles");
-  EXPECT_TRUE(needsOneTexture("silhouette", tiles));
+  EXPECT_TRUE(silhouette.needsOneTextureWith(tiles));
   EXPECT_FALSE(optionsForBricks(findTechnique("rightangle"), {}, 2).contains("pipeline"));
   EXPECT_FALSE(optionsForBricks(findTechnique("mip"), {}, 2).contains("pipeline"));
 }
