@@ -3,6 +3,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace vsil::bench {
 
@@ -22,6 +23,17 @@ TimingStats summarize(const std::vector<double>& milliseconds) {
   stats.msMax = *highest;
   stats.msMedian = median(milliseconds);
   return stats;
+}
+
+double pairedRatio(const std::vector<double>& a, const std::vector<double>& b) {
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  if (a.empty() || a.size() != b.size()) return none;
+  std::vector<double> quotients;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!(a[i] > 0) || !(b[i] > 0)) return none;
+    quotients.push_back(a[i] / b[i]);
+  }
+  return median(std::move(quotients));
 }
 
 double processCpuMs() {

@@ -230,17 +230,27 @@ TableResult runDv1Table(const BenchOptions& options, Progress& progress) {
                               {"ms_min", r.stats.msMin},
                               {"ms_max", r.stats.msMax},
                               {"cpu_ms_median", median(r.cpuMs)},
+                              {"ms", r.ms},
+                              {"cpu_ms", r.cpuMs},
                               {"fps", r.stats.fps()},
                               {"slices", r.slices},
                               {"dims", {volume.dims.x, volume.dims.y, volume.dims.z}},
                               {"paper_fps", paperFps},
                               {"check", check}});
+        if (c != kMip) {  // to MIP, from paired frames (pairedRatio)
+          nlohmann::json& row = table.rows.back();
+          const double ratio = pairedRatio(r.ms, results[kMip].ms);
+          const double cpuRatio = pairedRatio(r.cpuMs, results[kMip].cpuMs);
+          row["ratio_to"] = "mip";
+          row["ratio"] = std::isfinite(ratio) ? nlohmann::json(ratio) : nlohmann::json();
+          row["cpu_ratio"] = std::isfinite(cpuRatio) ? nlohmann::json(cpuRatio) : nlohmann::json();
+        }
         cells.push_back(formatFps(r.stats.fps()));
       }
-      // In frame time: DEMIP's milliseconds over MIP's.
-      cells.push_back(formatRatio(results[kDemip].stats.msMedian / results[kMip].stats.msMedian));
-      cells.push_back(formatRatio(median(results[kDemip].cpuMs) / median(results[kMip].cpuMs)));
-      cells.push_back(formatRatio(results[kDvr].stats.msMedian / results[kMip].stats.msMedian));
+      // DEMIP's and DVR's frame time over MIP's, frame by frame (pairedRatio).
+      cells.push_back(formatRatio(pairedRatio(results[kDemip].ms, results[kMip].ms)));
+      cells.push_back(formatRatio(pairedRatio(results[kDemip].cpuMs, results[kMip].cpuMs)));
+      cells.push_back(formatRatio(pairedRatio(results[kDvr].ms, results[kMip].ms)));
       cells.push_back(paper512 ? formatFps(d->paper->mip) : "–");
       cells.push_back(paper512 ? formatFps(d->paper->demip) : "–");
       cells.push_back(paper512 ? formatFps(d->paper->dvr) : "–");
@@ -258,7 +268,7 @@ TableResult runDv1Table(const BenchOptions& options, Progress& progress) {
   }
   progress.finish();
 
-  char method[900];
+  char method[1024];
   std::snprintf(
       method, sizeof method,
       "method: %d warm-up + %d timed frames per column, MIP/DEMIP/DEMIP+sphere/DVR "
@@ -268,7 +278,8 @@ TableResult runDv1Table(const BenchOptions& options, Progress& progress) {
       "(red-blue), DVR = illustrate with no effects (power opacity above Otsu's threshold); "
       "frame time = Renderer::render (every sweep + glFinish + readback of the "
       "colour, no depth; the gradient texture DVR shades with is built once per volume, on "
-      "its first frame, a warm-up frame with --warmup >= 1), fps = 1000 / median; cpu "
+      "its first frame, a warm-up frame with --warmup >= 1), fps = 1000 / median; DEMIP/MIP "
+      "and DVR/MIP: the median over frames of the frame's time / MIP's in the same turn; cpu "
       "DEMIP/MIP: the same ratio in the process's CPU time per frame, steadier on a shared "
       "machine",
       options.warmup, options.frames, kOrbitStartDeg, kOrbitStepDeg, kElevationDeg, kSphereWeight);

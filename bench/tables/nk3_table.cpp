@@ -535,16 +535,21 @@ std::string checkOf(const CaseResult& result) {
 }
 
 template <typename Field>
-double medianOf(const std::vector<FrameSample>& frames, Field FrameSample::*field) {
+std::vector<double> valuesOf(const std::vector<FrameSample>& frames, Field FrameSample::*field) {
   std::vector<double> values;
-  for (const auto& f : frames) values.push_back(f.*field);
-  return median(values);
+  for (const auto& f : frames) values.push_back(double(f.*field));
+  return values;
+}
+
+template <typename Field>
+double medianOf(const std::vector<FrameSample>& frames, Field FrameSample::*field) {
+  return median(valuesOf(frames, field));
 }
 
 // Issue 36's ratio, as a user gets it: OPS at its default pipeline over RA at its default, in
-// frame time (median over median; `field` &FrameSample::cpuMs: in CPU time, steadier on a
-// loaded machine) from the same frames taken in turn (runCases). nullopt when either is
-// missing.
+// frame time (`field` &FrameSample::cpuMs: in CPU time, steadier on a loaded machine), from the
+// frames taken in turn (runCases) paired (pairedRatio). nullopt when either is missing or a
+// time is not positive.
 std::optional<double> opsDefaultOverRaDefault(const std::vector<CaseResult>& cases,
                                               double FrameSample::*field = &FrameSample::ms) {
   const auto& columns = nk3Columns();
@@ -554,10 +559,10 @@ std::optional<double> opsDefaultOverRaDefault(const std::vector<CaseResult>& cas
     if (c.column->label == columns[kRa].label) ra = &c;
     if (c.column->label == columns[kOps].label) ops = &c;
   }
-  if (!ra || !ops || ra->frames.empty() || ops->frames.empty()) return std::nullopt;
-  const double raMs = medianOf(ra->frames, field), opsMs = medianOf(ops->frames, field);
-  if (!(raMs > 0) || !(opsMs > 0)) return std::nullopt;
-  return opsMs / raMs;
+  if (!ra || !ops) return std::nullopt;
+  const double ratio = pairedRatio(valuesOf(ops->frames, field), valuesOf(ra->frames, field));
+  if (!std::isfinite(ratio)) return std::nullopt;
+  return ratio;
 }
 
 nlohmann::json jsonOrNull(const std::optional<double>& value) {
@@ -610,6 +615,8 @@ nlohmann::json measuredRow(const Nk3Measured& m, int window, const CaseResult& r
               {"dims", {m.dims.x, m.dims.y, m.dims.z}},
               {"slices", r.sliceCount},
               {"cpu_ms_median", medianOf(r.frames, &FrameSample::cpuMs)},
+              {"ms", valuesOf(r.frames, &FrameSample::ms)},
+              {"cpu_ms", valuesOf(r.frames, &FrameSample::cpuMs)},
               {"ops_default_over_ra_default", jsonOrNull(opsOverRa)},
               {"ops_default_over_ra_default_cpu", jsonOrNull(opsOverRaCpu)},
               {"check", checkOf(r)}});
@@ -764,11 +771,11 @@ std::string methodNote(const BenchOptions& options) {
 // What the column of the defaults' ratio compares.
 std::string defaultsNote() {
   const auto& columns = nk3Columns();
-  return "OPS default / RA default: the median frame time of " + columns[kOps].label +
+  return "OPS default / RA default: the frame time of " + columns[kOps].label +
          " at its default pipeline (" + defaultPipelineOf(columns[kOps].technique) + ") over " +
-         columns[kRa].label + " at its default (" + defaultPipelineOf(columns[kRa].technique) +
-         "), as a user gets them, from the same frames taken in turn, on each window's first "
-         "line; cpu: the same in the process's CPU time per frame (steadier on a loaded "
+         columns[kRa].label + "'s at its default (" + defaultPipelineOf(columns[kRa].technique) +
+         ") in the same turn, as a user gets them, the median over frames, on each window's "
+         "first line; cpu: the same in the process's CPU time per frame (steadier on a loaded "
          "machine); JSON: ops_default_over_ra_default(_cpu) on every row of the window";
 }
 

@@ -411,14 +411,11 @@ std::string problemsOf(const CaseResult& r) {
   return text;
 }
 
-double ratio(double a, double b) {
-  return a > 0 && b > 0 ? a / b : std::numeric_limits<double>::quiet_NaN();
-}
-
-// The frame-time ratio to the plain composite; for the changes also to the unchanged 16-rule
-// frame before them.
+// The frame-time ratio to the plain composite (in CPU time too); for the changes also to the
+// unchanged 16-rule frame before them. From paired frames (pairedRatio).
 struct Verdict {
   double ratio = std::numeric_limits<double>::quiet_NaN();
+  double cpuRatio = std::numeric_limits<double>::quiet_NaN();
   double ratioTo16 = std::numeric_limits<double>::quiet_NaN();
   bool met = true;
 };
@@ -426,10 +423,13 @@ struct Verdict {
 Verdict verdictOf(const std::vector<CaseResult>& cases, std::size_t c) {
   Verdict v;
   const SemanticCase& column = *cases[c].column;
-  if (c != kPlain) v.ratio = ratio(cases[c].stats.msMedian, cases[kPlain].stats.msMedian);
+  if (c != kPlain) {
+    v.ratio = pairedRatio(cases[c].ms, cases[kPlain].ms);
+    v.cpuRatio = pairedRatio(cases[c].cpuMs, cases[kPlain].cpuMs);
+  }
   if (column.kind == SemanticCase::Kind::MembershipChange ||
       column.kind == SemanticCase::Kind::RuleChange) {
-    v.ratioTo16 = ratio(cases[c].stats.msMedian, cases[kUnchanged].stats.msMedian);
+    v.ratioTo16 = pairedRatio(cases[c].ms, cases[kUnchanged].ms);
   }
   v.met = !(column.target > 0) || !std::isfinite(v.ratio) || v.ratio <= column.target;
   return v;
@@ -461,8 +461,9 @@ nlohmann::json jsonRow(const Measured& m, int window, const std::vector<CaseResu
       {"ms_max", r.stats.msMax},
       {"fps", r.stats.fps()},
       {"cpu_ms_median", median(r.cpuMs)},
-      {"cpu_ratio", plain ? nlohmann::json()
-                          : finiteOrNull(ratio(median(r.cpuMs), median(cases[kPlain].cpuMs)))},
+      {"ms", r.ms},
+      {"cpu_ms", r.cpuMs},
+      {"cpu_ratio", finiteOrNull(v.cpuRatio)},
       {"plain_fps", cases[kPlain].stats.fps()},
       {"ratio", finiteOrNull(v.ratio)},
       {"ratio_to", plain ? "" : "plain"},
@@ -561,7 +562,7 @@ TableResult runSemanticTable(const BenchOptions& options, Progress& progress) {
              plain ? "–" : std::to_string(column.rules), formatFps(r.stats.fps()),
              formatMs(r.stats.msMedian), plain ? "–" : formatRatio(v.ratio),
              column.target > 0 ? "≤ " + formatRatio(column.target) : "–", formatMs(median(r.cpuMs)),
-             plain ? "–" : formatRatio(ratio(median(r.cpuMs), median(window.cases[kPlain].cpuMs))),
+             plain ? "–" : formatRatio(v.cpuRatio),
              std::isfinite(v.ratioTo16) ? formatRatio(v.ratioTo16) : "–",
              r.extraMs.empty() ? "–" : formatSignedMs(median(r.extraMs)),
              plain ? "–" : std::to_string(r.programsBuilt) + "/" + std::to_string(r.stats.frames),
@@ -608,11 +609,13 @@ TableResult runSemanticTable(const BenchOptions& options, Progress& progress) {
       "both, …: one program compiled every frame), "
       "both right after the unchanged 16-rule frame of the same view, in that order; frame time = "
       "Renderer::render (reading the rule file, compiling the rules, uploading tables, building "
-      "the program when new, slicing, glFinish, readback), fps = 1000 / median; ratio = frame "
-      "time / the plain composite's; cpu ms = the process's CPU time over the frame (every "
+      "the program when new, slicing, glFinish, readback), fps = 1000 / median; ratio = the "
+      "median over frames of the frame's time / the plain composite's in the same turn; cpu ms = "
+      "the process's CPU time over the frame (every "
       "llvmpipe "
       "thread; steadier than wall time under load), cpu ratio = the same over the plain "
-      "composite's; ×16 rules = frame time / the unchanged 16-rule frame's, +ms = the median of "
+      "composite's; ×16 rules = the same ratio to the unchanged 16-rule frame's, +ms = the median "
+      "of "
       "frame time − that of the unchanged 16-rule frame of the same view; "
       "build ms = ProgramCache::get per frame (compile + link when it builds; llvmpipe "
       "compiles the shader's machine code at its first draw, inside the frame, not in build ms); "
