@@ -4,10 +4,12 @@
 // datasets have `name`, `file` and `byDefault`.
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "core/volume.h"
 #include "harness/bench_options.h"
 
 namespace vsil::bench {
@@ -19,6 +21,9 @@ struct DatasetChoice {
   std::string missing;  // empty when the file is there
 };
 
+// "not found: PATH (use --datasets DIR)"
+std::string notFound(const std::filesystem::path& path);
+
 template <typename Dataset>
 std::vector<DatasetChoice<Dataset>> chooseDatasets(std::span<const Dataset> datasets,
                                                    const BenchOptions& options) {
@@ -28,12 +33,14 @@ std::vector<DatasetChoice<Dataset>> chooseDatasets(std::span<const Dataset> data
         std::find(options.only.begin(), options.only.end(), d.name) != options.only.end();
     if (options.only.empty() ? !d.byDefault : !asked) continue;
     const std::filesystem::path path = options.datasetsDir / d.file;
-    chosen.push_back({d, path,
-                      std::filesystem::exists(path)
-                          ? ""
-                          : "not found: " + path.string() + " (use --datasets DIR)"});
+    chosen.push_back({d, path, std::filesystem::exists(path) ? "" : notFound(path)});
   }
   return chosen;
 }
+
+// The volume in a dataset's file, or nothing with `missing` saying why: not there (use
+// --datasets DIR) or not readable. A missing dataset leaves its rows empty; it does not fail the
+// run.
+std::optional<Volume> readDatasetVolume(const std::filesystem::path& path, std::string& missing);
 
 }  // namespace vsil::bench

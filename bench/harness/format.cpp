@@ -25,4 +25,14 @@ std::string dimsLabel(glm::ivec3 dims) {
   return std::to_string(dims.x) + "·" + std::to_string(dims.y) + "·" + std::to_string(dims.z);
 }
 
+std::string joinedProblems(const std::vector<std::string>& problems) {
+  std::string text;
+  for (const auto& problem : problems) text += (text.empty() ? "" : "; ") + problem;
+  return text;
+}
+
+std::string checkText(const std::vector<std::string>& problems) {
+  return problems.empty() ? "ok" : "FAILED: " + joinedProblems(problems);
+}
+
 }  // namespace vsil::bench

@@ -1,6 +1,7 @@
 #pragma once
-// How the tables print numbers: frame rates, ratios, volume sizes.
+// How the tables print numbers (frame rates, ratios, volume sizes) and their cases' checks.
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -12,5 +13,9 @@ std::string formatFps(double fps);
 std::string formatRatio(double ratio);
 // "256³", "256²·128", "128·96·40".
 std::string dimsLabel(glm::ivec3 dims);
+// A case's failed checks with "; " between them ("" when all passed).
+std::string joinedProblems(const std::vector<std::string>& problems);
+// "ok", or "FAILED: " and the failed checks: the `check` cell and JSON field.
+std::string checkText(const std::vector<std::string>& problems);
 
 }  // namespace vsil::bench

@@ -19,8 +19,8 @@ TimingStats summarize(const std::vector<double>& milliseconds);
 // i of each in the same round, as the tables run them): a drift of the machine's speed over the
 // run falls on both frames of a round and cancels in their quotient. On the 2-core machine its
 // spread between runs was about half that of median(a) / median(b) where rounds are short (dv1)
-// and the same where they last seconds (illustrate) (README, "Ratios from paired frames"). NaN when the counts differ, there are none, or a time is not
-// positive.
+// and the same where they last seconds (illustrate) (README, "Ratios from paired frames"). NaN when
+// the counts differ, there are none, or a time is not positive.
 double pairedRatio(const std::vector<double>& a, const std::vector<double>& b);
 
 // CPU time of the whole process so far, in ms (every llvmpipe thread): a frame's difference is

@@ -14,6 +14,8 @@
 
 #include "core/image_file.h"
 #include "harness/child_run.h"
+#include "harness/dataset_choice.h"
+#include "harness/format.h"
 #include "harness/scratch_folder.h"
 #include "harness/text_table.h"
 #include "slicing/gl_context.h"
@@ -153,9 +155,9 @@ std::string fixed(double value, int digits) {
   return text;
 }
 
-std::string checkText(const AnimateCase& c) {
+std::string checkOf(const AnimateCase& c) {
   if (!c.measured()) return "missing";
-  return c.problems.empty() ? "ok" : "FAILED: " + c.problems.front();
+  return checkText(c.problems);
 }
 
 nlohmann::json jsonRow(const AnimateCase& c) {
@@ -175,7 +177,7 @@ nlohmann::json jsonRow(const AnimateCase& c) {
   row["renders_fps"] = c.rendersSeconds > 0 ? kFrames / c.rendersSeconds : 0;
   row["animate_loop_fps"] = c.animateLoopFps;
   row["animate_setup_ms"] = c.setupMs;
-  row["check"] = checkText(c);
+  row["check"] = checkOf(c);
   return row;
 }
 
@@ -218,7 +220,7 @@ TableResult runAnimateTable(const BenchOptions& options, Progress& progress) {
         AnimateCase missing;
         missing.dataset = datasets[d];
         missing.size = size;
-        missing.missing = "not found: " + path.string() + " (use --datasets DIR)";
+        missing.missing = notFound(path);
         cases.push_back(missing);
       }
       continue;

@@ -8,11 +8,10 @@
 #include <optional>
 
 #include "core/clock.h"
-#include "core/error.h"
+#include "harness/dataset_choice.h"
 #include "harness/format.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
-#include "io/volume_loader.h"
 #include "slicing/gl_context.h"
 #include "slicing/renderer.h"
 
@@ -135,12 +134,6 @@ std::vector<CaseResult> measureWindow(Renderer& renderer, int window, const Benc
   return results;
 }
 
-std::string problemsOf(const CaseResult& r) {
-  std::string text;
-  for (const auto& p : r.problems) text += (text.empty() ? "" : "; ") + p;
-  return text;
-}
-
 }  // namespace
 
 std::vector<std::string> dv1DatasetNames() {
@@ -178,19 +171,9 @@ TableResult runDv1Table(const BenchOptions& options, Progress& progress) {
   const double nan = std::nan("");
 
   for (const Dv1Dataset* d : chosen) {
-    const std::filesystem::path path = options.datasetsDir / d->file;
     std::string missing;
-    Volume volume;
-    if (!std::filesystem::exists(path)) {
-      missing = "not found: " + path.string() + " (use --datasets DIR)";
-    } else {
-      try {
-        volume = loadVolume(path.string());
-      } catch (const InputError& e) {
-        missing = std::string("cannot be read: ") + e.what();
-      }
-    }
-    if (!missing.empty()) {
+    const std::optional<Volume> volume = readDatasetVolume(options.datasetsDir / d->file, missing);
+    if (!volume) {
       table.notes.push_back(std::string(d->name) + ": " + missing);
       for (const auto& c : columns) {
         table.rows.push_back(
@@ -199,21 +182,23 @@ TableResult runDv1Table(const BenchOptions& options, Progress& progress) {
       continue;
     }
     gl::GlContext context(options.gl);
+    const std::string glBackend = gl::backendName(context.info().backend);
     Renderer renderer(context);
-    renderer.setVolume(volume);
+    renderer.setVolume(*volume);
     for (int window : sizes) {
       progress.startCase(std::string(d->name) + " " + std::to_string(window) + "²");
       const std::vector<CaseResult> results = measureWindow(renderer, window, options);
       const bool paper512 = d->paper && window == 512;
-      std::vector<std::string> cells{d->name, dimsLabel(volume.dims), std::to_string(window) + "²"};
+      std::vector<std::string> cells{d->name, dimsLabel(volume->dims),
+                                     std::to_string(window) + "²"};
       std::string failed;
       for (std::size_t c = 0; c < columns.size(); ++c) {
         const CaseResult& r = results[c];
-        const std::string check = r.problems.empty() ? "ok" : "FAILED: " + problemsOf(r);
+        const std::string check = checkText(r.problems);
         if (!r.problems.empty()) {
           failed += " " + columns[c].key;
           table.failures.push_back(std::string(d->name) + " " + std::to_string(window) + "² " +
-                                   columns[c].key + ": " + problemsOf(r));
+                                   columns[c].key + ": " + joinedProblems(r.problems));
         }
         nlohmann::json paperFps;
         if (paper512 && c == kMip) paperFps = d->paper->mip;
@@ -234,7 +219,8 @@ TableResult runDv1Table(const BenchOptions& options, Progress& progress) {
                               {"cpu_ms", r.cpuMs},
                               {"fps", r.stats.fps()},
                               {"slices", r.slices},
-                              {"dims", {volume.dims.x, volume.dims.y, volume.dims.z}},
+                              {"dims", {volume->dims.x, volume->dims.y, volume->dims.z}},
+                              {"gl_backend", glBackend},
                               {"paper_fps", paperFps},
                               {"check", check}});
         if (c != kMip) {  // to MIP, from paired frames (pairedRatio)

@@ -11,15 +11,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <optional>
 
-#include "core/error.h"
 #include "core/transfer_function.h"
 #include "harness/dataset_choice.h"
 #include "harness/format.h"
 #include "harness/scratch_folder.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
-#include "io/volume_loader.h"
 #include "slicing/gl_context.h"
 #include "slicing/renderer.h"
 
@@ -129,6 +128,7 @@ struct Measured {
     std::vector<CaseResult> cases;
   };
   std::vector<Window> windows;
+  std::string glBackend;  // the back end its frames ran on ("osmesa", "egl"): the JSON rows say it
 };
 
 RenderSettings caseSettings(const IllustrateCase& c, const IllustrateDataset& d,
@@ -260,22 +260,18 @@ Measured measureDataset(const Choice& chosen, const std::vector<int>& sizes,
   Measured measured{chosen.dataset, chosen.missing, {}, 0, {}};
   for (int size : sizes) measured.windows.push_back({size, {}});
   if (!measured.missing.empty()) return measured;
-  Volume volume;
-  try {
-    volume = loadVolume(chosen.path.string());
-  } catch (const InputError& e) {
-    measured.missing = std::string("cannot be read: ") + e.what();
-    return measured;
-  }
-  measured.dims = volume.dims;
+  const std::optional<Volume> volume = readDatasetVolume(chosen.path, measured.missing);
+  if (!volume) return measured;
+  measured.dims = volume->dims;
   // A folder of this run's own: two runs at once (the test suite's GL back ends) must not
   // share the file, nor one remove it under the other.
   const ScratchFolder scratch("illustrate");
   const std::string tfPath = writeTransferFunction(benchTransferFunction(chosen.dataset.iso),
                                                    scratch.path(), chosen.dataset.name);
-  gl::GlContext context;
+  gl::GlContext context(options.gl);
+  measured.glBackend = gl::backendName(context.info().backend);
   Renderer renderer(context);
-  renderer.setVolume(volume);
+  renderer.setVolume(*volume);
   {
     // The gradient texture is built by the first frame that needs it: once, not timed.
     RenderSettings first = caseSettings(illustrateCases()[kPlain], chosen.dataset, tfPath, 16);
@@ -290,12 +286,6 @@ Measured measureDataset(const Choice& chosen, const std::vector<int>& sizes,
 }
 
 // ---- Rows -------------------------------------------------------------------------------------
-
-std::string problemsOf(const CaseResult& r) {
-  std::string text;
-  for (const auto& p : r.problems) text += (text.empty() ? "" : "; ") + p;
-  return text;
-}
 
 // Whether a case meets its target: its ratio to the plain composite, or for the plain
 // composite its ratio to RA, both from paired frames (pairedRatio); in CPU time too.
@@ -343,9 +333,10 @@ nlohmann::json jsonRow(const Measured& m, int window, const std::vector<CaseResu
                         {"covered_pixels_mean", r.coveredMedian},
                         {"slices", r.sliceCount},
                         {"dims", {m.dims.x, m.dims.y, m.dims.z}},
+                        {"gl_backend", m.glBackend},
                         {"iso", m.dataset.iso},
                         {"gradient_build_ms", m.gradientMs},
-                        {"check", r.problems.empty() ? "ok" : "FAILED: " + problemsOf(r)}};
+                        {"check", checkText(r.problems)}};
   // The frame-time ratio: to the plain composite for the effects, to RA for the plain one.
   row["ratio"] = std::isfinite(v.ratio) ? nlohmann::json(v.ratio) : nlohmann::json();
   row["cpu_ratio"] = std::isfinite(v.cpuRatio) ? nlohmann::json(v.cpuRatio) : nlohmann::json();
@@ -418,7 +409,7 @@ TableResult runIllustrateTable(const BenchOptions& options, Progress& progress) 
         fps.push_back(r.stats.fps());
         if (!r.problems.empty()) {
           table.failures.push_back(std::string(m.dataset.name) + " " + std::to_string(window.size) +
-                                   "² " + r.column->key + ": " + problemsOf(r));
+                                   "² " + r.column->key + ": " + joinedProblems(r.problems));
         }
       }
       plot.groups.push_back(std::string(m.dataset.name) + " " + std::to_string(window.size) + "²");

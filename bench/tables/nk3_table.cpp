@@ -15,11 +15,10 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "core/error.h"
+#include "harness/dataset_choice.h"
 #include "harness/format.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
-#include "io/volume_loader.h"
 #include "postfx/broaden.h"
 #include "postfx/compose.h"
 #include "slicing/gl_context.h"
@@ -207,8 +206,7 @@ std::vector<Nk3Choice> chooseDatasets(const BenchOptions& options) {
     }
     const std::filesystem::path path = options.datasetsDir / d.file;
     const bool found = std::filesystem::exists(path);
-    chosen.push_back(
-        {d, path, found ? "" : "not found: " + path.string() + " (use --datasets DIR)"});
+    chosen.push_back({d, path, found ? "" : notFound(path)});
   }
   return chosen;
 }
@@ -247,6 +245,7 @@ struct Nk3Measured {
     std::vector<CaseResult> cases;  // in nk3Columns() order
   };
   std::vector<Window> windows;
+  std::string glBackend;  // the back end its frames ran on ("osmesa", "egl"): the JSON rows say it
 };
 
 void countStates(const cv::Mat1b& state, FrameSample& sample) {
@@ -498,17 +497,13 @@ Nk3Measured measureDataset(const Nk3Choice& chosen, const std::vector<int>& size
   Nk3Measured measured{chosen.dataset, chosen.missing, {}, {}};
   for (int window : sizes) measured.windows.push_back({window, {}});
   if (!measured.missing.empty()) return measured;
-  Volume volume;
-  try {
-    volume = loadVolume(chosen.path.string());
-  } catch (const InputError& e) {
-    measured.missing = std::string("cannot be read: ") + e.what();
-    return measured;
-  }
-  measured.dims = volume.dims;
+  const std::optional<Volume> volume = readDatasetVolume(chosen.path, measured.missing);
+  if (!volume) return measured;
+  measured.dims = volume->dims;
   gl::GlContext context(options.gl);
+  measured.glBackend = gl::backendName(context.info().backend);
   Renderer renderer(context);
-  renderer.setVolume(volume);
+  renderer.setVolume(*volume);
   for (auto& window : measured.windows) {
     window.cases = measureWindow(renderer, chosen.dataset, window.size, options, progress);
   }
@@ -521,17 +516,6 @@ std::optional<PaperFps> paperFor(const Nk3Dataset& dataset, int window) {
   if (window == 256) return dataset.paper256;
   if (window == 512) return dataset.paper512;
   return std::nullopt;
-}
-
-// The case's failed checks, "; " between them ("" when all passed).
-std::string problemsOf(const CaseResult& result) {
-  std::string text;
-  for (const auto& problem : result.problems) text += (text.empty() ? "" : "; ") + problem;
-  return text;
-}
-
-std::string checkOf(const CaseResult& result) {
-  return result.problems.empty() ? "ok" : "FAILED: " + problemsOf(result);
 }
 
 template <typename Field>
@@ -613,13 +597,14 @@ nlohmann::json measuredRow(const Nk3Measured& m, int window, const CaseResult& r
               {"silhouette_step_change_max", maxStepChange(r.frames)},
               {"iso", m.dataset.iso},
               {"dims", {m.dims.x, m.dims.y, m.dims.z}},
+              {"gl_backend", m.glBackend},
               {"slices", r.sliceCount},
               {"cpu_ms_median", medianOf(r.frames, &FrameSample::cpuMs)},
               {"ms", valuesOf(r.frames, &FrameSample::ms)},
               {"cpu_ms", valuesOf(r.frames, &FrameSample::cpuMs)},
               {"ops_default_over_ra_default", jsonOrNull(opsOverRa)},
               {"ops_default_over_ra_default_cpu", jsonOrNull(opsOverRaCpu)},
-              {"check", checkOf(r)}});
+              {"check", checkText(r.problems)}});
   if (r.column->broadened) {
     row["line_width"] = kBroadenedWidth;
     row["line_pixels_median"] = medianOf(r.frames, &FrameSample::linePixels);
@@ -653,7 +638,7 @@ std::vector<std::string> failedChecks(const Nk3Measured& m) {
     for (const CaseResult& r : window.cases) {
       if (r.problems.empty()) continue;
       failures.push_back(std::string(m.dataset.name) + " " + std::to_string(window.size) + "² " +
-                         r.column->key + ": " + problemsOf(r));
+                         r.column->key + ": " + joinedProblems(r.problems));
     }
   }
   return failures;

@@ -12,16 +12,15 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include <unistd.h>
 
-#include "core/error.h"
 #include "harness/dataset_choice.h"
 #include "harness/format.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
-#include "io/volume_loader.h"
 #include "slicing/gl_context.h"
 #include "slicing/renderer.h"
 
@@ -213,6 +212,7 @@ struct Measured {
     std::vector<CaseResult> cases;
   };
   std::vector<Window> windows;
+  std::string glBackend;  // the back end its frames ran on ("osmesa", "egl"): the JSON rows say it
 };
 
 // CPU time of the whole process (every llvmpipe thread): steadier than wall time on a loaded
@@ -374,17 +374,13 @@ Measured measureDataset(const Choice& chosen, const std::vector<int>& sizes,
   Measured measured{chosen.dataset, chosen.missing, {}, 0, {}};
   for (int size : sizes) measured.windows.push_back({size, {}});
   if (!measured.missing.empty()) return measured;
-  Volume volume;
-  try {
-    volume = loadVolume(chosen.path.string());
-  } catch (const InputError& e) {
-    measured.missing = std::string("cannot be read: ") + e.what();
-    return measured;
-  }
-  measured.dims = volume.dims;
+  const std::optional<Volume> volume = readDatasetVolume(chosen.path, measured.missing);
+  if (!volume) return measured;
+  measured.dims = volume->dims;
   gl::GlContext context(options.gl);
+  measured.glBackend = gl::backendName(context.info().backend);
   Renderer renderer(context);
-  renderer.setVolume(volume);
+  renderer.setVolume(*volume);
   CaseRenderer cases(renderer, std::filesystem::temp_directory_path());
   {
     // Not timed: the gradient texture (the first frame that shades) and each base's program,
@@ -404,12 +400,6 @@ Measured measureDataset(const Choice& chosen, const std::vector<int>& sizes,
 }
 
 // ---- Rows -------------------------------------------------------------------------------------
-
-std::string problemsOf(const CaseResult& r) {
-  std::string text;
-  for (const auto& p : r.problems) text += (text.empty() ? "" : "; ") + p;
-  return text;
-}
 
 // The frame-time ratio to the plain composite (in CPU time too); for the changes also to the
 // unchanged 16-rule frame before them. From paired frames (pairedRatio).
@@ -472,8 +462,9 @@ nlohmann::json jsonRow(const Measured& m, int window, const std::vector<CaseResu
       {"covered_pixels_mean", r.coveredMean},
       {"slices", r.sliceCount},
       {"dims", {m.dims.x, m.dims.y, m.dims.z}},
+      {"gl_backend", m.glBackend},
       {"first_frames_ms", m.firstMs},
-      {"check", r.problems.empty() ? "ok" : "FAILED: " + problemsOf(r)}};
+      {"check", checkText(r.problems)}};
   if (!plain) {
     row["programs_compiled"] = r.programsBuilt;
     row["program_build_ms_median"] = median(r.buildMs);
@@ -570,7 +561,7 @@ TableResult runSemanticTable(const BenchOptions& options, Progress& progress) {
         fps.push_back(r.stats.fps() > 0 ? r.stats.fps() : std::nan(""));
         if (!r.problems.empty()) {
           table.failures.push_back(std::string(m.dataset.name) + " " + std::to_string(window.size) +
-                                   "² " + column.key + ": " + problemsOf(r));
+                                   "² " + column.key + ": " + joinedProblems(r.problems));
         }
       }
       char covered[256];

@@ -15,6 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/child_run.h"
+#include "harness/dataset_choice.h"
+#include "harness/format.h"
 #include "harness/scratch_folder.h"
 #include "harness/text_table.h"
 #include "harness/timing_stats.h"
@@ -132,9 +134,9 @@ double medianOfStage(const StartupCase& c, std::map<std::string, double> RunTime
   return values.empty() ? 0 : median(values);
 }
 
-std::string checkText(const StartupCase& c) {
+std::string checkOf(const StartupCase& c) {
   if (!c.measured()) return "missing";
-  return c.problems.empty() ? "ok" : "FAILED: " + c.problems.front();
+  return checkText(c.problems);
 }
 
 nlohmann::json jsonRow(const StartupCase& c) {
@@ -154,7 +156,7 @@ nlohmann::json jsonRow(const StartupCase& c) {
     row["stages_wall_ms_median"][stage] = medianOfStage(c, &RunTimes::wallMs, stage);
     row["stages_cpu_ms_median"][stage] = medianOfStage(c, &RunTimes::cpuMs, stage);
   }
-  row["check"] = checkText(c);
+  row["check"] = checkOf(c);
   return row;
 }
 
@@ -193,7 +195,7 @@ TableResult runStartupTable(const BenchOptions& options, Progress& progress) {
       for (const CacheSetting& cache : kCacheSettings) {
         settings.push_back({name, size, cache.name, {}, {}, {}});
         if (!fs::exists(path)) {
-          settings.back().missing = "not found: " + path.string() + " (use --datasets DIR)";
+          settings.back().missing = notFound(path);
         }
       }
       if (fs::exists(path)) {

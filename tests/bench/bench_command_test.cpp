@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "bench/bench_rows.h"
 #include "harness/timing_stats.h"
 #include "test_support.h"
 
@@ -76,6 +77,7 @@ TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
         "lp_num_threads", "vsil_version", "build_type", "date_utc"}) {
     EXPECT_TRUE(document["machine"].contains(key)) << key;
   }
+  test::expectRowsRanOnTheReportedBackEnd(document);
   const auto& rows = document["rows"];
   ASSERT_TRUE(rows.is_array());
   ASSERT_EQ(rows.size(), 18u) << "2 datasets x 1 size x 3 techniques x 3 pipelines\n"
@@ -239,6 +241,7 @@ TEST(BenchCommand, IllustrateTableHasEveryCaseCheckedWithItsRatio) {
   }
   EXPECT_EQ(cases, (std::vector<std::string>{"ra", "plain", "boundary", "silhouette", "fading",
                                              "sketch", "distance", "halo", "tone", "all"}));
+  test::expectRowsRanOnTheReportedBackEnd(document);
 }
 
 struct BadFlags {

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "bench/bench_rows.h"
 #include "test_support.h"
 
 namespace vsil {
@@ -52,6 +53,7 @@ TEST(Dv1Table, MeasuresAndChecksMipDemipTheSphereAndDvr) {
     EXPECT_TRUE(row["paper_fps"].is_null()) << row.dump();
   }
   EXPECT_EQ(measured, 8) << "two datasets, four columns";
+  test::expectRowsRanOnTheReportedBackEnd(json);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "bench/bench_rows.h"
 #include "test_support.h"
 
 namespace vsil {
@@ -23,6 +24,7 @@ TEST(SemanticTable, MeasuresEveryRuleBaseAndBothChangesWithTheirChecks) {
   EXPECT_NE(result.out.find("membership_change"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("×16 rules"), std::string::npos) << result.out;
   const auto json = nlohmann::json::parse(test::readFileBytes(dir / "semantic.json"));
+  test::expectRowsRanOnTheReportedBackEnd(json);
   std::vector<std::string> cases;
   for (const auto& row : json["rows"]) {
     if (row["table"] != "semantic") continue;
