@@ -69,4 +69,10 @@ ChildRun runChild(const std::string& binary, const std::vector<std::string>& arg
   return run;
 }
 
+std::vector<std::string> glArguments(const gl::ContextOptions& gl) {
+  std::vector<std::string> args = {"--gl", gl::backendName(gl.backend)};
+  if (gl.eglDevice) args.insert(args.end(), {"--gl-device", std::to_string(*gl.eglDevice)});
+  return args;
+}
+
 }  // namespace vsil::bench

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "slicing/gl_context.h"
+
 namespace vsil::bench {
 
 struct ChildRun {
@@ -19,6 +21,9 @@ struct ChildRun {
 // ("NAME=VALUE") is added to this process's.
 ChildRun runVsilChild(const std::vector<std::string>& args, const std::filesystem::path& errFile,
                       const std::vector<std::string>& environment = {});
+
+// `--gl BACKEND [--gl-device N]`: the back end the bench was given, for every child it runs.
+std::vector<std::string> glArguments(const gl::ContextOptions& gl);
 
 // This very binary's path (/proc/self/exe), for a launcher to start (runChild).
 std::string vsilBinary();

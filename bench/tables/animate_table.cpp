@@ -78,13 +78,6 @@ void compareFrames(const fs::path& animated, const fs::path& rendered, AnimateCa
   }
 }
 
-// The back end the bench was given, for every child process (both paths on the same one).
-std::vector<std::string> glArgs(const gl::ContextOptions& gl) {
-  std::vector<std::string> args = {"--gl", gl::backendName(gl.backend)};
-  if (gl.eglDevice) args.insert(args.end(), {"--gl-device", std::to_string(*gl.eglDevice)});
-  return args;
-}
-
 AnimateCase measureCase(const std::string& dataset, const fs::path& file, double iso, int size,
                         const gl::ContextOptions& gl, Progress& progress) {
   AnimateCase result;
@@ -98,7 +91,7 @@ AnimateCase measureCase(const std::string& dataset, const fs::path& file, double
   fs::create_directory(rendered);
   const fs::path errFile = scratch.path() / "stderr";
 
-  const std::vector<std::string> glChoice = glArgs(gl);
+  const std::vector<std::string> glChoice = glArguments(gl);
   std::vector<std::string> animateArgs = {
       "animate", file.string(), "--iso",   isoText,     "--size",
       sizeText,  "--view",      kView,     "--frames",  std::to_string(kFrames),

@@ -257,7 +257,7 @@ std::vector<CaseResult> measureWindow(Renderer& renderer, const IllustrateDatase
 
 Measured measureDataset(const Choice& chosen, const std::vector<int>& sizes,
                         const BenchOptions& options, Progress& progress) {
-  Measured measured{chosen.dataset, chosen.missing, {}, 0, {}};
+  Measured measured{chosen.dataset, chosen.missing, {}, 0, {}, {}};
   for (int size : sizes) measured.windows.push_back({size, {}});
   if (!measured.missing.empty()) return measured;
   const std::optional<Volume> volume = readDatasetVolume(chosen.path, measured.missing);

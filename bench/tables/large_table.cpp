@@ -92,12 +92,6 @@ struct LargeCase {
   double bytesPerVoxel() const { return peakBytes / voxels(); }
 };
 
-std::vector<std::string> glArgs(const gl::ContextOptions& gl) {
-  std::vector<std::string> args = {"--gl", gl::backendName(gl.backend)};
-  if (gl.eglDevice) args.insert(args.end(), {"--gl-device", std::to_string(*gl.eglDevice)});
-  return args;
-}
-
 LargeCase measureCase(const LargeVolume& volume, int size, int frames, const gl::ContextOptions& gl,
                       Progress& progress) {
   LargeCase result;
@@ -119,7 +113,7 @@ LargeCase measureCase(const LargeVolume& volume, int size, int frames, const gl:
                                    // 2048²·1024 needs 12.6 GiB, over the default (half the
                                    // memory of a 24 GiB machine); the peak is measured anyway.
                                    "--max-memory", std::to_string(kMaxMemoryMiB)};
-  const std::vector<std::string> glChoice = glArgs(gl);
+  const std::vector<std::string> glChoice = glArguments(gl);
   args.insert(args.end(), glChoice.begin(), glChoice.end());
   progress.step("vsil animate");
   const ChildRun run = runVsilChild(args, scratch.path() / "stderr");

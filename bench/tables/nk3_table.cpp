@@ -494,7 +494,7 @@ std::vector<CaseResult> measureWindow(Renderer& renderer, const Nk3Dataset& d, i
 // upload is not timed. A file that cannot be read makes the dataset missing, not the run fail.
 Nk3Measured measureDataset(const Nk3Choice& chosen, const std::vector<int>& sizes,
                            const BenchOptions& options, Progress& progress) {
-  Nk3Measured measured{chosen.dataset, chosen.missing, {}, {}};
+  Nk3Measured measured{chosen.dataset, chosen.missing, {}, {}, {}};
   for (int window : sizes) measured.windows.push_back({window, {}});
   if (!measured.missing.empty()) return measured;
   const std::optional<Volume> volume = readDatasetVolume(chosen.path, measured.missing);

@@ -75,12 +75,6 @@ std::string firstLine(const fs::path& file) {
   return line;
 }
 
-std::vector<std::string> glArgs(const gl::ContextOptions& gl) {
-  std::vector<std::string> args = {"--gl", gl::backendName(gl.backend)};
-  if (gl.eglDevice) args.insert(args.end(), {"--gl-device", std::to_string(*gl.eglDevice)});
-  return args;
-}
-
 // One run: `vsil render` (N = 1) or `mpirun --oversubscribe -np N vsil render`; the frame and
 // combine times, the memory. Returns the problem, empty when it rendered.
 std::string runOnce(ScalingCase& c, int size, const gl::ContextOptions& gl, const fs::path& dir,
@@ -95,7 +89,7 @@ std::string runOnce(ScalingCase& c, int size, const gl::ContextOptions& gl, cons
   if (c.bricked) {
     render.insert(render.end(), {"--max-texture-mib", std::to_string(kBrickedTextureMiB)});
   }
-  const std::vector<std::string> glChoice = glArgs(gl);
+  const std::vector<std::string> glChoice = glArguments(gl);
   render.insert(render.end(), glChoice.begin(), glChoice.end());
   ChildRun run;
   if (c.ranks == 1) {
@@ -175,7 +169,7 @@ std::variant<int, std::string> singleProcessMiB(const std::string& technique, in
         "--size",       std::to_string(size) + "x" + std::to_string(size),
         "--out",        (dir / "probe.png").string(),
         "--max-memory", std::to_string(probe)};
-    const std::vector<std::string> glChoice = glArgs(gl);
+    const std::vector<std::string> glChoice = glArguments(gl);
     args.insert(args.end(), glChoice.begin(), glChoice.end());
     runVsilChild(args, dir / "probe.err");
     line = firstLine(dir / "probe.err");

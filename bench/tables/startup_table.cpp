@@ -79,8 +79,8 @@ std::optional<RunTimes> runOnce(const fs::path& file, int size, const CacheSetti
   std::vector<std::string> args = {"render",     file.string(), "--out",
                                    out.string(), "--meta-out",  meta.string()};
   if (size != kDefaultSize) args.insert(args.end(), {"--size", sizeText});
-  args.insert(args.end(), {"--gl", gl::backendName(gl.backend)});
-  if (gl.eglDevice) args.insert(args.end(), {"--gl-device", std::to_string(*gl.eglDevice)});
+  const std::vector<std::string> glChoice = glArguments(gl);
+  args.insert(args.end(), glChoice.begin(), glChoice.end());
   const ChildRun child = runVsilChild(args, scratch / "stderr", cache.environment);
   if (child.exitCode != 0) {
     problems.push_back("vsil render: " + child.error);
