@@ -58,7 +58,9 @@ class GlContext {
   // Throws UnavailableError (core/error.h) when no back end asked for gives one: one line naming
   // what is missing and which --gl choices work here (each tried); InputError for --gl-device
   // with osmesa. Trying makes other contexts current: after a failure, make yours current again.
-  explicit GlContext(const ContextOptions& options = {});
+  // No default: a caller passes the user's choice (--gl, or contextOptionsFromEnvironment());
+  // a context made with `{}` where one was given renders on auto under a report of the choice.
+  explicit GlContext(const ContextOptions& options);
   ~GlContext();
   GlContext(const GlContext&) = delete;
   GlContext& operator=(const GlContext&) = delete;

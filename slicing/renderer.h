@@ -1,7 +1,7 @@
 #pragma once
 // The slicing engine's front door: upload a volume once, render frames with any technique.
 //
-//   vsil::gl::GlContext context;
+//   vsil::gl::GlContext context(vsil::gl::contextOptionsFromEnvironment());  // or --gl
 //   vsil::Renderer renderer(context);
 //   renderer.setVolume(volume);
 //   vsil::RenderResult result = renderer.render(settings);   // result.frame.state, .depth ...
