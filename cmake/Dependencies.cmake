@@ -70,8 +70,10 @@ message(STATUS "vsil GL back ends: osmesa ${VSIL_OSMESA_BUILT}, egl ${VSIL_EGL_B
 vsil_import_library(vsil::fftw "FFTW (single precision, threads)" libfftw3-dev HEADER fftw3.h
                     LIBRARIES fftw3f_threads fftw3f)
 
-# OpenCV core/imgproc/imgcodecs: image files, distance transforms. Debian's per-module -dev
-# packages ship no CMake config, so the modules are found one by one.
+# OpenCV core/imgproc: images in memory, distance transforms. Debian's per-module -dev packages
+# ship no CMake config, so the modules are found one by one. imgcodecs (image files) is linked
+# into the tests only (vsil::opencv_imgcodecs): Debian's build pulls in GDAL and ~120 shared
+# libraries with it, ~60 ms at every process start; vsil reads and writes PNG through libpng.
 find_path(OPENCV_INCLUDE_DIR opencv2/core.hpp PATH_SUFFIXES opencv4)
 vsil_require(OPENCV_INCLUDE_DIR "OpenCV headers" libopencv-core-dev)
 add_library(vsil::opencv INTERFACE IMPORTED)
@@ -79,14 +81,20 @@ target_include_directories(vsil::opencv INTERFACE ${OPENCV_INCLUDE_DIR})
 foreach(module core imgproc imgcodecs)
   find_library(OPENCV_${module}_LIBRARY opencv_${module})
   vsil_require(OPENCV_${module}_LIBRARY "OpenCV ${module}" libopencv-${module}-dev)
-  target_link_libraries(vsil::opencv INTERFACE ${OPENCV_${module}_LIBRARY})
 endforeach()
+target_link_libraries(vsil::opencv INTERFACE ${OPENCV_core_LIBRARY} ${OPENCV_imgproc_LIBRARY})
+add_library(vsil::opencv_imgcodecs INTERFACE IMPORTED)
+target_link_libraries(vsil::opencv_imgcodecs INTERFACE vsil::opencv ${OPENCV_imgcodecs_LIBRARY})
+
+# libpng: PNG files in and out (core/image_file.h).
+find_package(PNG QUIET)
+vsil_require(PNG_FOUND "libpng" libpng-dev)
 
 # OpenCV videoio (with FFmpeg in Debian's build): `vsil animate --video`, and only there.
 find_library(OPENCV_videoio_LIBRARY opencv_videoio)
 vsil_require(OPENCV_videoio_LIBRARY "OpenCV videoio (vsil animate --video)" libopencv-videoio-dev)
 add_library(vsil::opencv_videoio INTERFACE IMPORTED)
-target_link_libraries(vsil::opencv_videoio INTERFACE vsil::opencv ${OPENCV_videoio_LIBRARY})
+target_link_libraries(vsil::opencv_videoio INTERFACE vsil::opencv_imgcodecs ${OPENCV_videoio_LIBRARY})
 
 find_package(glm QUIET)
 find_path(GLM_INCLUDE_DIR glm/glm.hpp)

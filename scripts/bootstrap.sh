@@ -14,7 +14,9 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri  # headless EGL: headers, Mesa's EGL driver, llvmpipe
   libosmesa6-dev                 # OSMesa (Mesa llvmpipe; Mesa 25.1 dropped it: optional below)
   libfftw3-dev                   # FFT Gaussian broadening
-  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev  # images, distance transforms
+  libpng-dev                     # PNG files in and out
+  libopencv-core-dev libopencv-imgproc-dev  # images in memory, distance transforms
+  libopencv-imgcodecs-dev        # the tests: OpenCV's image files, checked against (not in vsil)
   libopencv-videoio-dev          # vsil animate --video (OpenCV's video writer, FFmpeg)
   libglm-dev                     # vector and matrix math
   nlohmann-json3-dev             # JSON (metadata, benchmark tables)

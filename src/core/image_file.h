@@ -1,5 +1,6 @@
 #pragma once
-// PNG images in and out, through OpenCV. Writing is atomic (core/atomic_file.h).
+// PNG images in and out, through libpng (OpenCV's image codecs, whose GDAL alone pulls ~120 shared
+// libraries into every process start, are not linked). Writing is atomic (core/atomic_file.h).
 #include <cstdint>
 #include <filesystem>
 #include <vector>
@@ -17,8 +18,8 @@ std::vector<std::uint8_t> encodePng(const std::filesystem::path& path, const cv:
 // file's); std::runtime_error when they cannot be made.
 std::vector<std::uint8_t> encodePng(const cv::Mat& image);
 
-// Reads an image as stored (IMREAD_UNCHANGED). Throws InputError naming the path when it is
-// missing or not a decodable image.
+// Reads a PNG image of at most limits::kMaxImageSide pixels a side as readPng. Throws InputError
+// naming the path when it is missing, not a PNG image, too large or not decodable.
 cv::Mat readImage(const std::filesystem::path& path);
 
 // The width and height a PNG file's header (its first chunk, IHDR) declares, read without
@@ -27,12 +28,12 @@ cv::Mat readImage(const std::filesystem::path& path);
 // 0 or beyond 2^31 − 1 pixels (invalid PNG).
 cv::Size readPngSize(const std::filesystem::path& path);
 
-// Reads a PNG image as stored (as readImage), after readPngSize's checks and a walk over its
-// chunks: a file that is truncated, holds a chunk whose CRC does not match, ends without IEND or
-// is larger than an image of its declared size can need is refused with one line naming the
-// path, before OpenCV's decoder sees it (libpng prints its own line on stderr for such files).
-// What the chunk walk cannot see (valid chunks around an invalid compressed stream) still fails
-// as "not a readable PNG image", after libpng's line.
+// Reads a PNG image as stored (OpenCV's IMREAD_UNCHANGED layout: grey, BGR or BGRA, 8 or 16
+// bits), after readPngSize's checks and a walk over its chunks: a file that is truncated, holds
+// a chunk whose CRC does not match, ends without IEND or is larger than an image of its declared
+// size can need is refused with one line naming the path before libpng decodes it. What the
+// chunk walk cannot see (valid chunks around an invalid compressed stream) fails as "not a
+// readable PNG image (libpng's reason)".
 cv::Mat readPng(const std::filesystem::path& path);
 
 }  // namespace vsil

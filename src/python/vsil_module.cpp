@@ -26,13 +26,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "cli/cli_gl_options.h"
 #include "cli/cli_render_options.h"
 #include "cli/volume_summary.h"
 #include "core/error.h"
+#include "core/image_file.h"
 #include "core/limits.h"
 #include "core/number_pair.h"
 #include "core/version.h"
@@ -1263,8 +1263,7 @@ PYBIND11_MODULE(_vsil, m) {
                                const_cast<std::uint8_t*>(rgba.data()));
             cv::Mat bgra;
             cv::cvtColor(view, bgra, cv::COLOR_RGBA2BGRA);
-            std::vector<std::uint8_t> png;
-            cv::imencode(".png", bgra, png);
+            const std::vector<std::uint8_t> png = encodePng(bgra);
             return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
           },
           "The image as PNG bytes (how Jupyter shows a Frame)");
