@@ -74,8 +74,10 @@ class CMakeBuild(build_ext):
             sys.exit(f"setup.py: expected one _vsil*.so in {package}, found {built}")
         shutil.copyfile(built[0], target)
         shutil.copyfile(package / "__init__.pyi", target.parent / "__init__.pyi")
-        # The video plugin Renderer.animate(video=...) loads from beside the extension.
-        shutil.copyfile(package / "libvsil_video.so", target.parent / "libvsil_video.so")
+        # The plugins the extension loads from beside it: video (Renderer.animate(video=...)) and
+        # DICOM (a DICOM volume).
+        for plugin in ("libvsil_video.so", "libvsil_dicom.so"):
+            shutil.copyfile(package / plugin, target.parent / plugin)
 
 
 setup(

@@ -37,6 +37,7 @@
 
 #include "core/error.h"
 #include "core/options.h"
+#include "io/dicom_plugin.h"
 #include "io/file_access.h"
 #include "io/readers.h"
 #include "io/text_fields.h"
@@ -531,7 +532,7 @@ char axisLetter(const glm::dvec3& direction) {
 
 }  // namespace
 
-Volume readDicomSeries(const std::string& path, const LoadOptions& options) {
+Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& options) {
   const std::filesystem::path given(path);
   const bool folderGiven = std::filesystem::is_directory(given);
   if (!folderGiven) regularFileSize(path);

@@ -1,7 +1,5 @@
 #include "video/video_file.h"
 
-#include <dlfcn.h>
-
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -11,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/plugin.h"
 #include "video/video_encoder.h"
 
 namespace vsil {
@@ -35,39 +34,15 @@ const VideoFormat* formatOf(const std::filesystem::path& target) {
   return nullptr;
 }
 
-// The plugin (video_encoder.h), loaded once and kept: beside the executable (the build tree),
-// in ../lib/vsil beside it (installed), beside the shared object holding this code (the Python
-// extension vsil/_vsil*.so, whose package ships the plugin), or where the build put it.
+// The plugin (video_encoder.h), loaded once and kept (core/plugin.h).
 video::CreateEncoder loadPlugin() {
-  static const video::CreateEncoder create = [] {
-    std::error_code ignored;
-    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ignored);
-    std::vector<std::filesystem::path> candidates = {
-        exe.parent_path() / video::kPluginFile,
-        exe.parent_path() / ".." / "lib" / "vsil" / video::kPluginFile};
-    Dl_info self{};
-    if (::dladdr(reinterpret_cast<void*>(&loadPlugin), &self) != 0 && self.dli_fname) {
-      candidates.push_back(std::filesystem::path(self.dli_fname).parent_path() /
-                           video::kPluginFile);
-    }
 #ifdef VSIL_VIDEO_PLUGIN_BUILT
-    candidates.push_back(VSIL_VIDEO_PLUGIN_BUILT);
+  const std::string built = VSIL_VIDEO_PLUGIN_BUILT;
+#else
+  const std::string built;
 #endif
-    std::string tried;
-    for (const auto& path : candidates) {
-      if (!std::filesystem::exists(path)) continue;
-      if (void* plugin = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
-        if (void* symbol = ::dlsym(plugin, video::kCreateEncoderSymbol)) {
-          return reinterpret_cast<video::CreateEncoder>(symbol);
-        }
-      }
-      tried += " " + path.string() + " (" + ::dlerror() + ")";
-    }
-    throw std::runtime_error(
-        std::string("cannot load the video plugin ") + video::kPluginFile +
-        (tried.empty() ? " (not found beside vsil nor in ../lib/vsil)" : ":" + tried));
-  }();
-  return create;
+  return reinterpret_cast<video::CreateEncoder>(
+      pluginSymbol("video", video::kPluginFile, video::kCreateEncoderSymbol, built));
 }
 
 }  // namespace

@@ -3,8 +3,13 @@
 // series, two series in one folder, a missing slice). File names are shuffled and Instance
 // Numbers run against the slice order, so only sorting by position along the normal reads
 // them right; the manifest holds the values computed with numpy, not vsil.
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <fstream>
+#include <iterator>
 #include <sstream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -91,6 +96,48 @@ INSTANTIATE_TEST_SUITE_P(Fixtures, DicomFixtureRead, ::testing::ValuesIn(dicomFi
                            return info.param.series.empty() ? info.param.folder
                                                             : info.param.folder + "_chosen";
                          });
+
+// Whether GDCM is mapped into this process.
+bool gdcmLoaded() {
+  std::ifstream maps("/proc/self/maps");
+  const std::string text((std::istreambuf_iterator<char>(maps)), std::istreambuf_iterator<char>());
+  return text.find("libgdcm") != std::string::npos;
+}
+
+// GDCM comes with the DICOM plugin (io/dicom_plugin.h) at the first DICOM file, not before: a
+// process reading other files never loads it. In a child process, so that the tests before it
+// in this one (a DICOM read loads the plugin for good) do not matter; the child's exit status
+// holds one bit per check.
+TEST(DicomReader, GdcmLoadsAtTheFirstDicomFileOnly) {
+  const fs::path nrrd = test::scratchDir() / "small.nrrd";
+  test::writeFile(nrrd,
+                  "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n"
+                  "abcdefgh");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    int failed = gdcmLoaded() ? 1 : 0;
+    try {
+      loadVolume(nrrd.string());
+      loadVolume("gen:sphere:8");
+      if (gdcmLoaded()) failed |= 2;
+      if (loadVolume((kDicomFixtures / "ct_rle").string()).dims.z < 2) failed |= 8;
+      if (!gdcmLoaded()) failed |= 4;
+    } catch (...) {
+      failed |= 16;
+    }
+    ::_exit(failed);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "the child did not exit";
+  const int failed = WEXITSTATUS(status);
+  EXPECT_FALSE(failed & 1) << "GDCM is loaded before any volume is read";
+  EXPECT_FALSE(failed & 2) << "reading a NRRD file and a generated volume loaded GDCM";
+  EXPECT_FALSE(failed & 4) << "reading a DICOM series did not load GDCM";
+  EXPECT_FALSE(failed & 8) << "the DICOM series read wrong";
+  EXPECT_FALSE(failed & 16) << "a read threw";
+}
 
 TEST(DicomReader, EveryFixtureIsListed) {
   EXPECT_EQ(dicomFixtures().size(), 7u);
