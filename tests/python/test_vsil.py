@@ -490,6 +490,20 @@ def test_reprs_and_png_for_notebooks(renderer):
     assert repr(closed) == "<vsil.Renderer closed>"
 
 
+def test_a_dicom_series_reads_through_the_plugin_the_package_carries():
+    import json
+
+    # The DICOM reader is the plugin beside the extension (src/io/dicom_plugin.h), loaded at
+    # the first DICOM volume: the same volume as the command reads.
+    assert (pathlib.Path(vsil.__file__).parent / "libvsil_dicom.so").exists()
+    folder = str(pathlib.Path(__file__).parents[2] / "tests/io/dicom/ct_rle")
+    volume = vsil.load(folder)
+    assert volume.data.shape == (5, 3, 4)  # z, y, x
+    assert vsil.info(volume) == json.loads(run_cli("info", folder, "--json").stdout)
+    maps = pathlib.Path("/proc/self/maps").read_text()
+    assert "libvsil_dicom.so" in maps and "libgdcm" in maps
+
+
 def test_info_is_what_the_command_prints(tmp_path):
     import json
 
