@@ -208,7 +208,7 @@ struct ValueRange {
 ValueRange valueRange(const Volume& volume);
 
 // The iso value a technique uses when none is given, one a user would pick: Otsu's threshold
-// (OpenCV) over the samples in 256 levels of the value range, in the middle of the gap between
+// (otsuLevel) over the samples in 256 levels of the value range, in the middle of the gap between
 // the two classes where there is one; the range's minimum for a constant volume.
 float defaultIso(const Volume& volume);
 // The same for a volume whose valueRange is known (a pass over the samples saved).
@@ -229,6 +229,12 @@ DerivedDefaults derivedDefaults(const Volume& volume, ValueRange range);
 // histograms whole (larger ones it subsamples).
 using LevelCounts = std::array<std::uint64_t, 256>;
 LevelCounts levelCounts(const Volume& volume, ValueRange range, int zBegin, int zEnd);
+// Otsu's threshold of a 256-level histogram whose counts sum to `total`: the level t maximizing
+// the between-class variance q1·q2·(μ1 − μ2)² of the classes ≤ t and > t, the first such level
+// on ties, levels whose classes hold less than FLT_EPSILON of the samples skipped. This is
+// cv::threshold's THRESH_OTSU on an 8-bit image with this histogram, in its order of arithmetic
+// (tested equal to it), from the counts instead of an image of every sample.
+int otsuLevel(const LevelCounts& counts, std::uint64_t total);
 DerivedDefaults derivedDefaultsFromCounts(ValueRange range, const LevelCounts& counts);
 
 // Limits checked before a reader allocates or reads any payload. maxBytes bounds the memory of

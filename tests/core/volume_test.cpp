@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
 
@@ -198,6 +199,70 @@ TEST(DefaultIso, IsOtsusThresholdOfTwoOverlappingClasses) {
   flat.allocate(SampleType::Float32);
   for (float& v : flat.samples<float>()) v = 3.5f;
   EXPECT_EQ(defaultIso(flat), 3.5f);
+}
+
+// otsuLevel against cv::threshold's THRESH_OTSU on an image holding the histogram's levels
+// (what the default iso came from before): the same level for histograms of every shape, ties
+// and empty levels included.
+TEST(DefaultIso, OtsuLevelIsOpenCvsOtsuThreshold) {
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 400; ++trial) {
+    LevelCounts counts{};
+    const int shape = trial % 4;
+    const int spikes = 1 + trial % 5;
+    for (int level = 0; level < 256; ++level) {
+      if (shape == 0) counts[level] = random() % 50;                            // noise
+      if (shape == 1) counts[level] = random() % 8 == 0 ? random() % 1000 : 0;  // sparse
+      if (shape == 2) counts[level] = 100 + (level % 32 < 16 ? 0 : 7);          // ties
+    }
+    for (int k = 0; shape == 3 && k < spikes; ++k) counts[random() % 256] += 1 + random() % 5000;
+    std::uint64_t total = 0;
+    for (std::uint64_t c : counts) total += c;
+    if (total == 0) continue;
+    cv::Mat1b image(1, int(total));
+    int at = 0;
+    for (int level = 0; level < 256; ++level) {
+      for (std::uint64_t k = 0; k < counts[level]; ++k) image(0, at++) = std::uint8_t(level);
+    }
+    cv::Mat1b binary;
+    const int opencv =
+        int(cv::threshold(image, binary, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU));
+    EXPECT_EQ(otsuLevel(counts, total), opencv) << "trial " << trial << ", shape " << shape;
+  }
+}
+
+// The levels of 8- and 16-bit samples come from a table, those of float samples from the
+// formula: a volume and its float32 copy get the same defaults (same value range).
+TEST(DefaultIso, IntegerSamplesGetTheLevelsOfTheirFloatValues) {
+  std::mt19937 random(5);
+  const auto check = [&](SampleType type, auto sample) {
+    using C = decltype(sample);
+    Volume typed;
+    typed.dims = {40, 30, 20};
+    typed.allocate(type);
+    Volume floats;
+    floats.dims = typed.dims;
+    floats.allocate(SampleType::Float32);
+    std::normal_distribution<double> low(0.3, 0.08), high(0.75, 0.1);
+    const double lo = double(std::numeric_limits<C>::min()),
+                 hi = double(std::numeric_limits<C>::max());
+    for (std::size_t i = 0; i < typed.sampleCount(); ++i) {
+      const double unit = std::clamp(i % 3 ? low(random) : high(random), 0.0, 1.0);
+      const C value = C(std::lround(lo + unit * (hi - lo)));
+      typed.samples<C>()[i] = value;
+      floats.samples<float>()[i] = float(value);
+    }
+    const DerivedDefaults a = derivedDefaults(typed), b = derivedDefaults(floats);
+    EXPECT_EQ(a.iso, b.iso) << sampleTypeName(type);
+    EXPECT_EQ(a.windowHigh, b.windowHigh) << sampleTypeName(type);
+    EXPECT_EQ(levelCounts(typed, valueRange(typed), 0, 20),
+              levelCounts(floats, valueRange(floats), 0, 20))
+        << sampleTypeName(type);
+  };
+  check(SampleType::UInt8, std::uint8_t());
+  check(SampleType::Int8, std::int8_t());
+  check(SampleType::UInt16, std::uint16_t());
+  check(SampleType::Int16, std::int16_t());
 }
 
 TEST(Volume, TypeNamesAndSizes) {
