@@ -119,6 +119,15 @@ ValueRange BrickRanges::range(glm::ivec3 brick) const {
   return ranges_[(std::size_t(brick.z) * bricks_.y + brick.y) * bricks_.x + brick.x];
 }
 
+ValueRange BrickRanges::whole() const {
+  ValueRange all{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+  for (const ValueRange& r : ranges_) {
+    all.min = std::min(all.min, r.min);
+    all.max = std::max(all.max, r.max);
+  }
+  return all;
+}
+
 glm::dvec3 BrickRanges::regionLow(glm::ivec3 brick) const {
   return glm::dvec3(brick * kB) - 0.5;
 }

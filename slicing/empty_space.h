@@ -43,6 +43,9 @@ class BrickRanges {
   glm::ivec3 bricks() const { return bricks_; }
   // The smallest and largest voxel a trilinear sample inside the brick can read.
   ValueRange range(glm::ivec3 brick) const;
+  // The smallest and largest voxel of the volume (valueRange's, without another pass over the
+  // samples: every voxel lies in a brick).
+  ValueRange whole() const;
   // The brick's sample positions: [kB - 0.5, (k+1)B - 0.5] per axis, cut to the volume's box.
   glm::dvec3 regionLow(glm::ivec3 brick) const;
   glm::dvec3 regionHigh(glm::ivec3 brick) const;

@@ -175,7 +175,7 @@ void Renderer::setVolume(const Volume& volume, std::uint64_t maxTextureBytes) {
   impl_->brickRanges.emplace(volume);
   impl_->dims = volume.dims;
   impl_->spacing = volume.spacing;
-  impl_->valueRange = vsil::valueRange(volume);
+  impl_->valueRange = impl_->brickRanges->whole();  // vsil::valueRange's, from the bricks
   impl_->histogramDefaults.reset();
 }
 

@@ -75,6 +75,21 @@ TEST(BrickRanges, EqualTheRangeOverEachBricksFilterReach) {
   }
 }
 
+TEST(BrickRanges, TheirUnionIsTheVolumesValueRange) {
+  for (const glm::ivec3 dims : {glm::ivec3(1, 1, 1), glm::ivec3(2 * kB + 5, kB + 3, 3 * kB + 1),
+                                glm::ivec3(kB, 2 * kB, 7)}) {
+    for (unsigned seed = 1; seed <= 5; ++seed) {
+      Volume volume = randomVolume(dims, seed);
+      // One extreme at a random voxel (a corner or an edge of the last, partial bricks too).
+      std::mt19937 random(seed);
+      volume.samples<float>()[random() % volume.sampleCount()] = seed % 2 ? 9.0f : -7.0f;
+      const ValueRange expected = valueRange(volume), whole = BrickRanges(volume).whole();
+      EXPECT_EQ(whole.min, expected.min) << seed;
+      EXPECT_EQ(whole.max, expected.max) << seed;
+    }
+  }
+}
+
 TEST(BrickRanges, BoundEveryTrilinearSampleInTheirRegion) {
   const Volume volume = randomVolume({2 * kB + 3, 2 * kB, kB + 7}, 11);
   const BrickRanges ranges(volume);
