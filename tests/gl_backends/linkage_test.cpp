@@ -14,15 +14,20 @@
 namespace vsil {
 namespace {
 
+// The lines of `command`'s output that contain `marker`.
+std::string linesContaining(const std::string& command, const std::string& marker) {
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  std::string lines;
+  char line[1024];
+  while (pipe && std::fgets(line, sizeof line, pipe.get())) {
+    if (std::string(line).find(marker) != std::string::npos) lines += line;
+  }
+  return lines;
+}
+
 // The DT_NEEDED libraries of `binary`, as `readelf -d` prints them.
 std::string neededLibraries(const std::string& binary) {
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(("readelf -d " + binary).c_str(), "r"), pclose);
-  std::string needed;
-  char line[512];
-  while (pipe && std::fgets(line, sizeof line, pipe.get())) {
-    if (std::string(line).find("(NEEDED)") != std::string::npos) needed += line;
-  }
-  return needed;
+  return linesContaining("readelf -d " + binary, "(NEEDED)");
 }
 
 TEST(Linkage, VsilStartsWithoutAnyGlLibrary) {
@@ -36,15 +41,9 @@ TEST(Linkage, VsilStartsWithoutAnyGlLibrary) {
 // The shared objects the dynamic loader opens for `vsil info input`, as LD_DEBUG=files lists
 // them (one "file=NAME [0];  needed by ..." or "... dynamically loaded by ..." line each).
 std::string librariesLoadedFor(const std::string& input) {
-  const std::string command =
-      "LD_DEBUG=files " + test::vsilBinary().string() + " info '" + input + "' 2>&1 >/dev/null";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  std::string loaded;
-  char line[1024];
-  while (pipe && std::fgets(line, sizeof line, pipe.get())) {
-    if (std::string(line).find("file=") != std::string::npos) loaded += line;
-  }
-  return loaded;
+  return linesContaining(
+      "LD_DEBUG=files " + test::vsilBinary().string() + " info '" + input + "' 2>&1 >/dev/null",
+      "file=");
 }
 
 TEST(Linkage, VsilLoadsGdcmAtTheFirstDicomFileOnly) {
