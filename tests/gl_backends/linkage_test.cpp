@@ -50,7 +50,7 @@ TEST(Linkage, VsilLoadsGdcmAtTheFirstDicomFileOnly) {
   const auto nrrd = test::scratchDir() / "small.nrrd";
   std::ofstream(nrrd) << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n"
                       << "abcdefgh";
-  for (const std::string input : {nrrd.string(), std::string("gen:sphere:8")}) {
+  for (const std::string& input : {nrrd.string(), std::string("gen:sphere:8")}) {
     const std::string loaded = librariesLoadedFor(input);
     ASSERT_NE(loaded.find("libc.so"), std::string::npos) << "LD_DEBUG listed nothing:\n" << loaded;
     EXPECT_EQ(loaded.find("libgdcm"), std::string::npos) << "vsil info " << input << ":\n"
