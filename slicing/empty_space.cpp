@@ -15,6 +15,14 @@ namespace {
 
 constexpr int kB = BrickRanges::kBrickSize;
 
+// The range of no values, which unite widens to any other.
+constexpr ValueRange kNoValues{std::numeric_limits<float>::infinity(),
+                               -std::numeric_limits<float>::infinity()};
+void unite(ValueRange& r, ValueRange other) {
+  r.min = std::min(r.min, other.min);
+  r.max = std::max(r.max, other.max);
+}
+
 // The voxels brick k reads along one axis: positions [kB - 0.5, (k+1)B - 0.5] filter voxels
 // kB - 1 .. (k+1)B; one more on each side absorbs rounding of the sample position.
 int firstVoxel(int brick) {
@@ -32,14 +40,8 @@ std::pair<int, int> voxelRange(int brick, int dim) {
 
 BrickRanges::BrickRanges(const Volume& volume)
     : dims_(volume.dims), bricks_(bricksCovering(volume.dims)) {
-  const float inf = std::numeric_limits<float>::infinity();
-  const ValueRange none{inf, -inf};
-  const auto unite = [](ValueRange& r, ValueRange other) {
-    r.min = std::min(r.min, other.min);
-    r.max = std::max(r.max, other.max);
-  };
   const glm::ivec3 d = dims_, b = bricks_;
-  ranges_.assign(std::size_t(b.x) * b.y * b.z, none);
+  ranges_.assign(std::size_t(b.x) * b.y * b.z, kNoValues);
   // Separable, one z plane at a time, so that the working memory is two planes of ranges
   // (limits::renderVolumeBytes counts them), not a range per 8 voxels of the whole volume:
   // a plane's ranges along x per row, then over y, then united into the bricks that read it.
@@ -68,7 +70,7 @@ BrickRanges::BrickRanges(const Volume& volume)
             alongX[std::size_t(y) * b.x + bx] = {float(*lo), float(*hi)};
           }
         }
-        std::fill(alongY.begin(), alongY.end(), none);
+        std::fill(alongY.begin(), alongY.end(), kNoValues);
         for (int by = 0; by < b.y; ++by) {
           const auto [y0, y1] = voxelRange(by, d.y);
           for (int y = y0; y <= y1; ++y) {
@@ -120,11 +122,8 @@ ValueRange BrickRanges::range(glm::ivec3 brick) const {
 }
 
 ValueRange BrickRanges::whole() const {
-  ValueRange all{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
-  for (const ValueRange& r : ranges_) {
-    all.min = std::min(all.min, r.min);
-    all.max = std::max(all.max, r.max);
-  }
+  ValueRange all = kNoValues;
+  for (const ValueRange& r : ranges_) unite(all, r);
   return all;
 }
 
