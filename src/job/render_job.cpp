@@ -180,14 +180,16 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
 }
 
 // An iso value outside the data's range finds no surface: the frame is empty, which is what
-// was asked, but rarely what was meant.
-std::vector<std::string> warnings(const RenderRequest& request, const Volume& volume) {
+// was asked, but rarely what was meant. `uploadedRange`: the range found when the samples were
+// uploaded, still theirs when the volume owns them.
+std::vector<std::string> warnings(const RenderRequest& request, const Volume& volume,
+                                  ValueRange uploadedRange) {
   std::vector<std::string> found;
   const auto given = request.settings.options.find("iso");
   if (given == request.settings.options.end()) return found;
   const double iso = std::get<double>(given->second);
-  // The samples as they are now (Python may change an array in place after its upload).
-  const ValueRange range = valueRange(volume);
+  // Borrowed samples as they are now: Python may change an array in place after its upload.
+  const ValueRange range = volume.borrowsSamples() ? valueRange(volume) : uploadedRange;
   if (iso > range.max || iso < range.min) {
     std::ostringstream line;
     line << "--iso " << iso << " is outside the data's range " << range.min << " .. " << range.max
@@ -330,7 +332,7 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
   const ValueRange range = impl_->renderer->valueRange();
   output.metadata = metadata(request, impl_->input, volume, range, output.result,
                              impl_->context.info(), output.postfx);
-  output.warnings = warnings(request, volume);
+  output.warnings = warnings(request, volume, range);
   return output;
 }
 
