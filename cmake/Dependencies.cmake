@@ -122,6 +122,9 @@ vsil_require(tinyxml2_FOUND "TinyXML-2 (VTK XML files)" libtinyxml2-dev)
 find_package(ZLIB QUIET)
 vsil_require(ZLIB_FOUND "zlib (compressed VTI, NRRD and MetaImage payloads)" zlib1g-dev)
 
+# libdeflate: VTI's zlib blocks, inflated whole about 2.5 times as fast as by zlib.
+vsil_import_library(vsil::deflate "libdeflate (VTI zlib blocks)" libdeflate-dev
+                    HEADER libdeflate.h LIBRARIES deflate)
 # VTI files written with vtkLZ4DataCompressor and vtkLZMADataCompressor.
 vsil_import_library(vsil::lz4 "LZ4 (VTI files compressed with LZ4)" liblz4-dev HEADER lz4.h
                     LIBRARIES lz4)

@@ -22,6 +22,7 @@ packages=(
   nlohmann-json3-dev             # JSON (metadata, benchmark tables)
   libcli11-dev                   # command-line parsing
   libtinyxml2-dev zlib1g-dev     # VTK XML (.vti) files, zlib/gzip payloads
+  libdeflate-dev                 # VTI zlib blocks, inflated faster than by zlib
   liblz4-dev liblzma-dev         # VTI files compressed with LZ4 or LZMA
   libnifti2-dev                  # NIfTI-1/-2 files (nifticlib)
   libgdcm-dev                    # DICOM series (GDCM)

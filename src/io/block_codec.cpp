@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 #include <vector>
 
+#include <libdeflate.h>
 #include <lz4.h>
 #include <lzma.h>
 
@@ -64,6 +66,30 @@ class XzDecoder {
   std::string where_, what_;
 };
 
+// libdeflate inflates a zlib block about 2.5 times as fast as zlib (bonsai.vti's 512 blocks of
+// 32 KiB: 37 -> 15 ms), but only whole, into memory for all of it: blocks up to the size of
+// zlib's own output piece (inflate.h) go that way. Any outcome but exactly `expected` bytes
+// falls back to zlib, whose decode then gives the error its message.
+constexpr std::uint64_t kWholeBlockBytes = std::uint64_t(1) << 20;
+
+bool inflateWhole(std::span<const std::uint8_t> compressed, std::uint64_t expected,
+                  const std::function<void(std::span<const std::uint8_t>)>& write) {
+  if (expected > kWholeBlockBytes) return false;
+  const std::unique_ptr<libdeflate_decompressor, decltype(&libdeflate_free_decompressor)>
+      decompressor(libdeflate_alloc_decompressor(), &libdeflate_free_decompressor);
+  if (!decompressor) return false;
+  const auto out = std::make_unique_for_overwrite<std::uint8_t[]>(std::size_t(expected));
+  std::size_t read = 0, made = 0;  // bytes after the stream's end are ignored, as zlib's are
+  if (libdeflate_zlib_decompress_ex(decompressor.get(), compressed.data(), compressed.size(),
+                                    out.get(), std::size_t(expected), &read,
+                                    &made) != LIBDEFLATE_SUCCESS ||
+      made != expected) {
+    return false;
+  }
+  if (made) write(std::span<const std::uint8_t>(out.get(), made));
+  return true;
+}
+
 }  // namespace
 
 const char* blockCodecName(BlockCodec codec) {
@@ -96,6 +122,7 @@ void decompressBlock(const std::string& where, const std::string& what, BlockCod
                      std::span<const std::uint8_t> compressed, std::uint64_t expected,
                      const std::function<void(std::span<const std::uint8_t>)>& write) {
   if (codec == BlockCodec::Zlib) {
+    if (inflateWhole(compressed, expected, write)) return;
     bool given = false;
     inflateStream(
         where, what, DeflateWrapper::Zlib, expected,

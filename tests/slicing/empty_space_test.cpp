@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -47,30 +48,64 @@ Volume spikesVolume(glm::ivec3 dims, const std::vector<glm::ivec3>& spikes) {
   return volume;
 }
 
-TEST(BrickRanges, EqualTheRangeOverEachBricksFilterReach) {
-  // Dims that are not multiples of the brick size: the last bricks are partial.
-  const Volume volume = randomVolume({2 * kB + 5, kB + 3, 3 * kB + 1}, 7);
+// The range of the voxels a brick's samples filter (brick * kB - 2 .. (brick + 1) * kB + 1 along
+// each axis, within the volume), by brute force.
+ValueRange filterReachRange(const Volume& volume, glm::ivec3 brick) {
+  const glm::ivec3 lo = glm::max(brick * kB - 2, glm::ivec3(0));
+  const glm::ivec3 hi = glm::min((brick + 1) * kB + 1, volume.dims - 1);
+  ValueRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+  for (int z = lo.z; z <= hi.z; ++z) {
+    for (int y = lo.y; y <= hi.y; ++y) {
+      for (int x = lo.x; x <= hi.x; ++x) {
+        range.max = std::max(range.max, volume.at(x, y, z));
+        range.min = std::min(range.min, volume.at(x, y, z));
+      }
+    }
+  }
+  return range;
+}
+
+void expectEachBricksFilterReachRange(const Volume& volume, const std::string& what) {
   const BrickRanges ranges(volume);
-  ASSERT_EQ(ranges.bricks(), glm::ivec3(3, 2, 4));
   for (int bz = 0; bz < ranges.bricks().z; ++bz) {
     for (int by = 0; by < ranges.bricks().y; ++by) {
       for (int bx = 0; bx < ranges.bricks().x; ++bx) {
         const glm::ivec3 brick(bx, by, bz);
-        const glm::ivec3 lo = glm::max(brick * kB - 2, glm::ivec3(0));
-        const glm::ivec3 hi = glm::min((brick + 1) * kB + 1, volume.dims - 1);
-        float expectedMax = -std::numeric_limits<float>::infinity();
-        float expectedMin = std::numeric_limits<float>::infinity();
-        for (int z = lo.z; z <= hi.z; ++z) {
-          for (int y = lo.y; y <= hi.y; ++y) {
-            for (int x = lo.x; x <= hi.x; ++x) {
-              expectedMax = std::max(expectedMax, volume.at(x, y, z));
-              expectedMin = std::min(expectedMin, volume.at(x, y, z));
-            }
-          }
-        }
-        EXPECT_EQ(ranges.range(brick).max, expectedMax) << bx << "," << by << "," << bz;
-        EXPECT_EQ(ranges.range(brick).min, expectedMin) << bx << "," << by << "," << bz;
+        const ValueRange expected = filterReachRange(volume, brick);
+        EXPECT_EQ(ranges.range(brick).max, expected.max)
+            << what << " " << bx << "," << by << "," << bz;
+        EXPECT_EQ(ranges.range(brick).min, expected.min)
+            << what << " " << bx << "," << by << "," << bz;
       }
+    }
+  }
+}
+
+TEST(BrickRanges, EqualTheRangeOverEachBricksFilterReach) {
+  // Dims that are not multiples of the brick size: the last bricks are partial.
+  const Volume volume = randomVolume({2 * kB + 5, kB + 3, 3 * kB + 1}, 7);
+  ASSERT_EQ(BrickRanges(volume).bricks(), glm::ivec3(3, 2, 4));
+  expectEachBricksFilterReachRange(volume, "sparse peaks");
+}
+
+// Dense noise, so that every brick's minimum and maximum come from voxels of its own, in the
+// integer and float types, along rows of every length around the bricks' ends and the halves
+// the rows are read in.
+TEST(BrickRanges, EqualTheRangeOverEachBricksFilterReachForEveryRowLength) {
+  std::mt19937 random(11);
+  for (const SampleType type : kSampleTypes) {
+    for (int length = 1; length <= 3 * kB + 2; ++length) {
+      Volume volume;
+      volume.name = "noise";
+      volume.dims = {length, 3, kB + 3};
+      volume.allocate(type);
+      volume.visit([&](auto samples) {
+        using T = std::remove_reference_t<decltype(samples[0])>;
+        const int offset = std::is_signed_v<T> ? 100 : 0;  // -100 .. 99 where signed
+        for (T& v : samples) v = T(int(random() % 200) - offset);
+      });
+      expectEachBricksFilterReachRange(
+          volume, std::string(sampleTypeName(type)) + " row of " + std::to_string(length));
     }
   }
 }
