@@ -67,6 +67,26 @@ void Volume::allocate(SampleType type) {
   }
 }
 
+void Volume::allocateIn(SampleType type, std::shared_ptr<void> memory) {
+  void* start = memory.get();
+  const auto place = [&]<typename C>(C*) {
+    samples_.emplace<SampleBuffer<C>>(static_cast<C*>(start), voxelCount(), std::move(memory),
+                                      false);
+  };
+  switch (type) {
+    case SampleType::UInt8:
+      return place(static_cast<std::uint8_t*>(nullptr));
+    case SampleType::Int8:
+      return place(static_cast<std::int8_t*>(nullptr));
+    case SampleType::UInt16:
+      return place(static_cast<std::uint16_t*>(nullptr));
+    case SampleType::Int16:
+      return place(static_cast<std::int16_t*>(nullptr));
+    case SampleType::Float32:
+      return place(static_cast<float*>(nullptr));
+  }
+}
+
 Volume Volume::sharing(const std::shared_ptr<Volume>& owner) {
   // Copy every field but the samples: move them out for the copy, then back.
   SampleStorage samples = std::move(owner->samples_);

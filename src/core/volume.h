@@ -36,41 +36,60 @@ const char* sampleTypeName(SampleType type);  // "uint8", "int8", "uint16", "int
 std::size_t sampleTypeSize(SampleType type);  // bytes per sample
 bool isIntegerType(SampleType type);
 
-// A volume's samples of one C++ type: owned (a vector), or borrowed from memory that another
+// A volume's samples of one C++ type: owned (a vector, or memory the volume alone holds, kept
+// by `keepAlive`: the DICOM child process's memfd mapping), or borrowed from memory that another
 // owner keeps alive (a numpy array wrapped by the Python module), so that wrapping copies
-// nothing. Copying an owned buffer copies the samples; copying a borrowed one shares them, as
-// numpy views do.
+// nothing. Copying an owned buffer copies the samples (into a vector); copying a borrowed one
+// shares them, as numpy views do.
 template <typename C>
 class SampleBuffer {
  public:
   using value_type = C;
   SampleBuffer() = default;
   explicit SampleBuffer(std::size_t count) : owned_(count) {}
-  SampleBuffer(C* data, std::size_t count, std::shared_ptr<void> keepAlive)
-      : isBorrowed_(true),
-        borrowed_(data),
-        borrowedCount_(count),
+  SampleBuffer(C* data, std::size_t count, std::shared_ptr<void> keepAlive, bool borrowed)
+      : where_(borrowed ? Where::Borrowed : Where::Held),
+        external_(data),
+        externalCount_(count),
         keepAlive_(std::move(keepAlive)) {}
+  SampleBuffer(const SampleBuffer& other) { *this = other; }
+  SampleBuffer& operator=(const SampleBuffer& other) {
+    if (this == &other) return *this;
+    if (other.where_ == Where::Held) {
+      *this = SampleBuffer();
+      owned_.assign(other.external_, other.external_ + other.externalCount_);
+    } else {
+      owned_ = other.owned_;
+      where_ = other.where_;
+      external_ = other.external_;
+      externalCount_ = other.externalCount_;
+      keepAlive_ = other.keepAlive_;
+    }
+    return *this;
+  }
+  SampleBuffer(SampleBuffer&&) noexcept = default;
+  SampleBuffer& operator=(SampleBuffer&&) noexcept = default;
 
-  bool borrowed() const { return isBorrowed_; }
+  bool borrowed() const { return where_ == Where::Borrowed; }
   std::span<C> span() {
-    return borrowed() ? std::span<C>(borrowed_, borrowedCount_) : std::span<C>(owned_);
+    return where_ == Where::Vector ? std::span<C>(owned_) : std::span<C>(external_, externalCount_);
   }
   std::span<const C> span() const {
-    return borrowed() ? std::span<const C>(borrowed_, borrowedCount_) : std::span<const C>(owned_);
+    return where_ == Where::Vector ? std::span<const C>(owned_)
+                                   : std::span<const C>(external_, externalCount_);
   }
   std::size_t size() const { return span().size(); }
   const C& operator[](std::size_t i) const { return span()[i]; }
 
  private:
+  enum class Where { Vector, Held, Borrowed };  // owned_, or external_ kept by keepAlive_
   std::vector<C> owned_;
-  bool isBorrowed_ = false;
-  C* borrowed_ = nullptr;
-  std::size_t borrowedCount_ = 0;
+  Where where_ = Where::Vector;
+  C* external_ = nullptr;
+  std::size_t externalCount_ = 0;
   std::shared_ptr<void> keepAlive_;
 };
 
-// The C++ type of each SampleType, and back.
 using SampleStorage = std::variant<SampleBuffer<std::uint8_t>, SampleBuffer<std::int8_t>,
                                    SampleBuffer<std::uint16_t>, SampleBuffer<std::int16_t>,
                                    SampleBuffer<float>>;  // in SampleType's order
@@ -143,8 +162,12 @@ class Volume {
   // owns that memory and is released with the last volume that shares it.
   template <typename C>
   void borrow(C* samples, std::shared_ptr<void> keepAlive) {
-    samples_.emplace<SampleBuffer<C>>(samples, voxelCount(), std::move(keepAlive));
+    samples_.emplace<SampleBuffer<C>>(samples, voxelCount(), std::move(keepAlive), true);
   }
+  // As allocate, but the samples are `memory`'s bytes as they are (a fresh memfd mapping: all
+  // zero); it must hold sampleTypeSize(type) * voxelCount() bytes, aligned for `type`, and the
+  // volume alone uses it from now on (not borrowed: a copy of the volume copies the samples).
+  void allocateIn(SampleType type, std::shared_ptr<void> memory);
   // A volume with `owner`'s fields whose samples borrow owner's, kept alive by it: a copy that
   // costs no samples (the Python module hands its volumes to a RenderJob this way).
   static Volume sharing(const std::shared_ptr<Volume>& owner);

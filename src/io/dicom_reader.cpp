@@ -11,7 +11,6 @@
 // slices: each frame's position from its Plane Position Sequence in the Per-frame Functional
 // Groups, the orientation from the Plane Orientation Sequence (per frame or shared).
 #include <fcntl.h>
-#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -37,6 +36,7 @@
 
 #include "core/error.h"
 #include "core/options.h"
+#include "io/dicom_child.h"
 #include "io/dicom_plugin.h"
 #include "io/file_access.h"
 #include "io/readers.h"
@@ -120,30 +120,21 @@ StoredType storedTypeOfPixels(const std::string& where, const gdcm::PixelFormat&
 // GDCM checks some of its preconditions with assert(), which Debian's build keeps: a malformed
 // file can abort the process inside GDCM (a File Meta Information cut short trips
 // `is.good()` in FileMetaInformation::ReadCompat; libFuzzer found it within 52 inputs:
-// tests/bad_inputs/dicom_gdcm_assert/slice.dcm). Each call into GDCM that reads files runs
-// inside one of these (withinGdcm): stderr goes to /dev/null (assert's own line included; GDCM's
-// warnings go to GdcmWarnings anyway), and SIGABRT prints vsil's one-line error naming what is read
-// on the real stderr and exits 2 instead of dumping core. Nothing has been written then: a volume
-// is read before any output.
+// tests/bad_inputs/dicom_gdcm_assert/slice.dcm). So GDCM reads in a child process
+// (io/dicom_child.h), and each call into GDCM that reads files runs inside one of these
+// (withinGdcm): stderr goes to /dev/null (assert's own line included; GDCM's warnings go to
+// GdcmWarnings anyway), and gdcmCallRunning tells the child's SIGABRT handler that the abort
+// is GDCM's.
 class GdcmCall {
  public:
-  explicit GdcmCall(const std::string& where)
-      : message_("vsil: " + where +
-                 ": GDCM failed one of its internal checks reading it (a malformed DICOM "
-                 "file)\n"),
-        stderr_(::dup(STDERR_FILENO)) {
+  GdcmCall() : stderr_(::dup(STDERR_FILENO)) {
     const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
     if (null >= 0 && stderr_ >= 0) ::dup2(null, STDERR_FILENO);
     if (null >= 0) ::close(null);
-    active_ = this;
-    struct sigaction action = {};
-    action.sa_handler = &GdcmCall::onAbort;
-    sigemptyset(&action.sa_mask);
-    ::sigaction(SIGABRT, &action, &previous_);
+    gdcmCallRunning = 1;
   }
   ~GdcmCall() {
-    ::sigaction(SIGABRT, &previous_, nullptr);
-    active_ = nullptr;
+    gdcmCallRunning = 0;
     if (stderr_ >= 0) {
       ::dup2(stderr_, STDERR_FILENO);
       ::close(stderr_);
@@ -153,24 +144,13 @@ class GdcmCall {
   GdcmCall& operator=(const GdcmCall&) = delete;
 
  private:
-  static void onAbort(int) {  // async-signal-safe: write and _exit only
-    if (active_) {
-      const int fd = active_->stderr_ >= 0 ? active_->stderr_ : STDERR_FILENO;
-      [[maybe_unused]] const auto written =
-          ::write(fd, active_->message_.data(), active_->message_.size());
-    }
-    ::_exit(2);
-  }
-  static inline GdcmCall* active_ = nullptr;
-  const std::string message_;
   const int stderr_;  // the real stderr while GDCM runs
-  struct sigaction previous_ = {};
 };
 
 // What `call` (a call into GDCM that reads files) returns, run inside a GdcmCall.
 template <typename Call>
-auto withinGdcm(const std::string& where, Call&& call) {
-  const GdcmCall guard(where);
+auto withinGdcm(Call&& call) {
+  const GdcmCall guard;
   return call();
 }
 
@@ -336,7 +316,7 @@ std::vector<Series> scanSeries(const std::string& where, const std::string& fold
     warnings.push_back(where + ": left out " + quote(name) + ": " + problem.text);
     if (leftOut.empty()) leftOut = "; left out " + quote(name) + ": " + problem.text;
   }
-  if (!withinGdcm(where, [&] { return scanner.Scan(files); })) {
+  if (!withinGdcm([&] { return scanner.Scan(files); })) {
     throwInputError(where, "GDCM cannot scan its files");
   }
   std::map<std::string, Series> byUid;
@@ -450,7 +430,7 @@ FrameGeometry multiFrameSlices(const std::string& path, const std::string& file,
   gdcm::Reader reader;
   reader.SetFileName(file.c_str());
   const std::set<gdcm::Tag> skip;
-  if (!withinGdcm(path, [&] { return reader.ReadUpToTag(kPixelData, skip); })) {
+  if (!withinGdcm([&] { return reader.ReadUpToTag(kPixelData, skip); })) {
     throwInputError(path, "GDCM cannot read " + fileLabel(file));
   }
   const gdcm::DataSet& top = reader.GetFile().GetDataSet();
@@ -693,7 +673,7 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
   gdcm::ImageReader first;
   refuseTruncatedPixelData(path, slices.front(), cutInPixelData);
   first.SetFileName(slices.front().file.c_str());
-  if (!withinGdcm(path, [&] { return first.Read(); })) {
+  if (!withinGdcm([&] { return first.Read(); })) {
     throwInputError(path, "GDCM cannot read slice " + fileLabel(slices.front().file));
   }
   const gdcm::Image& firstImage = first.GetImage();
@@ -793,7 +773,7 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
                                 std::to_string(bytes) + " expected");
     }
     buffer.resize(std::size_t(bytes));
-    if (!withinGdcm(path, [&] { return image.GetBuffer(buffer.data()); })) {
+    if (!withinGdcm([&] { return image.GetBuffer(buffer.data()); })) {
       throwInputError(path, "GDCM cannot decode the pixel data of " + where + " (" +
                                 transferSyntaxName(image.GetTransferSyntax()) + ")");
     }
@@ -820,7 +800,7 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
     refuseTruncatedPixelData(path, slice, cutInPixelData);
     reader.SetFileName(slice.file.c_str());
     gdcmWarnings.incompletePixelData();  // forget what came before this slice
-    if (!withinGdcm(path, [&] { return reader.Read(); })) {
+    if (!withinGdcm([&] { return reader.Read(); })) {
       throwInputError(path, "GDCM cannot read " + where);
     }
     const gdcm::Image& image = reader.GetImage();

@@ -24,7 +24,11 @@ Volume startVolume(const std::string& path, glm::ivec3 fileDims, StoredType type
   if (type != storedTypeOf(kept)) volume.fileType = storedTypeName(type);
   if (!rescale.identity()) volume.rescale = rescale;
   if (!subset.whole()) volume.subset = subset;
-  volume.allocate(kept);
+  if (options.sampleMemory) {
+    volume.allocateIn(kept, options.sampleMemory(volume.voxelCount() * sampleTypeSize(kept)));
+  } else {
+    volume.allocate(kept);
+  }
   return volume;
 }
 

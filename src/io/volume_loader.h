@@ -25,6 +25,14 @@ struct LoadOptions {
   // Called now and then while the payload is read, with the bytes read so far and in all
   // (compressed bytes for compressed payloads); from the loading thread.
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
+  // Where a reader places the samples: called once with their size in bytes, it returns that
+  // much zero-filled memory, which the volume then holds (Volume::allocateIn). Unset, the volume
+  // allocates its own. The DICOM child process places them in a memfd that its parent maps.
+  std::function<std::shared_ptr<void>(std::size_t bytes)> sampleMemory;
+  // DICOM: GDCM reads in a forked child (io/dicom_child.h), so that a malformed file tripping
+  // one of its assert()s, or crashing it, is an InputError and not the end of this process.
+  // The fuzz targets read in the process itself, where libFuzzer sees GDCM's crashes.
+  bool dicomInChildProcess = true;
 };
 
 // The files loadVolume reads, for help texts and messages.

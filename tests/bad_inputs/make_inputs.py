@@ -254,6 +254,44 @@ for offset, value in ((166, 0x30), (679, 0x08), (870, 0x27)):
 os.makedirs(os.path.join(here, 'dicom_gdcm_assert'), exist_ok=True)
 write('dicom_gdcm_assert/slice.dcm', bytes(slice_bytes))
 
+
+# One 8 x 8 16-bit CT slice in RLE Lossless whose RLE header (64 bytes: the segment count, 15
+# offsets) declares `segments`, each segment (2 where none are declared) a literal run of
+# `segment_bytes` zeros. Every element fits the file: GDCM reads the header and fails only
+# decoding the pixels.
+def dicom_rle_slice(folder, segments, segment_bytes):
+    from pydicom.dataset import Dataset, FileMetaDataset
+    from pydicom.encaps import encapsulate
+    from pydicom.uid import RLELossless, generate_uid
+    meta = FileMetaDataset()
+    meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.2'
+    meta.MediaStorageSOPInstanceUID = generate_uid(entropy_srcs=['bad', folder, '0'])
+    meta.TransferSyntaxUID = RLELossless
+    ds = Dataset()
+    ds.file_meta = meta
+    ds.is_little_endian, ds.is_implicit_VR = True, False
+    ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
+    ds.Modality, ds.SeriesInstanceUID = 'CT', generate_uid(entropy_srcs=['bad', folder])
+    ds.ImageOrientationPatient, ds.ImagePositionPatient = [1, 0, 0, 0, 1, 0], [0, 0, 0]
+    ds.PixelSpacing, ds.Rows, ds.Columns = [1, 1], 8, 8
+    ds.SamplesPerPixel, ds.PhotometricInterpretation = 1, 'MONOCHROME2'
+    ds.BitsAllocated, ds.BitsStored, ds.HighBit, ds.PixelRepresentation = 16, 16, 15, 1
+    segment = bytes([segment_bytes - 1]) + bytes(segment_bytes)
+    offsets = [64 + k * len(segment) for k in range(max(segments, 1))]
+    fragment = struct.pack('<16I', segments, *offsets, *[0] * (15 - len(offsets)))
+    fragment += segment * max(segments, 2)
+    ds.PixelData = encapsulate([fragment + bytes(len(fragment) % 2)])
+    ds['PixelData'].VR = 'OB'
+    os.makedirs(os.path.join(here, folder), exist_ok=True)
+    ds.save_as(os.path.join(here, folder, 'slice.dcm'), write_like_original=False)
+
+
+# 3 segments where 16-bit grey needs 2: GDCM's RLECodec::Decode decodes 3 x (128 / 3) = 126
+# bytes of the 128 and fails its assert(check == len) (an abort).
+dicom_rle_slice('dicom_rle_segments', 3, 42)
+# 0 segments: RLEFrame::Read checks the first offset only for 1 or more, and DecodeByStreams
+# divides the frame's length by the count (SIGFPE).
+dicom_rle_slice('dicom_rle_no_segments', 0, 64)
 # Issue 33. JSON nested 100000 deep (200 KB): refused while parsed, before any walk of the value
 # could overflow the stack.
 write('tf_deep.json', '[' * 100000 + ']' * 100000)

@@ -137,6 +137,36 @@ TEST(Volume, BorrowedSamplesAreSharedOwnedOnesCopied) {
   EXPECT_FALSE(owner->borrowsSamples());
 }
 
+// Samples placed in memory the volume holds (allocateIn: the DICOM child's memfd mapping) are
+// its own: not borrowed, released with the last volume moved from it, copied by a copy.
+TEST(Volume, HeldSamplesAreTheVolumesOwn) {
+  std::vector<std::int16_t> memory{1, 2, 3, 4, 5, 6, 7, 8};
+  auto released = std::make_shared<bool>(false);
+  Volume held;
+  held.dims = {2, 2, 2};
+  held.allocateIn(SampleType::Int16,
+                  std::shared_ptr<void>(memory.data(), [released](void*) { *released = true; }));
+  EXPECT_FALSE(held.borrowsSamples());
+  EXPECT_EQ(held.type(), SampleType::Int16);
+  EXPECT_EQ(held.samples<std::int16_t>().data(), memory.data());
+  EXPECT_EQ(held.at(1, 1, 1), 8.0f);
+  Volume copy = held;
+  EXPECT_NE(copy.samples<std::int16_t>().data(), memory.data());
+  EXPECT_FALSE(copy.borrowsSamples());
+  copy.samples<std::int16_t>()[0] = -1;
+  EXPECT_EQ(memory[0], 1);  // the copy's samples are its own
+  EXPECT_EQ(copy.at(1, 1, 1), 8.0f);
+  Volume assigned;
+  assigned = held;
+  EXPECT_NE(assigned.samples<std::int16_t>().data(), memory.data());
+  Volume moved = std::move(held);
+  EXPECT_EQ(moved.samples<std::int16_t>().data(), memory.data());
+  EXPECT_FALSE(*released);
+  moved = Volume();
+  EXPECT_TRUE(*released);
+  EXPECT_EQ(copy.at(1, 1, 1), 8.0f);
+}
+
 // Otsu's threshold written out: the level t maximizing the between-class variance of the
 // histogram (classes <= t and > t), the first t on ties, as OpenCV takes it.
 int bruteForceOtsu(const std::vector<double>& histogram) {

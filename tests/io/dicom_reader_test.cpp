@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -240,6 +241,88 @@ TEST(DicomReader, AnElementLongerThanItsFileKeepsGdcmAway) {
                          bad.string() + ": its data element (0020,0032) at byte " +
                              std::to_string(position) + " declares 61680 bytes",
                          {"are left in the file (a malformed or truncated DICOM file)"});
+}
+
+// GDCM reads in a child process (io/dicom_child.h): every field of the volume, its samples and
+// the progress calls come across as a read in the process itself gives them. Every fixture,
+// a crop with a stride (Volume::subset), two series in a folder (a warning) and a rescaled,
+// oblique series (orientations).
+TEST(DicomReader, TheChildProcessGivesWhatAReadInTheProcessGives) {
+  struct Case {
+    std::string path;
+    LoadOptions options;
+  };
+  std::vector<Case> cases;
+  for (const DicomFixture& fixture : dicomFixtures()) {
+    Case c{(kDicomFixtures / fixture.folder).string(), {}};
+    c.options.series = fixture.series;
+    cases.push_back(c);
+  }
+  Case cropped{(kDicomFixtures / "ct_oblique").string(), {}};
+  cropped.options.region.crop = {ReadRegion::Range{1, 4}, ReadRegion::Range{0, 3},
+                                 ReadRegion::Range{1, 4}};
+  cropped.options.region.cropText = "1:4,0:3,1:4";
+  cropped.options.region.stride = 2;
+  cases.push_back(cropped);
+  cases.push_back({(kDicomFixtures / "two_series").string(), {}});
+
+  using Calls = std::vector<std::pair<std::uint64_t, std::uint64_t>>;
+  for (Case& c : cases) {
+    SCOPED_TRACE(c.path);
+    Calls childCalls, ownCalls;
+    LoadOptions inChild = c.options, inProcess = c.options;
+    inChild.progress = [&](std::uint64_t done, std::uint64_t all) {
+      childCalls.emplace_back(done, all);
+    };
+    inProcess.progress = [&](std::uint64_t done, std::uint64_t all) {
+      ownCalls.emplace_back(done, all);
+    };
+    inProcess.dicomInChildProcess = false;
+    const Volume child = loadVolume(c.path, inChild);
+    const Volume own = loadVolume(c.path, inProcess);
+    EXPECT_EQ(child.name, own.name);
+    EXPECT_EQ(child.source, own.source);
+    EXPECT_EQ(child.dims, own.dims);
+    EXPECT_EQ(child.spacing, own.spacing);
+    EXPECT_EQ(child.fileType, own.fileType);
+    EXPECT_EQ(child.inexactSamples, own.inexactSamples);
+    ASSERT_EQ(child.rescale.has_value(), own.rescale.has_value());
+    if (own.rescale) {
+      EXPECT_EQ(child.rescale->slope, own.rescale->slope);
+      EXPECT_EQ(child.rescale->intercept, own.rescale->intercept);
+    }
+    ASSERT_EQ(child.subset.has_value(), own.subset.has_value());
+    if (own.subset) {
+      EXPECT_EQ(child.subset->cropText(), own.subset->cropText());
+      EXPECT_EQ(child.subset->stride, own.subset->stride);
+    }
+    EXPECT_EQ(child.format, own.format);
+    EXPECT_EQ(child.warnings, own.warnings);
+    ASSERT_EQ(child.orientations.size(), own.orientations.size());
+    for (std::size_t i = 0; i < own.orientations.size(); ++i) {
+      EXPECT_EQ(child.orientations[i].name, own.orientations[i].name);
+      EXPECT_EQ(child.orientations[i].space, own.orientations[i].space);
+      EXPECT_EQ(child.orientations[i].worldFromIndex, own.orientations[i].worldFromIndex);
+      EXPECT_EQ(child.orientations[i].axes, own.orientations[i].axes);
+    }
+    EXPECT_EQ(child.type(), own.type());
+    EXPECT_FALSE(child.borrowsSamples());
+    EXPECT_EQ(child.sampleBytes(), own.sampleBytes());
+    child.visit([&](auto samples) {
+      own.visit([&](auto ownSamples) {
+        ASSERT_EQ(samples.size_bytes(), ownSamples.size_bytes());
+        EXPECT_EQ(std::memcmp(samples.data(), ownSamples.data(), samples.size_bytes()), 0);
+      });
+    });
+    EXPECT_FALSE(ownCalls.empty());
+    EXPECT_EQ(childCalls, ownCalls);
+  }
+  // What a read throws comes across as it is.
+  LoadOptions options;
+  options.series = "1.2.3";
+  const std::string two = (kDicomFixtures / "two_series").string();
+  test::expectInputError([&] { loadVolume(two, options); },
+                         two + ": has no series '1.2.3' (series: ", {});
 }
 
 TEST(DicomReader, LimitsAreCheckedBeforeAnySliceIsDecoded) {

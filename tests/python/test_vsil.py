@@ -504,6 +504,35 @@ def test_a_dicom_series_reads_through_the_plugin_the_package_carries():
     assert "libvsil_dicom.so" in maps and "libgdcm" in maps
 
 
+@pytest.mark.parametrize("folder", ["dicom_rle_segments", "dicom_rle_no_segments"])
+def test_a_dicom_file_that_aborts_or_crashes_gdcm_raises_and_the_interpreter_goes_on(
+        folder, renderer):
+    # GDCM reads in a child process (src/io/dicom_child.h): one of its assert()s (the first
+    # file) or a crash (SIGFPE, the second) ends the child, and this process raises the
+    # command's one-line error.
+    import sys
+
+    path = str(pathlib.Path(__file__).parents[2] / "tests/bad_inputs" / folder / "slice.dcm")
+    good = str(pathlib.Path(__file__).parents[2] / "tests/io/dicom/ct_rle")
+    cli = subprocess.run([VSIL, "info", path], capture_output=True, text=True)
+    assert cli.returncode == 2 and "GDCM" in cli.stderr
+    for call in (lambda: vsil.load(path), lambda: vsil.info(path),
+                 lambda: renderer.render(path, size=(8, 8))):
+        with pytest.raises(ValueError) as error:
+            call()
+        assert "vsil: " + str(error.value) == cli.stderr.strip()
+    assert vsil.load(good).data.shape == (5, 3, 4)
+    # Quietly, with Python's faulthandler on (it would print a traceback from the crashing
+    # child, as if this interpreter had crashed); on a descriptor of its own, as pytest has it
+    # (vsil points descriptor 2 at /dev/null while GDCM runs).
+    script = ("import faulthandler, os, vsil\nfaulthandler.enable(open(os.dup(2), 'w'))\n"
+              f"try:\n    vsil.load({path!r})\nexcept ValueError as e:\n"
+              f"    print('ValueError:', e)\nprint(vsil.load({good!r}).data.shape)\n")
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert (run.returncode, run.stderr) == (0, "")
+    assert run.stdout == "ValueError: " + cli.stderr.strip()[len("vsil: "):] + "\n(5, 3, 4)\n"
+
+
 def test_info_is_what_the_command_prints(tmp_path):
     import json
 

@@ -74,6 +74,7 @@ LoadOptions fuzzLoadOptions() {
   LoadOptions options;
   options.limits.maxBytes = std::size_t(64) << 20;
   options.limits.maxDimension = 256;
+  options.dicomInChildProcess = false;  // GDCM's aborts and crashes are findings here
   return options;
 }
 
