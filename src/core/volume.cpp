@@ -1,16 +1,36 @@
 #include "core/volume.h"
 
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <array>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <new>
 #include <span>
 #include <type_traits>
 
 #include "core/error.h"
 
 namespace vsil {
+
+namespace {
+// Smaller volumes stay in a vector, and every volume under AddressSanitizer, whose redzones
+// around heap blocks catch a reader writing past the samples.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr std::size_t kPopulatedBytes = SIZE_MAX;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr std::size_t kPopulatedBytes = SIZE_MAX;
+#else
+constexpr std::size_t kPopulatedBytes = std::size_t(1) << 20;
+#endif
+#else
+constexpr std::size_t kPopulatedBytes = std::size_t(1) << 20;
+#endif
+}  // namespace
 
 const char* sampleTypeName(SampleType type) {
   switch (type) {
@@ -48,6 +68,15 @@ bool isIntegerType(SampleType type) {
 
 void Volume::allocate(SampleType type) {
   const std::size_t count = voxelCount();
+  // Large volumes take their zeroed pages from the kernel in one call (MAP_POPULATE); a
+  // vector's zero fill faults them in one at a time, about 1 ms per MB more on 2 cores.
+  if (const std::size_t bytes = count * sampleTypeSize(type); bytes >= kPopulatedBytes) {
+    void* start = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE,
+                         MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
+    if (start == MAP_FAILED) throw std::bad_alloc();
+    allocateIn(type, std::shared_ptr<void>(start, [bytes](void* p) { ::munmap(p, bytes); }));
+    return;
+  }
   switch (type) {
     case SampleType::UInt8:
       samples_.emplace<SampleBuffer<std::uint8_t>>(count);

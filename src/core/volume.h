@@ -37,10 +37,10 @@ std::size_t sampleTypeSize(SampleType type);  // bytes per sample
 bool isIntegerType(SampleType type);
 
 // A volume's samples of one C++ type: owned (a vector, or memory the volume alone holds, kept
-// by `keepAlive`: the DICOM child process's memfd mapping), or borrowed from memory that another
-// owner keeps alive (a numpy array wrapped by the Python module), so that wrapping copies
-// nothing. Copying an owned buffer copies the samples (into a vector); copying a borrowed one
-// shares them, as numpy views do.
+// by `keepAlive`: a large volume's own mapping, the DICOM child process's memfd), or borrowed
+// from memory that another owner keeps alive (a numpy array wrapped by the Python module), so
+// that wrapping copies nothing. Copying an owned buffer copies the samples (into a vector); copying
+// a borrowed one shares them, as numpy views do.
 template <typename C>
 class SampleBuffer {
  public:

@@ -167,6 +167,26 @@ TEST(Volume, HeldSamplesAreTheVolumesOwn) {
   EXPECT_EQ(copy.at(1, 1, 1), 8.0f);
 }
 
+// A volume of 1 MiB or more takes its samples from one mapping (Volume::allocate): zero, its
+// own, and copied by a copy, like a vector's.
+TEST(Volume, ALargeVolumeIsAllocatedZeroAndOwned) {
+  Volume large;
+  large.dims = {128, 128, 64};
+  large.allocate(SampleType::UInt16);  // 2 MiB
+  const auto samples = large.samples<std::uint16_t>();
+  ASSERT_EQ(samples.size(), large.voxelCount());
+  EXPECT_TRUE(std::all_of(samples.begin(), samples.end(), [](auto v) { return v == 0; }));
+  EXPECT_FALSE(large.borrowsSamples());
+  large.samples<std::uint16_t>().back() = 7;
+  Volume copy = large;
+  EXPECT_NE(copy.samples<std::uint16_t>().data(), samples.data());
+  copy.samples<std::uint16_t>().back() = 9;
+  EXPECT_EQ(large.samples<std::uint16_t>().back(), 7);
+  large.allocate(SampleType::Float32);  // replaced, type and all
+  EXPECT_EQ(large.type(), SampleType::Float32);
+  EXPECT_EQ(large.at(127, 127, 63), 0.0f);
+}
+
 // Otsu's threshold written out: the level t maximizing the between-class variance of the
 // histogram (classes <= t and > t), the first t on ties, as OpenCV takes it.
 int bruteForceOtsu(const std::vector<double>& histogram) {
