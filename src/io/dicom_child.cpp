@@ -207,24 +207,18 @@ void* mapSamples(int fd, std::size_t bytes, bool resize) {
       writeAll(pipe, record, sizeof record);
     };
   }
-  // The samples go straight into the memfd; a reader that did not ask for them there gets
-  // them copied in.
-  void* placed = nullptr;
+  // The samples go straight into the memfd (the reader's startVolume asks for them once;
+  // the parent checks the memfd's size against the volume).
+  bool placed = false;
   childOptions.sampleMemory = [&](std::size_t bytes) -> std::shared_ptr<void> {
     if (placed) throw std::logic_error("the DICOM reader asked twice for sample memory");
-    placed = mapSamples(samplesFile, bytes, /*resize=*/true);
-    return {placed, [bytes](void* start) { ::munmap(start, bytes); }};
+    placed = true;
+    return {mapSamples(samplesFile, bytes, /*resize=*/true),
+            [bytes](void* start) { ::munmap(start, bytes); }};
   };
   Writer result;
   try {
-    const Volume volume = readDicomSeriesWithGdcm(path, childOptions);
-    volume.visit([&](auto samples) {
-      if (samples.data() != placed) {
-        if (::ftruncate(samplesFile, 0) != 0) ::_exit(kLostParent);
-        writeAll(samplesFile, samples.data(), samples.size_bytes());
-      }
-    });
-    describe(volume, result);
+    describe(readDicomSeriesWithGdcm(path, childOptions), result);
   } catch (const InputError& e) {
     result.value(Outcome::InputError);
     result.text(e.what());
