@@ -148,25 +148,31 @@ write('nifti_text.nii', 'this is not a NIfTI file, only text named like one\n' *
 write('nifti_oversized.nii', nifti1(dims=(30000, 30000, 30000)) + bytes(64))
 
 
+# A CT data set with its File Meta Information, explicit VR little endian framing.
+def ct_dataset(sop_class, instance_uid, syntax):
+    from pydicom.dataset import Dataset, FileMetaDataset
+    meta = FileMetaDataset()
+    meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID = sop_class, instance_uid
+    meta.TransferSyntaxUID = syntax
+    ds = Dataset()
+    ds.file_meta = meta
+    ds.is_little_endian, ds.is_implicit_VR = True, False
+    ds.SOPClassUID, ds.SOPInstanceUID, ds.Modality = sop_class, instance_uid, 'CT'
+    return ds
+
+
 # DICOM series (folders; written with pydicom): a missing slice, a slice cut short, no DICOM at
 # all, slices of two sizes, a header promising 65535 x 65535 slices, colour (RGB) pixels.
 def dicom_series(folder, count=3, positions=None, rows=3, columns=4, pixels=None, rgb=False,
                  orientation=(1.0, 0.0, 0.0, 0.0, 1.0, 0.0), pixel_spacing=None, slope=None):
-    from pydicom.dataset import Dataset, FileMetaDataset
     from pydicom.uid import ExplicitVRLittleEndian, generate_uid
     path = os.path.join(here, folder)
     os.makedirs(path, exist_ok=True)
     series = generate_uid(entropy_srcs=['bad', folder])
     for k in range(count):
-        meta = FileMetaDataset()
-        meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.2'
-        meta.MediaStorageSOPInstanceUID = generate_uid(entropy_srcs=['bad', folder, str(k)])
-        meta.TransferSyntaxUID = ExplicitVRLittleEndian
-        ds = Dataset()
-        ds.file_meta = meta
-        ds.is_little_endian, ds.is_implicit_VR = True, False
-        ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
-        ds.Modality, ds.SeriesInstanceUID, ds.InstanceNumber = 'CT', series, k + 1
+        ds = ct_dataset('1.2.840.10008.5.1.4.1.1.2',
+                        generate_uid(entropy_srcs=['bad', folder, str(k)]), ExplicitVRLittleEndian)
+        ds.SeriesInstanceUID, ds.InstanceNumber = series, k + 1
         ds.ImageOrientationPatient = list(orientation)
         ds.ImagePositionPatient = [0.0, 0.0, float(positions[k] if positions else 2 * k)]
         if pixel_spacing is None:
@@ -204,20 +210,14 @@ dicom_series('dicom_no_normal', orientation=(1.0, 0.0, 0.0, 1.0, 0.0, 0.0))
 # Multi-frame (enhanced CT) files: frames without positions (no Per-frame Functional Groups),
 # frames with different rescales, a frame missing between the others.
 def dicom_multiframe(folder, frames=3, positions=None, slopes=None, per_frame=True):
-    from pydicom.dataset import Dataset, FileMetaDataset
+    from pydicom.dataset import Dataset
     from pydicom.sequence import Sequence
     from pydicom.uid import ExplicitVRLittleEndian, generate_uid
     path = os.path.join(here, folder)
     os.makedirs(path, exist_ok=True)
-    meta = FileMetaDataset()
-    meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.2.1'  # Enhanced CT Image Storage
-    meta.MediaStorageSOPInstanceUID = generate_uid(entropy_srcs=['bad', folder])
-    meta.TransferSyntaxUID = ExplicitVRLittleEndian
-    ds = Dataset()
-    ds.file_meta = meta
-    ds.is_little_endian, ds.is_implicit_VR = True, False
-    ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
-    ds.Modality, ds.SeriesInstanceUID = 'CT', generate_uid(entropy_srcs=['bad series', folder])
+    ds = ct_dataset('1.2.840.10008.5.1.4.1.1.2.1',  # Enhanced CT Image Storage
+                    generate_uid(entropy_srcs=['bad', folder]), ExplicitVRLittleEndian)
+    ds.SeriesInstanceUID = generate_uid(entropy_srcs=['bad series', folder])
     ds.NumberOfFrames, ds.Rows, ds.Columns = frames, 3, 4
     ds.SamplesPerPixel, ds.PhotometricInterpretation = 1, 'MONOCHROME2'
     ds.BitsAllocated = ds.BitsStored = 16
@@ -260,18 +260,11 @@ write('dicom_gdcm_assert/slice.dcm', bytes(slice_bytes))
 # `segment_bytes` zeros. Every element fits the file: GDCM reads the header and fails only
 # decoding the pixels.
 def dicom_rle_slice(folder, segments, segment_bytes):
-    from pydicom.dataset import Dataset, FileMetaDataset
     from pydicom.encaps import encapsulate
     from pydicom.uid import RLELossless, generate_uid
-    meta = FileMetaDataset()
-    meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.2'
-    meta.MediaStorageSOPInstanceUID = generate_uid(entropy_srcs=['bad', folder, '0'])
-    meta.TransferSyntaxUID = RLELossless
-    ds = Dataset()
-    ds.file_meta = meta
-    ds.is_little_endian, ds.is_implicit_VR = True, False
-    ds.SOPClassUID, ds.SOPInstanceUID = meta.MediaStorageSOPClassUID, meta.MediaStorageSOPInstanceUID
-    ds.Modality, ds.SeriesInstanceUID = 'CT', generate_uid(entropy_srcs=['bad', folder])
+    ds = ct_dataset('1.2.840.10008.5.1.4.1.1.2', generate_uid(entropy_srcs=['bad', folder, '0']),
+                    RLELossless)
+    ds.SeriesInstanceUID = generate_uid(entropy_srcs=['bad', folder])
     ds.ImageOrientationPatient, ds.ImagePositionPatient = [1, 0, 0, 0, 1, 0], [0, 0, 0]
     ds.PixelSpacing, ds.Rows, ds.Columns = [1, 1], 8, 8
     ds.SamplesPerPixel, ds.PhotometricInterpretation = 1, 'MONOCHROME2'
