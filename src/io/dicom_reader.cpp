@@ -25,7 +25,6 @@
 #include <sstream>
 #include <vector>
 
-#include <gdcmDirectory.h>
 #include <gdcmImage.h>
 #include <gdcmImageReader.h>
 #include <gdcmReader.h>
@@ -280,6 +279,36 @@ struct Series {
   std::vector<std::string> files;
 };
 
+// The files of `folder` (not its subfolders, nor hidden files), links followed, by name: what
+// gdcm::Directory lists, except that it stops at the first entry that is neither a file nor a
+// folder (a FIFO, a socket, a link to nothing) and so lost every slice listed after it; here
+// such an entry is left out with a warning.
+std::vector<std::string> folderFiles(const std::string& where, const std::string& folder,
+                                     std::vector<std::string>& warnings) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> entries;
+  std::error_code error;
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
+    entries.push_back(it->path());
+  }
+  if (error) throwInputError(where, "cannot list its folder: " + error.message());
+  std::sort(entries.begin(), entries.end());
+  std::vector<std::string> files;
+  for (const fs::path& entry : entries) {
+    const std::string name = entry.filename().string();
+    if (name.starts_with('.')) continue;
+    const fs::file_status status = fs::status(entry, error);
+    if (fs::is_regular_file(status)) {
+      files.push_back(entry.string());
+    } else if (!fs::is_directory(status)) {
+      warnings.push_back(
+          where + ": left out " + quote(name) + ": " +
+          (status.type() == fs::file_type::not_found ? "a link to nothing" : "not a regular file"));
+    }
+  }
+  return files;
+}
+
 // The DICOM files of `folder` (not its subfolders) grouped by series, largest first.
 // `given`: the file name the caller named (empty for a folder). A file whose header would make
 // GDCM allocate beyond it (overlongElement) is left out of the scan, as GDCM would leave it
@@ -290,9 +319,7 @@ std::vector<Series> scanSeries(const std::string& where, const std::string& fold
                                const std::string& given, gdcm::Scanner& scanner,
                                std::vector<std::string>& warnings,
                                std::set<std::string>& cutInPixelData) {
-  gdcm::Directory directory;
-  directory.Load(folder, false);
-  const auto& listed = directory.GetFilenames();
+  const std::vector<std::string> listed = folderFiles(where, folder, warnings);
   for (const gdcm::Tag& tag : {kSeriesUid, kImagePosition, kImageOrientation, kRows, kColumns,
                                kModality, kSeriesDescription, kNumberOfFrames}) {
     scanner.AddTag(tag);

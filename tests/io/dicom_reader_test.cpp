@@ -3,14 +3,18 @@
 // series, two series in one folder, a missing slice). File names are shuffled and Instance
 // Numbers run against the slice order, so only sorting by position along the normal reads
 // them right; the manifest holds the values computed with numpy, not vsil.
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -214,6 +218,49 @@ TEST(DicomReader, RefusesWhatItCannotReadRight) {
   const fs::path cut = copyOfCtSeries("cut");
   fs::resize_file(cut / "IM0002", fs::file_size(cut / "IM0002") - 10);
   test::expectInputError([&] { loadVolume(cut.string()); }, cut.string() + ": ", {"IM0002"});
+}
+
+// A series folder may hold more than slices: every slice is read whatever else it holds and in
+// whatever order the folder lists it (gdcm::Directory stopped listing at a FIFO or a link to
+// nothing, so the slices listed after one were lost). A FIFO (never opened: a read would wait
+// for a writer) and a link to nothing are left out with a warning; a subfolder and hidden
+// files quietly; a link to a slice is read as the slice.
+TEST(DicomReader, EverySliceIsReadWhateverElseTheFolderHolds) {
+  const fs::path folder = copyOfCtSeries("mixed");
+  const fs::path moved = folder.parent_path() / "mixed_IM0002";
+  fs::remove(moved);
+  fs::rename(folder / "IM0002", moved);
+  fs::create_symlink(moved, folder / "IM0002");
+  for (const std::string name : {"a", "m", "z"}) {  // among the slices in any listing order
+    ASSERT_EQ(::mkfifo((folder / (name + "_fifo")).c_str(), 0600), 0);
+    fs::create_symlink(folder / "nowhere", folder / (name + "_link"));
+  }
+  fs::create_directory(folder / "sub");
+  fs::copy_file(kDicomFixtures / "ct_series" / "IM0000", folder / "sub" / "IM0000");
+  test::writeFile(folder / ".hidden", "not DICOM");
+
+  const Volume plain = loadVolume((kDicomFixtures / "ct_series").string());
+  for (const bool inChild : {true, false}) {
+    LoadOptions options;
+    options.dicomInChildProcess = inChild;
+    const Volume volume = loadVolume(folder.string(), options);
+    EXPECT_EQ(volume.dims, plain.dims);
+    volume.visit([&](auto samples) {
+      plain.visit([&](auto plainSamples) {
+        ASSERT_EQ(samples.size_bytes(), plainSamples.size_bytes());
+        EXPECT_EQ(std::memcmp(samples.data(), plainSamples.data(), samples.size_bytes()), 0);
+      });
+    });
+    std::vector<std::string> expected;
+    for (const std::string name : {"a", "m", "z"}) {
+      expected.push_back(folder.string() + ": left out '" + name + "_fifo': not a regular file");
+      expected.push_back(folder.string() + ": left out '" + name + "_link': a link to nothing");
+    }
+    std::sort(expected.begin(), expected.end());
+    std::vector<std::string> warnings = volume.warnings;
+    std::sort(warnings.begin(), warnings.end());
+    EXPECT_EQ(warnings, expected);
+  }
 }
 
 // GDCM allocates what a data element declares before reading it: a file whose element claims
