@@ -19,6 +19,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
@@ -185,6 +186,18 @@ void* mapSamples(int fd, std::size_t bytes, bool resize) {
   return start;
 }
 
+// The fork copied every descriptor of the caller, among them the pipe of a DICOM read that
+// another thread started at the same time: held open here, that read's parent would see the end
+// of its pipe only when this child ends. The child keeps stdio and its own two.
+void closeOtherDescriptors(int pipe, int samplesFile) {
+  unsigned from = 3;
+  for (const int keep : {std::min(pipe, samplesFile), std::max(pipe, samplesFile)}) {
+    if (unsigned(keep) > from) ::close_range(from, unsigned(keep) - 1, 0);
+    from = std::max(from, unsigned(keep) + 1);
+  }
+  ::close_range(from, ~0U, 0);
+}
+
 [[noreturn]] void runChild(const std::string& path, const LoadOptions& options, int pipe,
                            int samplesFile) {
   struct sigaction action = {};
@@ -197,6 +210,7 @@ void* mapSamples(int fd, std::size_t bytes, bool resize) {
     ::signal(fatal, SIG_DFL);
   const struct rlimit noCore = {0, 0};  // a crash on a malformed file leaves no core file
   ::setrlimit(RLIMIT_CORE, &noCore);
+  closeOtherDescriptors(pipe, samplesFile);
 
   LoadOptions childOptions = options;
   if (options.progress) {

@@ -3,6 +3,7 @@
 // series, two series in one folder, a missing slice). File names are shuffled and Instance
 // Numbers run against the slice order, so only sorting by position along the normal reads
 // them right; the manifest holds the values computed with numpy, not vsil.
+#include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,6 +15,7 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -370,6 +372,87 @@ TEST(DicomReader, TheChildProcessGivesWhatAReadInTheProcessGives) {
   const std::string two = (kDicomFixtures / "two_series").string();
   test::expectInputError([&] { loadVolume(two, options); },
                          two + ": has no series '1.2.3' (series: ", {});
+}
+
+// A series of `slices` copies of ct_series' first slice, 2.5 apart, in the scratch folder `name`
+// (the position's text rewritten in place: "-12.0\\30.5\\" and the height fill its 16 bytes).
+fs::path longCtSeries(const std::string& name, int slices) {
+  const fs::path folder = test::scratchDir() / name;
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  std::ifstream in(kDicomFixtures / "ct_series" / "IM0000", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t value = bytes.find("-12.0\\30.5\\105.0 ");
+  EXPECT_NE(value, std::string::npos);
+  for (int i = 0; i < slices && value != std::string::npos; ++i) {
+    std::string position =
+        "-12.0\\30.5\\" + std::to_string(100 + 5 * i / 2) + (i % 2 ? ".5" : ".0");
+    position.resize(16, ' ');
+    bytes.replace(value, 16, position);
+    std::ofstream(folder / ("IM" + std::to_string(i)), std::ios::binary) << bytes;
+  }
+  return folder;
+}
+
+// What the descriptors of process `pid` point at ("pipe:[123]", "/tmp/x", ...); empty when it
+// has ended (a zombie lists none).
+std::vector<std::string> descriptorTargets(pid_t pid) {
+  std::vector<std::string> targets;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator("/proc/" + std::to_string(pid) + "/fd", error)) {
+    const fs::path target = fs::read_symlink(entry.path(), error);
+    if (!error) targets.push_back(target.string());
+  }
+  return targets;
+}
+
+// The processes whose parent is this one.
+std::vector<pid_t> childProcesses() {
+  std::vector<pid_t> children;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(entry.path() / "stat");
+    std::string line;
+    if (!std::getline(stat, line) || line.rfind(')') == std::string::npos) continue;
+    std::istringstream fields(line.substr(line.rfind(')') + 1));  // after "pid (name)"
+    char state;
+    pid_t parent = 0;
+    fields >> state >> parent;
+    if (parent == ::getpid()) children.push_back(std::stoi(name));
+  }
+  return children;
+}
+
+// The fork copies every descriptor of the caller, among them the pipe of a DICOM read another
+// thread has under way: held open in this read's child, that read would wait for this one to
+// end before it saw the end of its own pipe. The child closes all but stdio and its own two.
+TEST(DicomReader, TheChildHoldsNoneOfTheCallersDescriptors) {
+  int foreign[2];  // stands for another read's pipe, open at the fork
+  ASSERT_EQ(::pipe(foreign), 0);
+  const std::string foreignPipe = fs::read_symlink("/proc/self/fd/" + std::to_string(foreign[1]));
+  const std::string path = longCtSeries("long", 300).string();
+  int liveChildrenSeen = 0;
+  // The child is seen at its first progress call, with most slices still to read; one that has
+  // ended by then all the same (a loaded machine) lists nothing, so the read is tried again.
+  for (int attempt = 0; attempt < 20 && liveChildrenSeen == 0; ++attempt) {
+    LoadOptions options;
+    options.progress = [&, first = true](std::uint64_t, std::uint64_t) mutable {
+      if (!std::exchange(first, false)) return;
+      for (const pid_t child : childProcesses()) {
+        ::kill(child, SIGSTOP);  // it stays as it is while its descriptors are read
+        const std::vector<std::string> targets = descriptorTargets(child);
+        ::kill(child, SIGCONT);
+        if (targets.empty()) continue;
+        ++liveChildrenSeen;
+        for (const std::string& target : targets) EXPECT_NE(target, foreignPipe);
+      }
+    };
+    EXPECT_EQ(loadVolume(path, options).dims.z, 300);
+  }
+  EXPECT_GT(liveChildrenSeen, 0);
+  ::close(foreign[0]);
+  ::close(foreign[1]);
 }
 
 TEST(DicomReader, LimitsAreCheckedBeforeAnySliceIsDecoded) {
