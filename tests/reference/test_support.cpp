@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <thread>
 
@@ -39,6 +40,15 @@ std::filesystem::path vsilBinary() {
   return VSIL_BINARY;
 }
 
+// The root of the scratch folders: one per build, named by its vsil binary's path, so that two
+// builds testing on one machine at once (a clean-clone CI beside a developer's build) do not
+// empty each other's folders when they run the same test.
+std::filesystem::path scratchRoot() {
+  char key[32];
+  std::snprintf(key, sizeof key, "vsil-tests-%016zx", std::hash<std::string>{}(VSIL_BINARY));
+  return std::filesystem::temp_directory_path() / key;
+}
+
 std::filesystem::path scratchDir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "vsil";
@@ -48,7 +58,7 @@ std::filesystem::path scratchDir() {
   for (char& c : name) {
     if (c == '/') c = '_';
   }
-  const auto dir = std::filesystem::temp_directory_path() / "vsil-tests" / name;
+  const auto dir = scratchRoot() / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
@@ -63,8 +73,7 @@ std::string readFileBytes(const std::filesystem::path& path) {
 
 CommandResult runVsil(const std::string& arguments) {
   // Not scratchDir(): that would empty the calling test's folder, which holds its inputs.
-  const auto dir =
-      std::filesystem::temp_directory_path() / "vsil-tests" / ("run-" + std::to_string(::getpid()));
+  const auto dir = scratchRoot() / ("run-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto outPath = dir / "stdout";
   const auto errPath = dir / "stderr";
