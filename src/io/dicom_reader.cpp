@@ -279,12 +279,12 @@ struct Series {
   std::vector<std::string> files;
 };
 
-// The files of `folder` (not its subfolders, nor hidden files), links followed, by name: what
-// gdcm::Directory lists, except that it stops at the first entry that is neither a file nor a
-// folder (a FIFO, a socket, a link to nothing) and so lost every slice listed after it; here
-// such an entry is left out with a warning.
+// The files of `folder` (not its subfolders, nor hidden files but the one named, `given`), links
+// followed, by name: what gdcm::Directory lists, except that it stops at the first entry that
+// is neither a file nor a folder (a FIFO, a socket, a link to nothing) and so lost every slice
+// listed after it; here such an entry is left out with a warning.
 std::vector<std::string> folderFiles(const std::string& where, const std::string& folder,
-                                     std::vector<std::string>& warnings) {
+                                     const std::string& given, std::vector<std::string>& warnings) {
   namespace fs = std::filesystem;
   std::vector<fs::path> entries;
   std::error_code error;
@@ -296,7 +296,7 @@ std::vector<std::string> folderFiles(const std::string& where, const std::string
   std::vector<std::string> files;
   for (const fs::path& entry : entries) {
     const std::string name = entry.filename().string();
-    if (name.starts_with('.')) continue;
+    if (name.starts_with('.') && name != given) continue;
     const fs::file_status status = fs::status(entry, error);
     if (fs::is_regular_file(status)) {
       files.push_back(entry.string());
@@ -319,7 +319,7 @@ std::vector<Series> scanSeries(const std::string& where, const std::string& fold
                                const std::string& given, gdcm::Scanner& scanner,
                                std::vector<std::string>& warnings,
                                std::set<std::string>& cutInPixelData) {
-  const std::vector<std::string> listed = folderFiles(where, folder, warnings);
+  const std::vector<std::string> listed = folderFiles(where, folder, given, warnings);
   for (const gdcm::Tag& tag : {kSeriesUid, kImagePosition, kImageOrientation, kRows, kColumns,
                                kModality, kSeriesDescription, kNumberOfFrames}) {
     scanner.AddTag(tag);
@@ -765,8 +765,11 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
                   (modality.empty() ? std::string() : modality + ", ") +
                   std::to_string(slices.size()) + (frames > 1 ? " frames, " : " slices, ") +
                   transferSyntaxName(firstImage.GetTransferSyntax()) + ")";
-  volume.name = folderGiven ? given.filename().string() : given.parent_path().filename().string();
-  if (volume.name.empty()) volume.name = "dicom";
+  // The folder's own name, also for "series/", "." or a bare file name.
+  std::filesystem::path named = std::filesystem::absolute(folder).lexically_normal();
+  if (!named.has_filename()) named = named.parent_path();
+  volume.name = named.filename().string();
+  if (volume.name.empty()) volume.name = "dicom";  // the root folder
   volume.warnings = warnings;
   const VolumeSubset subset = subsetOf(volume);
   const glm::dmat4 worldFromFile(

@@ -374,6 +374,22 @@ TEST(DicomReader, TheChildProcessGivesWhatAReadInTheProcessGives) {
                          two + ": has no series '1.2.3' (series: ", {});
 }
 
+// A volume is named after its series' folder however the folder or a slice in it is written; a
+// hidden slice file is left out of its folder's scan, but read when named itself.
+TEST(DicomReader, TheVolumeIsNamedAfterItsFolder) {
+  const fs::path folder = copyOfCtSeries("named");
+  for (const std::string& path :
+       {folder.string(), folder.string() + "/", folder.string() + "/.",
+        (folder / "IM0001").string(), folder.string() + "/sub/../IM0001"}) {
+    SCOPED_TRACE(path);
+    fs::create_directories(folder / "sub");
+    EXPECT_EQ(loadVolume(path).name, "named");
+  }
+  fs::rename(folder / "IM0003", folder / ".IM0003");  // the last slice
+  EXPECT_EQ(loadVolume(folder.string()).dims.z, 4) << "the hidden slice is not scanned";
+  EXPECT_EQ(loadVolume((folder / ".IM0003").string()).dims.z, 5) << "unless it is named";
+}
+
 // A series of `slices` copies of ct_series' first slice, 2.5 apart, in the scratch folder `name`
 // (the position's text rewritten in place: "-12.0\\30.5\\" and the height fill its 16 bytes).
 fs::path longCtSeries(const std::string& name, int slices) {
