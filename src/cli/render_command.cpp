@@ -190,7 +190,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
     batch.add(outputs.metaOut, meta.dump(2) + "\n");
   }
   batch.commit();
-  std::cout << outputs.out << "\n";
+  if (!namesStandardOutput(outputs.out)) std::cout << outputs.out << "\n";
 }
 
 const CommandRegistration registerRenderCommand(10, [](CLI::App& app) {

@@ -96,16 +96,37 @@ struct AtomicOutputFile::Registration {
   TempRegistration slot;
 };
 
-AtomicOutputFile::AtomicOutputFile(const std::filesystem::path& target) : target_(target) {
+AtomicOutputFile::AtomicOutputFile(const std::filesystem::path& target)
+    : target_(target), destination_(target) {
+  namespace fs = std::filesystem;
   if (target.empty()) throw InputError("output path is empty");
-  std::filesystem::path dir = target.parent_path();
+  std::error_code error;
+  // A link is followed: the file it names is replaced and the link stays (a rename over the
+  // link would replace the link itself).
+  for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(destination_, error)); ++hops) {
+    const fs::path next = fs::read_symlink(destination_, error);
+    if (error) break;
+    destination_ = next.is_absolute() ? next : destination_.parent_path() / next;
+  }
+  // A target that is neither a file nor a folder (/dev/null, /dev/stdout on a pipe or a
+  // terminal, a FIFO) is written into at commit(), never renamed over: run as root, a rename
+  // would put a file in the place of /dev/null. Its temporary goes to the temporary folder.
+  struct stat status;
+  intoSpecialFile_ =
+      ::stat(target.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISDIR(status.st_mode);
+  fs::path dir = destination_.parent_path();
+  if (intoSpecialFile_) {
+    dir = fs::temp_directory_path(error);
+    if (error) dir = "/tmp";
+  }
   if (dir.empty()) dir = ".";
   // A hidden temporary beside the target: same file system, so rename() is atomic.
   // The extension kept at the end (a writer may choose its format by it), when it is short
   // enough to be one: long names keep their room below the file system's limit.
-  std::string extension = target.extension().string();
+  std::string extension = destination_.extension().string();
   if (extension.size() > 8) extension.clear();
-  std::string temp = (dir / ("." + target.filename().string() + ".XXXXXX" + extension)).string();
+  std::string temp =
+      (dir / ("." + destination_.filename().string() + ".XXXXXX" + extension)).string();
   {
     const SignalBlock block;
     fd_ = mkstemps(temp.data(), int(extension.size()));
@@ -136,11 +157,52 @@ void AtomicOutputFile::finish() {
 
 void AtomicOutputFile::commit() {
   finish();
-  if (std::rename(temporary_.c_str(), target_.c_str()) != 0) {
+  if (intoSpecialFile_) {
+    copyTemporaryIntoTarget();
+    ::unlink(temporary_.c_str());
+  } else if (std::rename(temporary_.c_str(), destination_.c_str()) != 0) {
     const int err = errno;
     throwInputError(target_.string(), std::string("cannot write: ") + std::strerror(err));
   }
   committed_ = true;
+}
+
+void AtomicOutputFile::copyTemporaryIntoTarget() {
+  struct Descriptor {
+    int fd;
+    ~Descriptor() {
+      if (fd >= 0) ::close(fd);
+    }
+  };
+  const auto fail = [&](const char* what) {
+    throwInputError(target_.string(), std::string(what) + std::strerror(errno));
+  };
+  const Descriptor in{::open(temporary_.c_str(), O_RDONLY | O_CLOEXEC)};
+  if (in.fd < 0) fail("cannot read back the output: ");
+  Descriptor out{::open(target_.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY)};
+  if (out.fd < 0) fail("cannot write: ");
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t got = ::read(in.fd, buffer, sizeof buffer);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) fail("cannot read back the output: ");
+    if (got == 0) break;
+    for (ssize_t done = 0; done < got;) {
+      const ssize_t n = ::write(out.fd, buffer + done, std::size_t(got - done));
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) fail("cannot write: ");
+      done += n;
+    }
+  }
+  const int closed = ::close(out.fd);
+  out.fd = -1;
+  if (closed != 0) fail("cannot write: ");
+}
+
+bool namesStandardOutput(const std::filesystem::path& path) {
+  struct stat named, standardOutput;
+  return ::stat(path.c_str(), &named) == 0 && ::fstat(STDOUT_FILENO, &standardOutput) == 0 &&
+         named.st_dev == standardOutput.st_dev && named.st_ino == standardOutput.st_ino;
 }
 
 namespace {

@@ -1,6 +1,8 @@
 #pragma once
 // Output files are written whole or not at all: the bytes go to a temporary file in the target's
-// directory, which is renamed over the target only once complete.
+// directory, which is renamed over the target only once complete. A link is followed (the file it
+// names is replaced, the link stays); a target that is neither a file nor a folder (/dev/null,
+// /dev/stdout on a pipe, a FIFO) gets the complete bytes written into it, never a rename.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -33,17 +35,23 @@ class AtomicOutputFile {
   const std::filesystem::path& temporaryPath() const { return temporary_; }
   // The temporary's descriptor, open for writing until commit() (for writers that take one).
   int descriptor() const { return fd_; }
-  // Closes the descriptor and renames the temporary over the target (mode 0644). Throws
-  // InputError naming the target when that fails; the temporary is then removed.
+  // Closes the descriptor and renames the temporary over the target (mode 0644), or for a
+  // target that is not a file copies it in. Throws InputError naming the target when that
+  // fails; the temporary is then removed.
   void commit();
   // commit()'s first half: closes the descriptor (a full disk can fail here), leaving the
   // complete temporary to rename. Throws InputError naming the target; commit() renames.
   void finish();
 
  private:
+  void copyTemporaryIntoTarget();
+
   struct Registration;
-  std::filesystem::path target_, temporary_;
+  std::filesystem::path target_;       // as the caller named it, for messages
+  std::filesystem::path destination_;  // what the rename replaces: the target, links followed
+  std::filesystem::path temporary_;
   int fd_ = -1;
+  bool intoSpecialFile_ = false;
   bool committed_ = false;
   std::unique_ptr<Registration> registration_;
 };
@@ -83,6 +91,10 @@ class OutputBatch {
 // Throws InputError (naming the path) when the directory is missing or not writable.
 void writeFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
 void writeFileAtomically(const std::filesystem::path& path, std::string_view text);
+
+// Whether `path` names this process's standard output (/dev/stdout, or the file or pipe it is),
+// where a command should not also print the path it wrote.
+bool namesStandardOutput(const std::filesystem::path& path);
 
 // Installs handlers for SIGINT, SIGTERM, SIGHUP and SIGQUIT (those not ignored) that unlink the
 // temporary file of any write in progress and then let the signal end the process as usual.

@@ -1,0 +1,112 @@
+// Where an output may go besides a plain file (core/atomic_file.h): through a link (the file it
+// names is replaced, the link stays), into /dev/stdout, a FIFO or a device (the complete bytes
+// written into it, never a rename over it: run as root, vsil once put a PNG file in the place
+// of /dev/full). Each output's bytes equal those of the same render into a plain file.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+#include "reference/test_support.h"
+
+namespace vsil {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kRender = "render gen:sphere:16 --size 32x32 --out ";
+
+// The PNG of kRender into a plain file.
+std::string plainRender(const fs::path& dir) {
+  const fs::path file = dir / "plain.png";
+  const auto result = test::runVsil(kRender + file.string());
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, file.string() + "\n");
+  return test::readFileBytes(file);
+}
+
+bool isCharacterDevice(const char* path) {
+  struct stat status;
+  return ::lstat(path, &status) == 0 && S_ISCHR(status.st_mode);
+}
+
+TEST(OutputTargets, ALinkIsFollowedAndStays) {
+  const fs::path dir = test::scratchDir();
+  const std::string png = plainRender(dir);
+  fs::create_directory(dir / "sub");
+  fs::create_symlink("target.png", dir / "link.png");           // to nothing yet
+  fs::create_symlink("../chained.png", dir / "sub" / "l.png");  // a chain of two
+  fs::create_symlink("sub/l.png", dir / "chain.png");
+  for (const char* name : {"link.png", "chain.png"}) {
+    SCOPED_TRACE(name);
+    const auto result = test::runVsil(kRender + (dir / name).string());
+    EXPECT_EQ(result.exitCode, 0) << result.err;
+    EXPECT_TRUE(fs::is_symlink(dir / name));
+  }
+  EXPECT_TRUE(fs::is_symlink(dir / "sub" / "l.png"));
+  EXPECT_EQ(test::readFileBytes(dir / "target.png"), png);
+  EXPECT_EQ(test::readFileBytes(dir / "chained.png"), png);
+}
+
+TEST(OutputTargets, StandardOutputGetsTheImageAndNothingElse) {
+  const std::string png = plainRender(test::scratchDir());
+  const auto result = test::runVsil(kRender + "/dev/stdout");
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out, png) << "the image, without the path line after it";
+  EXPECT_EQ(result.err, "");
+}
+
+TEST(OutputTargets, AFifoGetsTheImageAndStaysAFifo) {
+  const fs::path dir = test::scratchDir();
+  const std::string png = plainRender(dir);
+  ASSERT_LT(png.size(), 4096u) << "it must fit the FIFO's buffer: nobody reads while vsil writes";
+  const fs::path fifo = dir / "pipe.png";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // Open at both ends here, so that neither this open nor vsil's waits for the other end.
+  const int end = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);
+  ASSERT_GE(end, 0);
+  const auto result = test::runVsil(kRender + fifo.string());
+  EXPECT_EQ(result.exitCode, 0) << result.err;
+  std::string received(png.size() + 1, '\0');
+  const ssize_t got = ::read(end, received.data(), received.size());
+  received.resize(got > 0 ? std::size_t(got) : 0);
+  ::close(end);
+  EXPECT_EQ(received, png);
+  EXPECT_EQ(fs::symlink_status(fifo).type(), fs::file_type::fifo);
+}
+
+TEST(OutputTargets, DevicesAreWrittenIntoNeverReplaced) {
+  ASSERT_TRUE(isCharacterDevice("/dev/null") && isCharacterDevice("/dev/full"));
+  // vsil's temporaries go to $TMPDIR here, a folder of this test's own (the other back end's
+  // run of this test may have one in the usual one at the same time).
+  const fs::path temporaries = test::scratchDir();
+  const char* previous = std::getenv("TMPDIR");
+  const std::string previousValue = previous ? previous : "";
+  ::setenv("TMPDIR", temporaries.c_str(), 1);
+  const auto toNull = test::runVsil(kRender + "/dev/null");
+  EXPECT_EQ(toNull.exitCode, 0) << toNull.err;
+  const auto toFull = test::runVsil(kRender + "/dev/full");
+  EXPECT_EQ(toFull.exitCode, 2);
+  EXPECT_EQ(toFull.err, "vsil: /dev/full: cannot write: No space left on device\n");
+  EXPECT_EQ(toFull.out, "");
+  EXPECT_TRUE(isCharacterDevice("/dev/null"));
+  EXPECT_TRUE(isCharacterDevice("/dev/full"));
+  if (previous) {
+    ::setenv("TMPDIR", previousValue.c_str(), 1);
+  } else {
+    ::unsetenv("TMPDIR");
+  }
+  for (const auto& entry : fs::directory_iterator(temporaries)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_FALSE(name.starts_with(".")) << "a temporary left behind: " << name;
+  }
+}
+
+}  // namespace
+}  // namespace vsil
