@@ -77,6 +77,19 @@ class TempRegistration {
   int slot_ = -1;
 };
 
+// Writes all of `bytes` to `fd`; throws InputError naming `target` when that fails.
+void writeAll(int fd, std::span<const std::uint8_t> bytes, const std::filesystem::path& target) {
+  std::size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throwInputError(target.string(), std::string("cannot write: ") + std::strerror(errno));
+    }
+    written += std::size_t(n);
+  }
+}
+
 }  // namespace
 
 void installOutputCleanupOnSignals() {
@@ -187,12 +200,7 @@ void AtomicOutputFile::copyTemporaryIntoTarget() {
     if (got < 0 && errno == EINTR) continue;
     if (got < 0) fail("cannot read back the output: ");
     if (got == 0) break;
-    for (ssize_t done = 0; done < got;) {
-      const ssize_t n = ::write(out.fd, buffer + done, std::size_t(got - done));
-      if (n < 0 && errno == EINTR) continue;
-      if (n < 0) fail("cannot write: ");
-      done += n;
-    }
+    writeAll(out.fd, {reinterpret_cast<const std::uint8_t*>(buffer), std::size_t(got)}, target_);
   }
   const int closed = ::close(out.fd);
   out.fd = -1;
@@ -210,15 +218,7 @@ namespace {
 std::unique_ptr<AtomicOutputFile> writeTemporary(const std::filesystem::path& path,
                                                  std::span<const std::uint8_t> bytes) {
   auto file = std::make_unique<AtomicOutputFile>(path);
-  std::size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(file->descriptor(), bytes.data() + written, bytes.size() - written);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throwInputError(path.string(), std::string("cannot write: ") + std::strerror(errno));
-    }
-    written += std::size_t(n);
-  }
+  writeAll(file->descriptor(), bytes, path);
   file->finish();
   return file;
 }
