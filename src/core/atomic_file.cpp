@@ -23,7 +23,8 @@ constexpr int kSlots = 16;
 enum SlotState : int { Free, Claimed, InUse };
 std::atomic<int> slotState[kSlots];
 char slotPath[kSlots][PATH_MAX];
-constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+// SIGPIPE: an output written into a pipe whose reader has gone (render --out /dev/stdout | true).
+constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE};
 
 void cleanupOnSignal(int signal) {
   for (int i = 0; i < kSlots; ++i) {

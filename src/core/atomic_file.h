@@ -59,8 +59,8 @@ class AtomicOutputFile {
 // The outputs of one run (render's --out, --state-out, --depth-out, --meta-out), all or none:
 // each is written whole to its temporary first and only when every one is complete (written,
 // closed) are they renamed over their targets, so a full disk or an unwritable folder for one
-// leaves every target as it was. (The renames themselves, in one folder each, are the only
-// step that could fail between two outputs.)
+// leaves every target as it was. (The renames themselves, in one folder each, and the writes
+// into a target that is not a file, are the only steps that could fail between two outputs.)
 //
 //   OutputBatch outputs;
 //   outputs.claim("--out", out); outputs.claim("--meta-out", meta);   // before any work
@@ -96,9 +96,9 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view tex
 // where a command should not also print the path it wrote.
 bool namesStandardOutput(const std::filesystem::path& path);
 
-// Installs handlers for SIGINT, SIGTERM, SIGHUP and SIGQUIT (those not ignored) that unlink the
-// temporary file of any write in progress and then let the signal end the process as usual.
-// Together with the rename, an interrupted run leaves neither a partial target nor a stray
+// Installs handlers for SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGPIPE (those not ignored) that
+// unlink the temporary file of any write in progress and then let the signal end the process as
+// usual. Together with the rename, an interrupted run leaves neither a partial target nor a stray
 // temporary; a target that existed before stays untouched. (SIGKILL cannot be caught: it may
 // leave the hidden temporary ".NAME.XXXXXX.EXT", never a partial target.) Call once, from main().
 void installOutputCleanupOnSignals();

@@ -62,6 +62,23 @@ TEST(OutputTargets, StandardOutputGetsTheImageAndNothingElse) {
   EXPECT_EQ(result.err, "");
 }
 
+// A pipe whose reader has gone ends vsil by SIGPIPE, as it ends any writer, and leaves no
+// temporary behind.
+TEST(OutputTargets, APipeWithoutAReaderLeavesNoTemporary) {
+  const fs::path temporaries = test::scratchDir();
+  const char* previous = std::getenv("TMPDIR");
+  const std::string previousValue = previous ? previous : "";
+  ::setenv("TMPDIR", temporaries.c_str(), 1);
+  // `true` leaves without reading, long before the render is ready to write.
+  test::runVsil(kRender + "/dev/stdout 2>" + (temporaries / "vsil.err").string() + " | true");
+  previous ? ::setenv("TMPDIR", previousValue.c_str(), 1) : ::unsetenv("TMPDIR");
+  EXPECT_EQ(test::readFileBytes(temporaries / "vsil.err"), "");
+  for (const auto& entry : fs::directory_iterator(temporaries)) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_FALSE(name.starts_with(".")) << "a temporary left behind: " << name;
+  }
+}
+
 TEST(OutputTargets, AFifoGetsTheImageAndStaysAFifo) {
   const fs::path dir = test::scratchDir();
   const std::string png = plainRender(dir);
