@@ -10,6 +10,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -30,6 +34,33 @@ std::string plainRender(const fs::path& dir) {
   EXPECT_EQ(result.out, file.string() + "\n");
   return test::readFileBytes(file);
 }
+
+// Points $TMPDIR, where vsil puts the temporary of an output that is not a file, at a folder of
+// the test's own while it lives (the other back end's run of a test may have one in the usual
+// folder at the same time); the hidden files left there are temporaries left behind.
+class OwnTemporaryFolder {
+ public:
+  explicit OwnTemporaryFolder(fs::path folder) : folder_(std::move(folder)) {
+    const char* previous = std::getenv("TMPDIR");
+    if (previous) previous_ = previous;
+    ::setenv("TMPDIR", folder_.c_str(), 1);
+  }
+  ~OwnTemporaryFolder() {
+    previous_ ? ::setenv("TMPDIR", previous_->c_str(), 1) : ::unsetenv("TMPDIR");
+  }
+  std::vector<std::string> leftBehind() const {
+    std::vector<std::string> hidden;
+    for (const auto& entry : fs::directory_iterator(folder_)) {
+      const std::string name = entry.path().filename().string();
+      if (name.starts_with(".")) hidden.push_back(name);
+    }
+    return hidden;
+  }
+
+ private:
+  fs::path folder_;
+  std::optional<std::string> previous_;
+};
 
 bool isCharacterDevice(const char* path) {
   struct stat status;
@@ -65,18 +96,12 @@ TEST(OutputTargets, StandardOutputGetsTheImageAndNothingElse) {
 // A pipe whose reader has gone ends vsil by SIGPIPE, as it ends any writer, and leaves no
 // temporary behind.
 TEST(OutputTargets, APipeWithoutAReaderLeavesNoTemporary) {
-  const fs::path temporaries = test::scratchDir();
-  const char* previous = std::getenv("TMPDIR");
-  const std::string previousValue = previous ? previous : "";
-  ::setenv("TMPDIR", temporaries.c_str(), 1);
+  const fs::path dir = test::scratchDir();
+  const OwnTemporaryFolder temporaries(dir);
   // `true` leaves without reading, long before the render is ready to write.
-  test::runVsil(kRender + "/dev/stdout 2>" + (temporaries / "vsil.err").string() + " | true");
-  previous ? ::setenv("TMPDIR", previousValue.c_str(), 1) : ::unsetenv("TMPDIR");
-  EXPECT_EQ(test::readFileBytes(temporaries / "vsil.err"), "");
-  for (const auto& entry : fs::directory_iterator(temporaries)) {
-    const std::string name = entry.path().filename().string();
-    EXPECT_FALSE(name.starts_with(".")) << "a temporary left behind: " << name;
-  }
+  test::runVsil(kRender + "/dev/stdout 2>" + (dir / "vsil.err").string() + " | true");
+  EXPECT_EQ(test::readFileBytes(dir / "vsil.err"), "");
+  EXPECT_EQ(temporaries.leftBehind(), std::vector<std::string>{});
 }
 
 TEST(OutputTargets, AFifoGetsTheImageAndStaysAFifo) {
@@ -100,12 +125,7 @@ TEST(OutputTargets, AFifoGetsTheImageAndStaysAFifo) {
 
 TEST(OutputTargets, DevicesAreWrittenIntoNeverReplaced) {
   ASSERT_TRUE(isCharacterDevice("/dev/null") && isCharacterDevice("/dev/full"));
-  // vsil's temporaries go to $TMPDIR here, a folder of this test's own (the other back end's
-  // run of this test may have one in the usual one at the same time).
-  const fs::path temporaries = test::scratchDir();
-  const char* previous = std::getenv("TMPDIR");
-  const std::string previousValue = previous ? previous : "";
-  ::setenv("TMPDIR", temporaries.c_str(), 1);
+  const OwnTemporaryFolder temporaries(test::scratchDir());
   const auto toNull = test::runVsil(kRender + "/dev/null");
   EXPECT_EQ(toNull.exitCode, 0) << toNull.err;
   const auto toFull = test::runVsil(kRender + "/dev/full");
@@ -114,15 +134,7 @@ TEST(OutputTargets, DevicesAreWrittenIntoNeverReplaced) {
   EXPECT_EQ(toFull.out, "");
   EXPECT_TRUE(isCharacterDevice("/dev/null"));
   EXPECT_TRUE(isCharacterDevice("/dev/full"));
-  if (previous) {
-    ::setenv("TMPDIR", previousValue.c_str(), 1);
-  } else {
-    ::unsetenv("TMPDIR");
-  }
-  for (const auto& entry : fs::directory_iterator(temporaries)) {
-    const std::string name = entry.path().filename().string();
-    EXPECT_FALSE(name.starts_with(".")) << "a temporary left behind: " << name;
-  }
+  EXPECT_EQ(temporaries.leftBehind(), std::vector<std::string>{});
 }
 
 }  // namespace
