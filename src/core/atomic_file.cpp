@@ -91,6 +91,23 @@ void writeAll(int fd, std::span<const std::uint8_t> bytes, const std::filesystem
   }
 }
 
+// What a write to `path` replaces: the path itself, or the end of its chain of links (as open()
+// follows them; a link to nothing names the file it would create). Throws InputError naming
+// `path` for a chain that does not end (a loop), where open() fails with ELOOP.
+std::filesystem::path linkTarget(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  fs::path at = path;
+  std::error_code error;
+  for (int hops = 0; fs::is_symlink(fs::symlink_status(at, error)); ++hops) {
+    if (hops == 40)
+      throwInputError(path.string(), "cannot write: " + std::string(std::strerror(ELOOP)));
+    const fs::path next = fs::read_symlink(at, error);
+    if (error) break;
+    at = next.is_absolute() ? next : at.parent_path() / next;
+  }
+  return at;
+}
+
 }  // namespace
 
 void installOutputCleanupOnSignals() {
@@ -110,18 +127,13 @@ struct AtomicOutputFile::Registration {
   TempRegistration slot;
 };
 
-AtomicOutputFile::AtomicOutputFile(const std::filesystem::path& target)
-    : target_(target), destination_(target) {
+AtomicOutputFile::AtomicOutputFile(const std::filesystem::path& target) : target_(target) {
   namespace fs = std::filesystem;
   if (target.empty()) throw InputError("output path is empty");
-  std::error_code error;
   // A link is followed: the file it names is replaced and the link stays (a rename over the
   // link would replace the link itself).
-  for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(destination_, error)); ++hops) {
-    const fs::path next = fs::read_symlink(destination_, error);
-    if (error) break;
-    destination_ = next.is_absolute() ? next : destination_.parent_path() / next;
-  }
+  destination_ = linkTarget(target);
+  std::error_code error;
   // A target that is neither a file nor a folder (/dev/null, /dev/stdout on a pipe or a
   // terminal, a FIFO) is written into at commit(), never renamed over: run as root, a rename
   // would put a file in the place of /dev/null. Its temporary goes to the temporary folder.
@@ -143,10 +155,10 @@ AtomicOutputFile::AtomicOutputFile(const std::filesystem::path& target)
       (dir / ("." + destination_.filename().string() + ".XXXXXX" + extension)).string();
   {
     const SignalBlock block;
-    fd_ = mkstemps(temp.data(), int(extension.size()));
-    if (fd_ >= 0) registration_ = std::make_unique<Registration>(temp);
+    fd_ = UniqueFd(mkstemps(temp.data(), int(extension.size())));
+    if (fd_.valid()) registration_ = std::make_unique<Registration>(temp);
   }
-  if (fd_ < 0) {
+  if (!fd_.valid()) {
     throwInputError(target.string(),
                     std::string("cannot create the output file: ") + std::strerror(errno));
   }
@@ -154,16 +166,14 @@ AtomicOutputFile::AtomicOutputFile(const std::filesystem::path& target)
 }
 
 AtomicOutputFile::~AtomicOutputFile() {
-  if (fd_ >= 0) ::close(fd_);
+  fd_.close();
   if (!committed_) ::unlink(temporary_.c_str());
 }
 
 void AtomicOutputFile::finish() {
-  if (fd_ < 0) return;
-  fchmod(fd_, 0644);
-  const int closed = ::close(fd_);
-  fd_ = -1;
-  if (closed != 0) {
+  if (!fd_.valid()) return;
+  fchmod(fd_.get(), 0644);
+  if (fd_.close() != 0) {
     const int err = errno;
     throwInputError(target_.string(), std::string("cannot write: ") + std::strerror(err));
   }
@@ -182,30 +192,22 @@ void AtomicOutputFile::commit() {
 }
 
 void AtomicOutputFile::copyTemporaryIntoTarget() {
-  struct Descriptor {
-    int fd;
-    ~Descriptor() {
-      if (fd >= 0) ::close(fd);
-    }
-  };
   const auto fail = [&](const char* what) {
     throwInputError(target_.string(), std::string(what) + std::strerror(errno));
   };
-  const Descriptor in{::open(temporary_.c_str(), O_RDONLY | O_CLOEXEC)};
-  if (in.fd < 0) fail("cannot read back the output: ");
-  Descriptor out{::open(target_.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY)};
-  if (out.fd < 0) fail("cannot write: ");
+  const UniqueFd in(::open(temporary_.c_str(), O_RDONLY | O_CLOEXEC));
+  if (!in.valid()) fail("cannot read back the output: ");
+  UniqueFd out(::open(target_.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY));
+  if (!out.valid()) fail("cannot write: ");
   char buffer[1 << 16];
   for (;;) {
-    const ssize_t got = ::read(in.fd, buffer, sizeof buffer);
+    const ssize_t got = ::read(in.get(), buffer, sizeof buffer);
     if (got < 0 && errno == EINTR) continue;
     if (got < 0) fail("cannot read back the output: ");
     if (got == 0) break;
-    writeAll(out.fd, {reinterpret_cast<const std::uint8_t*>(buffer), std::size_t(got)}, target_);
+    writeAll(out.get(), {reinterpret_cast<const std::uint8_t*>(buffer), std::size_t(got)}, target_);
   }
-  const int closed = ::close(out.fd);
-  out.fd = -1;
-  if (closed != 0) fail("cannot write: ");
+  if (out.close() != 0) fail("cannot write: ");
 }
 
 bool namesStandardOutput(const std::filesystem::path& path) {
@@ -224,12 +226,13 @@ std::unique_ptr<AtomicOutputFile> writeTemporary(const std::filesystem::path& pa
   return file;
 }
 
-// The file a path names, for comparing outputs: the folder's real path (symlinks, "..", "."
-// resolved) joined with the name, itself resolved when it is a symlink.
+// The file a path names, for comparing outputs: the end of its links (a link to a file not yet
+// there included), its folder's real path (symlinks, "..", "." resolved) joined with the name.
 std::filesystem::path resolvedOutput(const std::filesystem::path& path) {
   std::error_code ec;
-  std::filesystem::path resolved = std::filesystem::weakly_canonical(path, ec);
-  if (ec) resolved = std::filesystem::absolute(path, ec).lexically_normal();
+  const std::filesystem::path written = linkTarget(path);
+  std::filesystem::path resolved = std::filesystem::weakly_canonical(written, ec);
+  if (ec) resolved = std::filesystem::absolute(written, ec).lexically_normal();
   return resolved;
 }
 

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/unique_fd.h"
+
 namespace vsil {
 
 // An output that a writer of its own makes (a video encoder that opens files by name), written
@@ -34,7 +36,7 @@ class AtomicOutputFile {
   const std::filesystem::path& target() const { return target_; }
   const std::filesystem::path& temporaryPath() const { return temporary_; }
   // The temporary's descriptor, open for writing until commit() (for writers that take one).
-  int descriptor() const { return fd_; }
+  int descriptor() const { return fd_.get(); }
   // Closes the descriptor and renames the temporary over the target (mode 0644), or for a
   // target that is not a file copies it in. Throws InputError naming the target when that
   // fails; the temporary is then removed.
@@ -50,7 +52,7 @@ class AtomicOutputFile {
   std::filesystem::path target_;       // as the caller named it, for messages
   std::filesystem::path destination_;  // what the rename replaces: the target, links followed
   std::filesystem::path temporary_;
-  int fd_ = -1;
+  UniqueFd fd_;
   bool intoSpecialFile_ = false;
   bool committed_ = false;
   std::unique_ptr<Registration> registration_;

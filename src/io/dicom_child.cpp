@@ -28,6 +28,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/unique_fd.h"
 #include "io/dicom_plugin.h"
 
 namespace vsil::io {
@@ -249,14 +250,6 @@ void closeOtherDescriptors(int pipe, int samplesFile) {
   ::_exit(0);  // not exit(): the caller's atexit handlers and destructors are the parent's
 }
 
-// Closes a descriptor when it goes out of scope.
-struct Descriptor {
-  int fd = -1;
-  ~Descriptor() {
-    if (fd >= 0) ::close(fd);
-  }
-};
-
 // Reaps the child on every way out; one still running (the parent threw) is killed first.
 struct Child {
   pid_t pid = -1;
@@ -306,32 +299,31 @@ struct Child {
 }  // namespace
 
 Volume readDicomSeriesInChild(const std::string& path, const LoadOptions& options) {
-  Descriptor samplesFile{::memfd_create("vsil-dicom-samples", MFD_CLOEXEC)};
-  if (samplesFile.fd < 0) throwSystemError(path, "memfd_create");
+  UniqueFd samplesFile(::memfd_create("vsil-dicom-samples", MFD_CLOEXEC));
+  if (!samplesFile.valid()) throwSystemError(path, "memfd_create");
   int ends[2];
   if (::pipe2(ends, O_CLOEXEC) != 0) throwSystemError(path, "pipe");
-  Descriptor readEnd{ends[0]}, writeEnd{ends[1]};
+  UniqueFd readEnd(ends[0]), writeEnd(ends[1]);
 
   Child child;
   child.pid = ::fork();
   if (child.pid < 0) throwSystemError(path, "fork");
-  if (child.pid == 0) runChild(path, options, writeEnd.fd, samplesFile.fd);
-  ::close(writeEnd.fd);
-  writeEnd.fd = -1;
+  if (child.pid == 0) runChild(path, options, writeEnd.get(), samplesFile.get());
+  writeEnd.close();
 
   std::string result;
   bool resultSent = false;
   char kind;
-  while (readAll(readEnd.fd, &kind, 1)) {
+  while (readAll(readEnd.get(), &kind, 1)) {
     if (kind == kProgressRecord) {
       std::uint64_t doneAndTotal[2];
-      readAll(readEnd.fd, doneAndTotal, sizeof doneAndTotal);
+      readAll(readEnd.get(), doneAndTotal, sizeof doneAndTotal);
       options.progress(doneAndTotal[0], doneAndTotal[1]);
     } else if (kind == kResultRecord) {
       std::uint64_t size;
-      readAll(readEnd.fd, &size, sizeof size);
+      readAll(readEnd.get(), &size, sizeof size);
       result.resize(size);
-      readAll(readEnd.fd, result.data(), size);
+      readAll(readEnd.get(), result.data(), size);
       resultSent = true;
     } else {
       throw std::runtime_error(path + ": the DICOM reader's process sent an unknown record");
@@ -355,12 +347,12 @@ Volume readDicomSeriesInChild(const std::string& path, const LoadOptions& option
   Volume volume = described(in, type);
   const std::size_t bytes = volume.voxelCount() * sampleTypeSize(type);
   struct stat written = {};
-  if (::fstat(samplesFile.fd, &written) != 0 || std::uint64_t(written.st_size) != bytes) {
+  if (::fstat(samplesFile.get(), &written) != 0 || std::uint64_t(written.st_size) != bytes) {
     throw std::runtime_error(path + ": the DICOM reader's process sent " +
                              std::to_string(written.st_size) + " bytes of samples, not " +
                              std::to_string(bytes));
   }
-  void* start = mapSamples(samplesFile.fd, bytes, /*resize=*/false);
+  void* start = mapSamples(samplesFile.get(), bytes, /*resize=*/false);
   volume.allocateIn(type, {start, [bytes](void* p) { ::munmap(p, bytes); }});
   return volume;
 }

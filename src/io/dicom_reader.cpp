@@ -35,6 +35,7 @@
 
 #include "core/error.h"
 #include "core/options.h"
+#include "core/unique_fd.h"
 #include "io/dicom_child.h"
 #include "io/dicom_plugin.h"
 #include "io/file_access.h"
@@ -127,23 +128,19 @@ StoredType storedTypeOfPixels(const std::string& where, const gdcm::PixelFormat&
 class GdcmCall {
  public:
   GdcmCall() : stderr_(::dup(STDERR_FILENO)) {
-    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
-    if (null >= 0 && stderr_ >= 0) ::dup2(null, STDERR_FILENO);
-    if (null >= 0) ::close(null);
+    const UniqueFd null(::open("/dev/null", O_WRONLY | O_CLOEXEC));
+    if (null.valid() && stderr_.valid()) ::dup2(null.get(), STDERR_FILENO);
     gdcmCallRunning = 1;
   }
   ~GdcmCall() {
     gdcmCallRunning = 0;
-    if (stderr_ >= 0) {
-      ::dup2(stderr_, STDERR_FILENO);
-      ::close(stderr_);
-    }
+    if (stderr_.valid()) ::dup2(stderr_.get(), STDERR_FILENO);
   }
   GdcmCall(const GdcmCall&) = delete;
   GdcmCall& operator=(const GdcmCall&) = delete;
 
  private:
-  const int stderr_;  // the real stderr while GDCM runs
+  const UniqueFd stderr_;  // the real stderr while GDCM runs
 };
 
 // What `call` (a call into GDCM that reads files) returns, run inside a GdcmCall.
@@ -281,8 +278,8 @@ struct Series {
 
 // The files of `folder` (not its subfolders, nor hidden files but the one named, `given`), links
 // followed, by name: what gdcm::Directory lists, except that it stops at the first entry that
-// is neither a file nor a folder (a FIFO, a socket, a link to nothing) and so lost every slice
-// listed after it; here such an entry is left out with a warning.
+// is neither a file nor a folder (a FIFO, a socket, a link to nothing or in a loop) and so lost
+// every slice listed after it; here such an entry is left out with a warning.
 std::vector<std::string> folderFiles(const std::string& where, const std::string& folder,
                                      const std::string& given, std::vector<std::string>& warnings) {
   namespace fs = std::filesystem;
@@ -301,9 +298,12 @@ std::vector<std::string> folderFiles(const std::string& where, const std::string
     if (fs::is_regular_file(status)) {
       files.push_back(entry.string());
     } else if (!fs::is_directory(status)) {
-      warnings.push_back(
-          where + ": left out " + quote(name) + ": " +
-          (status.type() == fs::file_type::not_found ? "a link to nothing" : "not a regular file"));
+      // Not found: a link to nothing. An error otherwise: a loop of links, a folder the link
+      // passes through that cannot be searched.
+      const std::string why = status.type() == fs::file_type::not_found ? "a link to nothing"
+                              : error                                   ? error.message()
+                                                                        : "not a regular file";
+      warnings.push_back(where + ": left out " + quote(name) + ": " + why);
     }
   }
   return files;

@@ -40,12 +40,10 @@ std::uint64_t regularFileSize(const std::string& path) {
   if (size == 0) {
     // A size of 0 is also what /proc and /sys report for files that hold something (or that
     // cannot be read at all, /proc/self/mem): one byte read tells them from an empty file.
-    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0) openForReading(path);  // says why it cannot be opened
+    const UniqueFd file(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
+    if (!file.valid()) openForReading(path);  // says why it cannot be opened
     char byte = 0;
-    const ssize_t got = fd >= 0 ? ::read(fd, &byte, 1) : -1;
-    if (fd >= 0) ::close(fd);
-    if (got == 0) throwInputError(path, "file is empty");
+    if (::read(file.get(), &byte, 1) == 0) throwInputError(path, "file is empty");
     throwInputError(path, "is a special file (its size reads as 0), not a volume file");
   }
   openForReading(path);  // permissions: fail here with a clear message rather than later
@@ -67,20 +65,17 @@ std::vector<std::uint8_t> readFileBytes(const std::string& path, std::uint64_t o
 
 FileReader::FileReader(const std::string& path) : path_(path) {
   errno = 0;
-  fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd_ < 0) {
+  fd_ = UniqueFd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (!fd_.valid()) {
     throwInputError(path, std::string("cannot be opened for reading: ") + std::strerror(errno));
   }
-}
-
-FileReader::~FileReader() {
-  if (fd_ >= 0) ::close(fd_);
 }
 
 void FileReader::readAt(std::uint64_t offset, std::span<std::uint8_t> out) const {
   std::size_t done = 0;
   while (done < out.size()) {
-    const ssize_t got = ::pread(fd_, out.data() + done, out.size() - done, off_t(offset + done));
+    const ssize_t got =
+        ::pread(fd_.get(), out.data() + done, out.size() - done, off_t(offset + done));
     if (got < 0 && errno == EINTR) continue;
     if (got <= 0) {
       throwInputError(path_, "could not read " + std::to_string(out.size()) + " bytes at offset " +

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/unique_fd.h"
+
 namespace vsil::io {
 
 // The size of a regular, non-empty file. Throws for a missing path, a directory or other
@@ -22,7 +24,6 @@ class FileReader {
  public:
   // Throws InputError naming the path when it cannot be opened.
   explicit FileReader(const std::string& path);
-  ~FileReader();
   FileReader(const FileReader&) = delete;
   FileReader& operator=(const FileReader&) = delete;
 
@@ -32,7 +33,7 @@ class FileReader {
 
  private:
   std::string path_;
-  int fd_ = -1;
+  UniqueFd fd_;
 };
 
 // The whole file as bytes in a string, refusing files larger than `maxBytes` before reading.

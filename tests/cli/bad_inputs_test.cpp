@@ -140,5 +140,20 @@ TEST(BadInputs, OutputsNamingOneFileThroughALink) {
   EXPECT_EQ(kept, "previous");
 }
 
+// A link to a file not there yet names the file it would create: two outputs through it and
+// its target would be renamed over one file, the second one's bytes winning.
+TEST(BadInputs, OutputsNamingOneNewFileThroughALink) {
+  const fs::path dir = test::scratchDir();
+  fs::create_symlink("new.png", dir / "link.png");
+  const test::CommandResult result =
+      test::runVsil("render gen:sphere:16 --size 32x32 --out " + (dir / "link.png").string() +
+                    " --depth-out " + (dir / "new.png").string());
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_EQ(result.err, "vsil: --depth-out " + (dir / "new.png").string() +
+                            ": names the same file as --out " + (dir / "link.png").string() +
+                            "; give each output its own file\n");
+  EXPECT_FALSE(fs::exists(dir / "new.png"));
+}
+
 }  // namespace
 }  // namespace vsil

@@ -85,6 +85,22 @@ TEST(OutputTargets, ALinkIsFollowedAndStays) {
   EXPECT_EQ(test::readFileBytes(dir / "chained.png"), png);
 }
 
+// A loop of links names no file: refused as open() refuses it, and nothing replaces the links.
+TEST(OutputTargets, ALoopOfLinksIsRefused) {
+  const fs::path dir = test::scratchDir();
+  fs::create_symlink("b.png", dir / "a.png");
+  fs::create_symlink("a.png", dir / "b.png");
+  const auto result = test::runVsil(kRender + (dir / "a.png").string());
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_EQ(result.err, "vsil: " + (dir / "a.png").string() +
+                            ": cannot write: Too many levels of symbolic links\n");
+  EXPECT_EQ(result.out, "");
+  EXPECT_TRUE(fs::is_symlink(dir / "a.png") && fs::is_symlink(dir / "b.png"));
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 2) << "a temporary was left behind";
+}
+
 TEST(OutputTargets, StandardOutputGetsTheImageAndNothingElse) {
   const std::string png = plainRender(test::scratchDir());
   const auto result = test::runVsil(kRender + "/dev/stdout");

@@ -225,7 +225,8 @@ TEST(DicomReader, RefusesWhatItCannotReadRight) {
 // A series folder may hold more than slices: every slice is read whatever else it holds and in
 // whatever order the folder lists it (gdcm::Directory stopped listing at a FIFO or a link to
 // nothing, so the slices listed after one were lost). A FIFO (never opened: a read would wait
-// for a writer) and a link to nothing are left out with a warning; a subfolder and hidden
+// for a writer), a link to nothing and a loop of links are left out with a warning, each saying
+// which it is; a subfolder and hidden
 // files quietly; a link to a slice is read as the slice.
 TEST(DicomReader, EverySliceIsReadWhateverElseTheFolderHolds) {
   const fs::path folder = copyOfCtSeries("mixed");
@@ -237,6 +238,7 @@ TEST(DicomReader, EverySliceIsReadWhateverElseTheFolderHolds) {
     ASSERT_EQ(::mkfifo((folder / (name + "_fifo")).c_str(), 0600), 0);
     fs::create_symlink(folder / "nowhere", folder / (name + "_link"));
   }
+  fs::create_symlink("m_loop", folder / "m_loop");
   fs::create_directory(folder / "sub");
   fs::copy_file(kDicomFixtures / "ct_series" / "IM0000", folder / "sub" / "IM0000");
   test::writeFile(folder / ".hidden", "not DICOM");
@@ -258,6 +260,7 @@ TEST(DicomReader, EverySliceIsReadWhateverElseTheFolderHolds) {
       expected.push_back(folder.string() + ": left out '" + name + "_fifo': not a regular file");
       expected.push_back(folder.string() + ": left out '" + name + "_link': a link to nothing");
     }
+    expected.push_back(folder.string() + ": left out 'm_loop': Too many levels of symbolic links");
     std::sort(expected.begin(), expected.end());
     std::vector<std::string> warnings = volume.warnings;
     std::sort(warnings.begin(), warnings.end());
