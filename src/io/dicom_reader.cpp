@@ -456,7 +456,10 @@ FrameGeometry multiFrameSlices(const std::string& path, const std::string& file,
                                std::vector<Slice>& slices) {
   gdcm::Reader reader;
   reader.SetFileName(file.c_str());
-  const std::set<gdcm::Tag> skip;
+  // Up to the pixel data, and without them: ReadUpToTag reads the value of the tag it stops at
+  // unless that tag is skipped, and a file cut short inside them (refused later, by
+  // refuseTruncatedPixelData) would have GDCM allocate their declared length here.
+  const std::set<gdcm::Tag> skip{kPixelData};
   if (!withinGdcm([&] { return reader.ReadUpToTag(kPixelData, skip); })) {
     throwInputError(path, "GDCM cannot read " + fileLabel(file));
   }

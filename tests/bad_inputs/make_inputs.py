@@ -246,6 +246,15 @@ def dicom_multiframe(folder, frames=3, positions=None, slopes=None, per_frame=Tr
 dicom_multiframe('dicom_frames_no_positions', per_frame=False)
 dicom_multiframe('dicom_frames_rescales', slopes=[1.0, 2.0, 1.0])
 dicom_multiframe('dicom_frames_missing', frames=4, positions=[0, 2, 4, 8])
+# Found by libFuzzer (target dicom): a multi-frame file whose Pixel Data (7fe0,0010) declares
+# about 4 GB and holds 72 bytes. GDCM's read of the header up to the pixel data read them too,
+# so the DICOM reader's process allocated the declared 4 GB before the file was refused.
+dicom_multiframe('dicom_frames_cut_short')
+with open(os.path.join(here, 'dicom_frames_cut_short', 'frames.dcm'), 'r+b') as f:
+    data = f.read()
+    at = data.rindex(b'\xe0\x7f\x10\x00OW\x00\x00')
+    f.seek(at + 8)
+    f.write(struct.pack('<I', 0xf90000f0))
 # Found by libFuzzer (target dicom): a slice of tests/io/dicom's ct_series with three bytes
 # changed trips an assert() inside GDCM's File Meta Information reader, which aborts.
 slice_bytes = bytearray(open(os.path.join(here, '..', 'io', 'dicom', 'ct_series', 'IM0000'), 'rb').read())

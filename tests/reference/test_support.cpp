@@ -3,9 +3,11 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -77,11 +79,25 @@ CommandResult runVsil(const std::string& arguments) {
   std::filesystem::create_directories(dir);
   const auto outPath = dir / "stdout";
   const auto errPath = dir / "stderr";
-  const std::string command = vsilBinary().string() + " " + arguments + " >" + outPath.string() +
-                              " 2>" + errPath.string() + " </dev/null";
-  const int status = std::system(command.c_str());
+  std::string command = vsilBinary().string() + " " + arguments + " >" + outPath.string() +
+                        " 2>" + errPath.string() + " </dev/null";
+  // The shell through posix_spawn and wait4 rather than system(): wait4 gives the usage of the
+  // shell and everything it waited for (vsil, and vsil's own children), so the peak is this
+  // run's alone.
+  std::string shell = "/bin/sh", dashC = "-c";
+  char* argv[] = {shell.data(), dashC.data(), command.data(), nullptr};
+  pid_t pid = 0;
   CommandResult result;
+  if (posix_spawn(&pid, shell.c_str(), nullptr, nullptr, argv, environ) != 0) {
+    ADD_FAILURE() << "cannot start /bin/sh for: " << command;
+    return result;
+  }
+  int status = 0;
+  struct rusage usage {};
+  while (::wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
+  }
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  result.peakRssMib = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB
   result.out = readFileBytes(outPath);
   result.err = readFileBytes(errPath);
   return result;

@@ -37,6 +37,9 @@ struct CommandResult {
   int exitCode = -1;
   std::string out;  // stdout
   std::string err;  // stderr
+  // The largest resident set, MiB, of any process of the run (vsil and the children it waited
+  // for: the DICOM reader's), from wait4.
+  double peakRssMib = 0;
 };
 // Runs `vsil <arguments>` (arguments passed to /bin/sh, quote as needed).
 CommandResult runVsil(const std::string& arguments);
