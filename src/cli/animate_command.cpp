@@ -18,6 +18,7 @@
 #include "cli/cli_parse.h"
 #include "cli/cli_progress.h"
 #include "cli/cli_render_options.h"
+#include "cli/cli_report.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/clock.h"
@@ -203,13 +204,15 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
                               {"total", millisecondsSince(start)}};
     document["fps"] = fps;
     writeFileAtomically(outDir / "frames.json", document.dump(1) + "\n");
-    std::cout << (outDir / "frames.json").string() << "\n";
   }
-  if (video) std::cout << flags.video << "\n";
+  // A video into standard output (--video /dev/stdout | ffplay -) comes there alone.
+  std::ostream& report = reportStream({video ? flags.video : ""});
+  if (!outDir.empty()) report << (outDir / "frames.json").string() << "\n";
+  if (video && !namesStandardOutput(flags.video)) report << flags.video << "\n";
   char summary[160];
   std::snprintf(summary, sizeof summary, "%d frames in %.2f s: %.2f fps (set-up %.2f s)", frames,
                 framesMs / 1000.0, fps, setupMs / 1000.0);
-  std::cout << summary << "\n";
+  report << summary << "\n";
 }
 
 const CommandRegistration registerAnimateCommand(20, [](CLI::App& app) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "cli/cli_gl_options.h"
+#include "cli/cli_report.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "harness/run_bench.h"
@@ -34,7 +35,8 @@ void run(BenchFlags flags) {
   if (validateOnly()) return;
 
   const bench::BenchReport report =
-      bench::runBench(options, std::cout, std::cerr, isatty(STDERR_FILENO) == 1);
+      bench::runBench(options, reportStream({options.json, options.markdown, options.plot}),
+                      std::cerr, isatty(STDERR_FILENO) == 1);
   if (!report.failures.empty()) {
     throw SelfCheckFailed("bench: " + std::to_string(report.failures.size()) +
                           " self-check(s) failed, first: " + report.failures.front());

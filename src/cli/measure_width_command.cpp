@@ -3,9 +3,11 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_report.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/depth_image.h"
@@ -46,20 +48,22 @@ void run(const MeasureWidthArgs& args) {
   nlohmann::json report = {{"image", args.image},
                            {"line_color", args.lineColor},
                            {"widths", widthStatisticsJson(stats)}};
-  std::cout << std::fixed << std::setprecision(2) << "samples " << stats.count << "  mean "
-            << stats.mean << "  median " << stats.median << "  p05 " << stats.p05 << "  p95 "
-            << stats.p95 << "  min " << stats.min << "  max " << stats.max << "\n";
+  // The text report is printed once everything has succeeded: a failure (a --depth image of
+  // another size) leaves nothing on stdout.
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(2) << "samples " << stats.count << "  mean " << stats.mean
+       << "  median " << stats.median << "  p05 " << stats.p05 << "  p95 " << stats.p95 << "  min "
+       << stats.min << "  max " << stats.max << "\n";
   if (!args.depth.empty()) {
     const cv::Mat1f depth = decodeDepthImage(readImage(args.depth), args.depth);
     if (depth.size() != image.size()) {
       throwInputError(args.depth, "is not the size of " + args.image);
     }
     const auto bins = widthAgainstDepth(samples, depth, args.bins);
-    std::cout << "depth from   to  count  mean  median\n";
+    text << "depth from   to  count  mean  median\n";
     for (const auto& bin : bins) {
-      std::cout << std::setw(10) << bin.depthFrom << std::setw(5) << bin.depthTo << std::setw(7)
-                << bin.count << std::setw(6) << bin.meanWidth << std::setw(8) << bin.medianWidth
-                << "\n";
+      text << std::setw(10) << bin.depthFrom << std::setw(5) << bin.depthTo << std::setw(7)
+           << bin.count << std::setw(6) << bin.meanWidth << std::setw(8) << bin.medianWidth << "\n";
     }
     report["by_depth"] = depthBinsJson(bins);
     if (!args.plot.empty()) {
@@ -68,6 +72,7 @@ void run(const MeasureWidthArgs& args) {
   }
   if (!args.json.empty()) outputs.add(args.json, report.dump(2) + "\n");
   outputs.commit();
+  reportStream({args.json, args.plot}) << text.str();
 }
 
 const CommandRegistration registerMeasureWidthCommand(30, [](CLI::App& app) {

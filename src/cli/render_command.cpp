@@ -11,6 +11,7 @@
 #include "cli/cli_parse.h"
 #include "cli/cli_progress.h"
 #include "cli/cli_render_options.h"
+#include "cli/cli_report.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/clock.h"
@@ -190,7 +191,9 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
     batch.add(outputs.metaOut, meta.dump(2) + "\n");
   }
   batch.commit();
-  if (!namesStandardOutput(outputs.out)) std::cout << outputs.out << "\n";
+  if (!namesStandardOutput(outputs.out)) {
+    reportStream({outputs.stateOut, outputs.depthOut, outputs.metaOut}) << outputs.out << "\n";
+  }
 }
 
 const CommandRegistration registerRenderCommand(10, [](CLI::App& app) {

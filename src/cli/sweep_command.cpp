@@ -30,6 +30,7 @@
 
 #include "cli/cli_progress.h"
 #include "cli/cli_render_options.h"
+#include "cli/cli_report.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/clock.h"
@@ -461,13 +462,14 @@ void run(const SweepFlags& flags) {
   if (!flags.json.empty()) batch.add(flags.json, document.dump(1) + "\n");
   if (!flags.csv.empty()) batch.add(flags.csv, csvText(rows));
   batch.commit();
+  std::ostream& report = reportStream({flags.json, flags.csv});
   for (const auto& path : {flags.json, flags.csv}) {
-    if (!path.empty()) std::cout << path << "\n";
+    if (!path.empty() && !namesStandardOutput(path)) report << path << "\n";
   }
   char summary[160];
   std::snprintf(summary, sizeof summary, "%d tasks on %d rank%s in %.2f s: %d ok, %d failed", count,
                 mpi::size(), mpi::size() == 1 ? "" : "s", seconds, count - failed, failed);
-  std::cout << summary << "\n";
+  report << summary << "\n";
   if (failed) {
     int listed = 0;
     for (const Json& row : rows) {

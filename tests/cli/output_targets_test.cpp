@@ -1,7 +1,8 @@
 // Where an output may go besides a plain file (core/atomic_file.h): through a link (the file it
 // names is replaced, the link stays), into /dev/stdout, a FIFO or a device (the complete bytes
 // written into it, never a rename over it: run as root, vsil once put a PNG file in the place
-// of /dev/full). Each output's bytes equal those of the same render into a plain file.
+// of /dev/full). Each output's bytes equal those of the same render into a plain file, and
+// on standard output they come alone (cli/cli_report.h).
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "reference/test_support.h"
 
@@ -107,6 +109,43 @@ TEST(OutputTargets, StandardOutputGetsTheImageAndNothingElse) {
   EXPECT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(result.out, png) << "the image, without the path line after it";
   EXPECT_EQ(result.err, "");
+}
+
+// An output into standard output comes there alone: the command's report (the path line, the
+// text summary, a table) goes to stderr instead, so `--json /dev/stdout | jq .` reads JSON.
+TEST(OutputTargets, AReportMakesWayForAnOutputOnStandardOutput) {
+  const fs::path dir = test::scratchDir();
+  const std::string out = (dir / "o.png").string(), depth = (dir / "d.png").string();
+  const auto render = test::runVsil("render gen:sphere:32 --size 64x64 --width 3 --out " + out +
+                                    " --depth-out " + depth + " --meta-out /dev/stdout");
+  ASSERT_EQ(render.exitCode, 0) << render.err;
+  EXPECT_TRUE(nlohmann::json::parse(render.out).contains("camera")) << render.out;
+  EXPECT_EQ(render.err, out + "\n");
+
+  const std::string measure = "measure-width " + out + " --depth " + depth;
+  const auto toFile = test::runVsil(measure + " --json " + (dir / "w.json").string());
+  ASSERT_EQ(toFile.exitCode, 0) << toFile.err;
+  ASSERT_TRUE(toFile.out.starts_with("samples ")) << toFile.out;
+  const auto toStdout = test::runVsil(measure + " --json /dev/stdout");
+  ASSERT_EQ(toStdout.exitCode, 0) << toStdout.err;
+  EXPECT_EQ(toStdout.out, test::readFileBytes(dir / "w.json"));
+  EXPECT_EQ(toStdout.err, toFile.out) << "the text report, on stderr";
+}
+
+// A command that fails prints nothing on stdout, not even the part of its report it had: the
+// width summary came out before a --depth image of another size was refused.
+TEST(OutputTargets, AFailedMeasurementPrintsNoReport) {
+  const fs::path dir = test::scratchDir();
+  const std::string out = (dir / "o.png").string(), depth = (dir / "d.png").string();
+  ASSERT_EQ(test::runVsil("render gen:sphere:16 --size 32x32 --out " + out).exitCode, 0);
+  ASSERT_EQ(test::runVsil("render gen:sphere:16 --size 40x40 --out " + (dir / "o40.png").string() +
+                          " --depth-out " + depth)
+                .exitCode,
+            0);
+  const auto result = test::runVsil("measure-width " + out + " --depth " + depth);
+  EXPECT_EQ(result.exitCode, 2);
+  EXPECT_EQ(result.err, "vsil: " + depth + ": is not the size of " + out + "\n");
+  EXPECT_EQ(result.out, "");
 }
 
 // A pipe whose reader has gone ends vsil by SIGPIPE, as it ends any writer, and leaves no
