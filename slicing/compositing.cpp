@@ -1,11 +1,14 @@
 #include "slicing/compositing.h"
 
+#include <algorithm>
+
 #include "slicing/gl_state.h"
 #include "slicing/hit_records.h"
+#include "slicing/tile_march.h"
 
 namespace vsil {
 
-void FrontToBackCompositor::beginFrame(const FrameContext& frame) {
+void FrontToBackCompositor::beginFrame(const FrameContext& frame, SlicingPipeline pipeline) {
   const glm::ivec2 size = frame.view->viewport;
   if (!targets_ || targets_->color.size() != size) {
     targets_.reset();
@@ -15,6 +18,8 @@ void FrontToBackCompositor::beginFrame(const FrameContext& frame) {
   }
   // Off: only pixels past their exit are retired (no opacity reaches 2).
   deadOpacity_ = frame.settings->earlyRayTermination ? kTerminationOpacity : 2.0f;
+  pipeline_ = pipeline;
+  if (pipeline == SlicingPipeline::Tiles) return;
   gl::Capability noScissor(GL_SCISSOR_TEST, false);
   const GLfloat transparent[4] = {0, 0, 0, 0};
   targets_->color.bindForDrawing();
@@ -27,17 +32,35 @@ void FrontToBackCompositor::drawSlice(const FrameContext& frame, const SliceCont
                                       const std::vector<gl::TextureName>* auxiliaryBricks) {
   if (slice.vertexCount == 0) return;
   targets_->color.bindForDrawing();
+  const bool skipping = pipeline_ != SlicingPipeline::Paper;
   {
-    // GREATER, no depth writes: skips empty space in front and retired pixels, early.
-    gl::DepthTest skipEmptyAndDead(GL_GREATER, /*write=*/false);
+    // GREATER, no depth writes: skips empty space in front and retired pixels, early. The
+    // paper pipeline draws every pixel of the polygon.
+    gl::DepthTest skipEmptyAndDead(skipping ? GL_GREATER : GL_ALWAYS, /*write=*/false);
     gl::Blending behind(GL_FUNC_ADD, GL_ONE_MINUS_DST_ALPHA, GL_ONE);
     program.use();
     drawSlicePolygon(frame, slice, auxiliaryBricks);
   }
-  if (slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
+  if (skipping && slice.index % kMarkDeadInterval == kMarkDeadInterval - 1) {
     markDeadPixels(frame, slice, targets_->depthOnly, targets_->color, DeadRule::Opacity,
                    deadOpacity_);
   }
+}
+
+void FrontToBackCompositor::march(const FrameContext& frame, gl::Program& program) {
+  program.use();
+  program.set("deadOpacity", deadOpacity_);
+  // Dispatches of whole groups of kMarkDeadInterval slices: a pixel found opaque when one
+  // starts was then retired at the last group's end, as drawSlice's marks retire it.
+  MarchShape shape;
+  shape.slicesPerDispatch =
+      std::max(kMarkDeadInterval,
+               frame.uniforms->slicesPerRange() / kMarkDeadInterval * kMarkDeadInterval);
+  runMarch(frame, program, shape, targets_->color);
+}
+
+std::vector<std::string> FrontToBackCompositor::marchDefines() {
+  return {"MARK_DEAD_INTERVAL " + std::to_string(kMarkDeadInterval)};
 }
 
 cv::Mat4f FrontToBackCompositor::readBack() const {

@@ -19,6 +19,7 @@
 #include <opencv2/core.hpp>
 
 #include "slicing/technique.h"
+#include "slicing/technique_table.h"
 
 namespace vsil {
 
@@ -27,8 +28,15 @@ inline constexpr float kTerminationOpacity = 1.0f - 1.0f / 255.0f;
 
 class FrontToBackCompositor {
  public:
-  // Targets for the frame's size, cleared to transparent, entry depths written.
-  void beginFrame(const FrameContext& frame);
+  // Targets for the frame's size; for the slice passes (drawSlice) cleared to transparent with
+  // the entry depths written, for the tiles pipeline (march) as they are: the march writes every
+  // pixel. Paper: drawSlice draws every pixel of each slice polygon (no skipping, no early ray
+  // termination).
+  void beginFrame(const FrameContext& frame, SlicingPipeline pipeline = SlicingPipeline::Fast);
+  // The tiles pipeline instead of drawSlice: `program` (built by marchProgram with
+  // marchDefines(); its uniforms set) composites every pixel's samples in one march into the
+  // target, retiring pixels where drawSlice's marks would.
+  void march(const FrameContext& frame, gl::Program& program);
   // Draws the slice's polygon with `program` (in use, its uniforms set) blended behind what is
   // there, skipping empty space and retired pixels; marks newly retired ones every
   // kMarkDeadInterval slices. `auxiliaryBricks`: per-brick textures bound to
@@ -41,6 +49,8 @@ class FrontToBackCompositor {
 
   // Δ/Δ₀ for compositing.glsl's `opacityExponent`.
   static float opacityExponent(const FrameContext& frame);
+  // What a compositing march's program needs #defined (MARK_DEAD_INTERVAL).
+  static std::vector<std::string> marchDefines();
 
  private:
   struct Targets {
@@ -49,6 +59,7 @@ class FrontToBackCompositor {
   };
   std::optional<Targets> targets_;
   float deadOpacity_ = kTerminationOpacity;
+  SlicingPipeline pipeline_ = SlicingPipeline::Fast;
 };
 
 // The #define that puts each pixel's samples at whole steps from half a step past its ray's

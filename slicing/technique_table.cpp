@@ -109,7 +109,8 @@ OptionSpec pipelineOption(SlicingPipeline defaultPipeline) {
       "pipeline", pipelineName(defaultPipeline), {"fast", "paper", "tiles"},
       "fast (passes per slice, skipping empty space and finished pixels), paper (the paper's "
       "passes per slice over every pixel of each slice polygon) or tiles (one compute dispatch "
-      "marching screen tiles through the slices); the same pixels");
+      "marching screen tiles through the slices); the same pixels (illustrate: the same samples, "
+      "colours equal to float rounding)");
   if (defaultPipeline == SlicingPipeline::Tiles) {
     spec.defaultNote = "fast where the volume takes several bricks: tiles needs one texture";
   }

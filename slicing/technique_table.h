@@ -91,7 +91,9 @@ std::vector<std::string> techniqueNames();
 OptionSpec isoOption();
 
 // How a frame walks the slices (--pipeline), for the techniques that offer a choice
-// (silhouette, rightangle); every choice gives the same pixels:
+// (silhouette, rightangle, illustrate); every choice gives the same pixels (illustrate's the
+// same samples, composited in the same order: colours equal to float rounding, since a slice
+// pass and a compute shader round differently):
 //   fast:  a pass or two per slice, skipping empty space and pixels that can no longer change;
 //   paper: the papers' passes per slice over every pixel of each slice polygon, no skipping;
 //   tiles: one compute dispatch marching screen tiles through the slices (tile_march.h).

@@ -102,16 +102,23 @@ float boxPhase(PixelRay ray) {
   return fract(-entry / rayStepEye - 0.5);
 }
 
+// Slice k's sample on a ray under BOX_ALIGNED_SAMPLING (quantized); `phase` is boxPhase(ray).
+vec3 boxAlignedVoxel(PixelRay ray, float phase, int k) {
+  return quantizedVoxel(ray.origin + ((float(k) - phase) * rayStepEye) * ray.direction);
+}
+
+// The eye-space point of the pixel centre at `ndc` on the plane at eye distance `eyeDistance`.
+vec3 eyePointAtNdc(vec2 ndc, float eyeDistance) {
+  float scale = orthographic != 0 ? 1.0 : eyeDistance;
+  return vec3(ndc * halfExtent * scale, -eyeDistance);
+}
+
 #ifdef VSIL_FRAGMENT_SHADER
 // This pixel's centre in normalized device coordinates.
 vec2 fragmentNdc() { return gl_FragCoord.xy / viewportSize * 2.0 - 1.0; }
 
 // The eye-space point of this pixel's centre on the plane at eye distance `eyeDistance`.
-vec3 eyePointAt(float eyeDistance) {
-  vec2 ndc = fragmentNdc();
-  float scale = orthographic != 0 ? 1.0 : eyeDistance;
-  return vec3(ndc * halfExtent * scale, -eyeDistance);
-}
+vec3 eyePointAt(float eyeDistance) { return eyePointAtNdc(fragmentNdc(), eyeDistance); }
 
 // The voxel position this pixel's centre samples on this slice (quantized): along its ray for
 // the MIP family (RAY_SAMPLING), else from the slice's coefficients.
@@ -120,8 +127,7 @@ vec3 sliceVoxel() {
   return rayVoxel(pixelRay(gl_FragCoord.xy), int(sliceIndex));
 #elif defined(BOX_ALIGNED_SAMPLING)
   PixelRay ray = pixelRay(gl_FragCoord.xy);
-  return quantizedVoxel(ray.origin + ((float(sliceIndex) - boxPhase(ray)) * rayStepEye) *
-                                         ray.direction);
+  return boxAlignedVoxel(ray, boxPhase(ray), int(sliceIndex));
 #else
   vec2 ndc = fragmentNdc();
   return quantizedVoxel(ndc.x * sliceVoxelPerNdcX + ndc.y * sliceVoxelPerNdcY +

@@ -46,8 +46,8 @@ TEST(TechniqueTable, AnOptionSharedByTechniquesMeansTheSameForAll) {
 // default pipeline"): OPS's tiles march took 0.25-0.93 of the fast pipeline's time on every nk3
 // dataset; RA's lost to RA's fast pipeline on teddybear at 512².
 TEST(TechniqueTable, EachTechniqueDefaultsToItsFastestPipeline) {
-  const std::map<std::string, std::string> expected{{"silhouette", "tiles"},
-                                                    {"rightangle", "fast"}};
+  const std::map<std::string, std::string> expected{
+      {"silhouette", "tiles"}, {"rightangle", "fast"}, {"illustrate", "tiles"}};
   for (const auto& technique : techniqueTable()) {
     const OptionSpec* pipeline = technique.option("pipeline");
     if (!pipeline) continue;
@@ -63,6 +63,10 @@ TEST(TechniqueTable, EachTechniqueDefaultsToItsFastestPipeline) {
             std::string::npos)
       << help.out;
   EXPECT_NE(help.out.find("rightangle: default fast"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("illustrate: default tiles (fast where the volume takes several "
+                          "bricks: tiles needs one texture)"),
+            std::string::npos)
+      << help.out;
 }
 
 // Over a volume in several bricks a default tiles pipeline gives way to fast; one asked for by
@@ -75,6 +79,9 @@ TEST(TechniqueTable, DefaultTilesGiveWayToFastOverBricks) {
   EXPECT_EQ(std::get<std::string>(optionsForBricks(silhouette, tiles, 2).at("pipeline")), "tiles");
   EXPECT_TRUE(silhouette.needsOneTextureWith(tiles));
   EXPECT_FALSE(optionsForBricks(findTechnique("rightangle"), {}, 2).contains("pipeline"));
+  EXPECT_EQ(std::get<std::string>(
+                optionsForBricks(findTechnique("illustrate"), {}, 2).at("pipeline")),
+            "fast");
   EXPECT_FALSE(optionsForBricks(findTechnique("mip"), {}, 2).contains("pipeline"));
 }
 

@@ -20,20 +20,32 @@
 namespace vsil {
 namespace {
 
+constexpr const char* kEveryEffect = "boundary,silhouette,fading,sketch,distance,halo,tone";
+
 class TileMarch : public test::GlTest, public ::testing::WithParamInterface<std::string> {
  protected:
   // Renders `settings` with the fast and the tiles pipeline; every pixel must agree.
   void expectSameAsFast(const Volume& volume, RenderSettings settings) {
     settings.technique = GetParam();
     settings.options = test::isoOptions(findTechnique(GetParam()), 0.5);
+    // illustrate: every effect at once, the halo field's fetches and the tone's lights included.
+    if (GetParam() == "illustrate") settings.options["effects"] = std::string(kEveryEffect);
     Renderer renderer(test::sharedGlContext());
     renderer.setVolume(volume);
     settings.options["pipeline"] = std::string("fast");
     const RenderResult fast = renderer.render(settings);
     settings.options["pipeline"] = std::string("tiles");
     const RenderResult tiles = renderer.render(settings);
-    EXPECT_EQ(test::differingPixels(fast.frame, tiles.frame), 0)
-        << settings.size.x << "x" << settings.size.y << ", " << fast.sliceCount << " slices";
+    if (GetParam() == "illustrate") {
+      // The same samples composited in the same order, but a slice pass and a compute shader
+      // round differently in the last bit (README "The default pipeline"): colours agree within
+      // the 2/255 the CPU references allow for illustrate.
+      EXPECT_LE(test::maxChannelDifference(fast.frame.color, tiles.frame.color), 2.0 / 255.0)
+          << settings.size.x << "x" << settings.size.y << ", " << fast.sliceCount << " slices";
+    } else {
+      EXPECT_EQ(test::differingPixels(fast.frame, tiles.frame), 0)
+          << settings.size.x << "x" << settings.size.y << ", " << fast.sliceCount << " slices";
+    }
     shown_ = test::shownPixels(fast.frame);
   }
   int shown_ = 0;  // pixels the last frame showed
@@ -83,7 +95,7 @@ TEST_P(TileMarch, ViewsWhereTilesStartAndStopApart) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Techniques, TileMarch, ::testing::Values("silhouette", "rightangle"),
+INSTANTIATE_TEST_SUITE_P(Techniques, TileMarch, ::testing::Values("silhouette", "rightangle", "illustrate"),
                          [](const auto& info) { return info.param; });
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "slicing/illustration_options.h"
 #include "slicing/texture_units.h"
+#include "slicing/tile_march.h"
 
 namespace vsil {
 
@@ -24,7 +25,8 @@ const std::vector<OptionSpec>& illustrateOptions() {
       OptionSpec::choice("halo-mode", "field", {"field", "exact"},
                          "halo: field (a halo field built once per volume, one fetch per sample; "
                          "works on bricked volumes) or exact (8 taps per sample in the slice "
-                         "plane; needs one texture)")};
+                         "plane; needs one texture)"),
+      pipelineOption(kIllustrateDefaultPipeline)};
   return options;
 }
 
@@ -57,10 +59,12 @@ TechniqueInfo illustrateTechniqueInfo() {
       // The exact halo's taps reach farther than a brick's overlap (the field needs none).
       /*needsOneTexture=*/
       [](const OptionReader& options) {
-        return haloModeFromOptions(options) == HaloMode::Exact &&
-               illustrationFromOptions(illustrateOptions(), options).effects.has(Effect::Halo);
+        return tilesNeedOneTexture(options) ||
+               (haloModeFromOptions(options) == HaloMode::Exact &&
+                illustrationFromOptions(illustrateOptions(), options).effects.has(Effect::Halo));
       }};
   info.samplesOffPlanes = true;  // aligned to the box entry (compositing.h)
+  info.slabRunsFastPipeline = true;  // slabs relay the slice pass's colour and marks
   // The gradients (as semantic's), and with halos the halo field at an owned brick's texels,
   // which reads up to haloFieldReachVoxels(k_hr) further (halo_mask.h), plus the brick's apron
   // and padding: 4, as the fixed width for the largest k_hr (32: 38 voxels) had it.
@@ -209,10 +213,22 @@ void IllustrateTechnique::beginFrame(const FrameContext& frame) {
   const GradientTexture& gradients = frame.gradients->texture();
   std::vector<std::string> defines = illustrateDefines(illustration_, haloMode_);
   gradients.addDefines(defines);
-  defines.emplace_back(kBoxAlignedSampling);
-  program_ = &frame.programs->get(gl::slicePassProgram(
-      {kCompositingSource, "shaders/gradients.glsl", "shaders/illustration.glsl"},
-      "techniques/illustrate/composite.frag", std::move(defines)));
+  const std::vector<std::string> sources{kCompositingSource, "shaders/gradients.glsl",
+                                         "shaders/illustration.glsl",
+                                         "techniques/illustrate/illustrate_sample.glsl"};
+  pipeline_ = pipelineOf(*frame.options);
+  if (pipeline_ == SlicingPipeline::Tiles) {
+    requireOneBrick(frame, "--pipeline tiles", "use --pipeline fast (the same samples)");
+    defines.emplace_back("SKIP_SAMPLE return false");
+    for (auto& define : FrontToBackCompositor::marchDefines()) defines.push_back(define);
+    program_ = &marchProgram(frame, sources, "techniques/illustrate/march.comp", MarchShape{},
+                             std::move(defines));
+  } else {
+    defines.emplace_back(kBoxAlignedSampling);
+    defines.emplace_back("SKIP_SAMPLE discard");
+    program_ = &frame.programs->get(
+        gl::slicePassProgram(sources, "techniques/illustrate/composite.frag", std::move(defines)));
+  }
   if (illustration_.transferFunction) {
     if (!transferTexture_) transferTexture_.emplace();
     transferTexture_->upload(*illustration_.transferFunction, frame.valueRange);
@@ -223,7 +239,7 @@ void IllustrateTechnique::beginFrame(const FrameContext& frame) {
     gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_3D, haloMask_.id());
   }
   setUniforms(frame);
-  compositor_.beginFrame(frame);
+  compositor_.beginFrame(frame, pipeline_);
 }
 
 void IllustrateTechnique::setUniforms(const FrameContext& frame) {
@@ -273,8 +289,13 @@ void IllustrateTechnique::setUniforms(const FrameContext& frame) {
 }
 
 void IllustrateTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
+  if (pipeline_ == SlicingPipeline::Tiles) return;  // endFrame marches
   const bool haloBricks = illustration_.effects.has(Effect::Halo) && frame.volume->brickCount() > 1;
   compositor_.drawSlice(frame, slice, *program_, haloBricks ? &haloMask_.brickTextures() : nullptr);
+}
+
+void IllustrateTechnique::endFrame(const FrameContext& frame) {
+  if (pipeline_ == SlicingPipeline::Tiles) compositor_.march(frame, *program_);
 }
 
 FrameBuffers IllustrateTechnique::readBack(const FrameContext&) {

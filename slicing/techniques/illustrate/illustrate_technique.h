@@ -24,6 +24,11 @@ namespace vsil {
 
 TechniqueInfo illustrateTechniqueInfo();
 
+// --pipeline's default: tiles (march.comp, one compute dispatch composites every pixel's
+// samples), 1.5–1.8× the frame rate of fast (README "The default pipeline"); over a volume in
+// several bricks fast (technique_table.h optionsForBricks).
+inline constexpr SlicingPipeline kIllustrateDefaultPipeline = SlicingPipeline::Tiles;
+
 // The program variant for a set of effects and halo mode: its #defines.
 std::vector<std::string> illustrateDefines(const Illustration& illustration, HaloMode haloMode);
 
@@ -59,7 +64,7 @@ class IllustrateTechnique : public Technique {
   std::vector<bool> alsoOccupied(const FrameContext& frame) const override;
   void beginFrame(const FrameContext& frame) override;
   void drawSlice(const FrameContext& frame, const SliceContext& slice) override;
-  void endFrame(const FrameContext&) override {}
+  void endFrame(const FrameContext& frame) override;
   FrameBuffers readBack(const FrameContext& frame) override;
   // Across ranks (slab.h): the accumulated colour and the retired pixels travel in depth order.
   std::vector<const gl::RenderTarget*> relayTargets(const FrameContext&) const override {
@@ -74,6 +79,7 @@ class IllustrateTechnique : public Technique {
 
   Illustration illustration_;
   HaloMode haloMode_ = HaloMode::Field;
+  SlicingPipeline pipeline_ = SlicingPipeline::Fast;
   std::vector<glm::vec4> table_;  // the transfer function's table, when there is one
   std::optional<TransferFunctionTexture> transferTexture_;
   HaloMaskTexture haloMask_;
