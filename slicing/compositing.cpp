@@ -53,9 +53,8 @@ void FrontToBackCompositor::march(const FrameContext& frame, gl::Program& progra
   // Dispatches of whole groups of kMarkDeadInterval slices: a pixel found opaque when one
   // starts was then retired at the last group's end, as drawSlice's marks retire it.
   MarchShape shape;
-  shape.slicesPerDispatch =
-      std::max(kMarkDeadInterval,
-               frame.uniforms->slicesPerRange() / kMarkDeadInterval * kMarkDeadInterval);
+  shape.slicesPerDispatch = std::max(
+      kMarkDeadInterval, frame.uniforms->slicesPerRange() / kMarkDeadInterval * kMarkDeadInterval);
   runMarch(frame, program, shape, targets_->color);
 }
 

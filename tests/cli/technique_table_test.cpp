@@ -79,9 +79,9 @@ TEST(TechniqueTable, DefaultTilesGiveWayToFastOverBricks) {
   EXPECT_EQ(std::get<std::string>(optionsForBricks(silhouette, tiles, 2).at("pipeline")), "tiles");
   EXPECT_TRUE(silhouette.needsOneTextureWith(tiles));
   EXPECT_FALSE(optionsForBricks(findTechnique("rightangle"), {}, 2).contains("pipeline"));
-  EXPECT_EQ(std::get<std::string>(
-                optionsForBricks(findTechnique("illustrate"), {}, 2).at("pipeline")),
-            "fast");
+  EXPECT_EQ(
+      std::get<std::string>(optionsForBricks(findTechnique("illustrate"), {}, 2).at("pipeline")),
+      "fast");
   EXPECT_FALSE(optionsForBricks(findTechnique("mip"), {}, 2).contains("pipeline"));
 }
 

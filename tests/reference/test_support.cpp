@@ -79,8 +79,8 @@ CommandResult runVsil(const std::string& arguments) {
   std::filesystem::create_directories(dir);
   const auto outPath = dir / "stdout";
   const auto errPath = dir / "stderr";
-  std::string command = vsilBinary().string() + " " + arguments + " >" + outPath.string() +
-                        " 2>" + errPath.string() + " </dev/null";
+  std::string command = vsilBinary().string() + " " + arguments + " >" + outPath.string() + " 2>" +
+                        errPath.string() + " </dev/null";
   // The shell through posix_spawn and wait4 rather than system(): wait4 gives the usage of the
   // shell and everything it waited for (vsil, and vsil's own children), so the peak is this
   // run's alone.

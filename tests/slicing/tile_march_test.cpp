@@ -95,7 +95,8 @@ TEST_P(TileMarch, ViewsWhereTilesStartAndStopApart) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Techniques, TileMarch, ::testing::Values("silhouette", "rightangle", "illustrate"),
+INSTANTIATE_TEST_SUITE_P(Techniques, TileMarch,
+                         ::testing::Values("silhouette", "rightangle", "illustrate"),
                          [](const auto& info) { return info.param; });
 
 }  // namespace

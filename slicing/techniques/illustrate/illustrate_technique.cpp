@@ -63,7 +63,7 @@ TechniqueInfo illustrateTechniqueInfo() {
                (haloModeFromOptions(options) == HaloMode::Exact &&
                 illustrationFromOptions(illustrateOptions(), options).effects.has(Effect::Halo));
       }};
-  info.samplesOffPlanes = true;  // aligned to the box entry (compositing.h)
+  info.samplesOffPlanes = true;      // aligned to the box entry (compositing.h)
   info.slabRunsFastPipeline = true;  // slabs relay the slice pass's colour and marks
   // The gradients (as semantic's), and with halos the halo field at an owned brick's texels,
   // which reads up to haloFieldReachVoxels(k_hr) further (halo_mask.h), plus the brick's apron
