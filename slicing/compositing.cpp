@@ -47,19 +47,30 @@ void FrontToBackCompositor::drawSlice(const FrameContext& frame, const SliceCont
   }
 }
 
-void FrontToBackCompositor::march(const FrameContext& frame, gl::Program& program) {
-  program.use();
-  program.set("deadOpacity", deadOpacity_);
-  // Dispatches of whole groups of kMarkDeadInterval slices: a pixel found opaque when one
-  // starts was then retired at the last group's end, as drawSlice's marks retire it.
+namespace {
+// Dispatches of whole groups of kMarkDeadInterval slices: a pixel found opaque when one starts
+// was then retired at the last group's end, as drawSlice's marks retire it.
+MarchShape compositingMarchShape(const FrameContext& frame) {
   MarchShape shape;
   shape.slicesPerDispatch = std::max(
       kMarkDeadInterval, frame.uniforms->slicesPerRange() / kMarkDeadInterval * kMarkDeadInterval);
-  runMarch(frame, program, shape, targets_->color);
+  return shape;
+}
+}  // namespace
+
+gl::Program& FrontToBackCompositor::marchProgram(const FrameContext& frame,
+                                                 const std::vector<std::string>& shared,
+                                                 const std::string& computeFile,
+                                                 std::vector<std::string> defines) {
+  defines.push_back("MARK_DEAD_INTERVAL " + std::to_string(kMarkDeadInterval));
+  return vsil::marchProgram(frame, shared, computeFile, compositingMarchShape(frame),
+                            std::move(defines));
 }
 
-std::vector<std::string> FrontToBackCompositor::marchDefines() {
-  return {"MARK_DEAD_INTERVAL " + std::to_string(kMarkDeadInterval)};
+void FrontToBackCompositor::march(const FrameContext& frame, gl::Program& program) {
+  program.use();
+  program.set("deadOpacity", deadOpacity_);
+  runMarch(frame, program, compositingMarchShape(frame), targets_->color);
 }
 
 cv::Mat4f FrontToBackCompositor::readBack() const {

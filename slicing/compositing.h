@@ -33,9 +33,16 @@ class FrontToBackCompositor {
   // pixel. Paper: drawSlice draws every pixel of each slice polygon (no skipping, no early ray
   // termination).
   void beginFrame(const FrameContext& frame, SlicingPipeline pipeline = SlicingPipeline::Fast);
-  // The tiles pipeline instead of drawSlice: `program` (built by marchProgram with
-  // marchDefines(); its uniforms set) composites every pixel's samples in one march into the
-  // target, retiring pixels where drawSlice's marks would.
+  SlicingPipeline pipeline() const { return pipeline_; }  // beginFrame's
+  // The tiles pipeline's program: marchProgram (tile_march.h) over `shared` and `computeFile`
+  // in the compositor's march shape, MARK_DEAD_INTERVAL #defined besides `defines`.
+  static gl::Program& marchProgram(const FrameContext& frame,
+                                   const std::vector<std::string>& shared,
+                                   const std::string& computeFile,
+                                   std::vector<std::string> defines);
+  // The tiles pipeline instead of drawSlice: `program` (from marchProgram, its uniforms set)
+  // composites every pixel's samples in one march into the target, retiring pixels where
+  // drawSlice's marks would.
   void march(const FrameContext& frame, gl::Program& program);
   // Draws the slice's polygon with `program` (in use, its uniforms set) blended behind what is
   // there, skipping empty space and retired pixels; marks newly retired ones every
@@ -49,8 +56,6 @@ class FrontToBackCompositor {
 
   // Δ/Δ₀ for compositing.glsl's `opacityExponent`.
   static float opacityExponent(const FrameContext& frame);
-  // What a compositing march's program needs #defined (MARK_DEAD_INTERVAL).
-  static std::vector<std::string> marchDefines();
 
  private:
   struct Targets {

@@ -7,7 +7,6 @@
 
 #include "slicing/illustration_options.h"
 #include "slicing/texture_units.h"
-#include "slicing/tile_march.h"
 
 namespace vsil {
 
@@ -216,13 +215,12 @@ void IllustrateTechnique::beginFrame(const FrameContext& frame) {
   const std::vector<std::string> sources{kCompositingSource, "shaders/gradients.glsl",
                                          "shaders/illustration.glsl",
                                          "techniques/illustrate/illustrate_sample.glsl"};
-  pipeline_ = pipelineOf(*frame.options);
-  if (pipeline_ == SlicingPipeline::Tiles) {
+  const SlicingPipeline pipeline = pipelineOf(*frame.options);
+  if (pipeline == SlicingPipeline::Tiles) {
     requireOneBrick(frame, "--pipeline tiles", "use --pipeline fast (the same samples)");
     defines.emplace_back("SKIP_SAMPLE return false");
-    for (auto& define : FrontToBackCompositor::marchDefines()) defines.push_back(define);
-    program_ = &marchProgram(frame, sources, "techniques/illustrate/march.comp", MarchShape{},
-                             std::move(defines));
+    program_ = &FrontToBackCompositor::marchProgram(
+        frame, sources, "techniques/illustrate/march.comp", std::move(defines));
   } else {
     defines.emplace_back(kBoxAlignedSampling);
     defines.emplace_back("SKIP_SAMPLE discard");
@@ -239,7 +237,7 @@ void IllustrateTechnique::beginFrame(const FrameContext& frame) {
     gl::bindTexture(gl::TextureUnit::Auxiliary0, GL_TEXTURE_3D, haloMask_.id());
   }
   setUniforms(frame);
-  compositor_.beginFrame(frame, pipeline_);
+  compositor_.beginFrame(frame, pipeline);
 }
 
 void IllustrateTechnique::setUniforms(const FrameContext& frame) {
@@ -289,13 +287,13 @@ void IllustrateTechnique::setUniforms(const FrameContext& frame) {
 }
 
 void IllustrateTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
-  if (pipeline_ == SlicingPipeline::Tiles) return;  // endFrame marches
+  if (compositor_.pipeline() == SlicingPipeline::Tiles) return;  // endFrame marches
   const bool haloBricks = illustration_.effects.has(Effect::Halo) && frame.volume->brickCount() > 1;
   compositor_.drawSlice(frame, slice, *program_, haloBricks ? &haloMask_.brickTextures() : nullptr);
 }
 
 void IllustrateTechnique::endFrame(const FrameContext& frame) {
-  if (pipeline_ == SlicingPipeline::Tiles) compositor_.march(frame, *program_);
+  if (compositor_.pipeline() == SlicingPipeline::Tiles) compositor_.march(frame, *program_);
 }
 
 FrameBuffers IllustrateTechnique::readBack(const FrameContext&) {

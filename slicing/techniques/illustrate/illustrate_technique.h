@@ -79,7 +79,6 @@ class IllustrateTechnique : public Technique {
 
   Illustration illustration_;
   HaloMode haloMode_ = HaloMode::Field;
-  SlicingPipeline pipeline_ = SlicingPipeline::Fast;
   std::vector<glm::vec4> table_;  // the transfer function's table, when there is one
   std::optional<TransferFunctionTexture> transferTexture_;
   HaloMaskTexture haloMask_;
