@@ -101,6 +101,23 @@ float haloSize(vec3 voxel, vec3 v, float gradientMagnitude) {
 }
 #endif
 
+// True where the sample at a voxel position surely adds nothing, known with the fewest fetches
+// (illustratedSample skips every such sample): the march passes over a ray's leading
+// transparent samples with this test alone.
+bool addsNothing(vec3 voxel) {
+#ifdef HALO_FIELD
+  return texelFetch(haloMask, nearestBrickTexel(voxel), 0).a <= 0.0;
+#else
+  vec4 fetched;
+  float value = sampleValue(voxel, fetched);
+#ifdef HALO
+  return value <= transparentBelow && texelFetch(haloMask, nearestTexel(voxel), 0).r <= 0.0;
+#else
+  return value <= transparentBelow;
+#endif
+#endif
+}
+
 // The sample at a (quantized) voxel position of a pixel at `ndc`, on the slice at `eyeDistance`
 // (−z_eye) and normalized depth `depth`: premultiplied (c·α, α) into `premultiplied`, true; or
 // SKIP_SAMPLE where it is transparent.

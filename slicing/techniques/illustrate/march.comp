@@ -24,6 +24,15 @@ void main() {
   vec2 ndc = pixelNdc(pixel);
   PixelRay ray = pixelRay(pixelCentre(pixel));
   float phase = boxPhase(ray);
+  // The ray's leading samples that add nothing, passed over with addsNothing's cheaper test:
+  // llvmpipe runs 8 invocations in lockstep and pays a branch's both sides for all of them, so
+  // in the loop below a transparent sample costs as much as a shaded one. Skipped samples leave
+  // the colour as it is, so the loop below composites what it would have.
+  for (; first < rangeEndSlice; ++first) {
+    if (first > rangeFirstSlice && sliceWindowDepthAt(first - 1) >= exitDepth) break;
+    vec3 voxel = boxAlignedVoxel(ray, phase, first);
+    if (insideVolume(voxel) && !addsNothing(voxel)) break;
+  }
   for (int k = first; k < rangeEndSlice; ++k) {
     // Slice k samples between the planes of slices k − 1 and k (boxAlignedVoxel): past the
     // exit once the plane of k − 1 is, where every sample adds nothing (mark_dead.frag's rule,
