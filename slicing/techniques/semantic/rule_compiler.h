@@ -5,8 +5,10 @@
 // each rule combines with min, max and 1 − x, which table row each term and each consequent
 // reads, which sources are computed (RuleBase::usedSources). The numbers live in data:
 //   - membership functions: one row of kMembershipTableSize entries per attribute value
-//     (MembershipTables, an R32F texture), read with two texelFetch and a mix;
-//   - defuzzification: DefuzzTables (core/rules.h) as an RG32F texture (N, D) per row;
+//     (MembershipTables), as a texture of its segments (entries k and k + 1 in one RG32F
+//     texel), read with one texelFetch and a mix;
+//   - defuzzification: DefuzzTables (core/rules.h) likewise, (N, D) at k and k + 1 per RGBA32F
+//     texel;
 //   - styles: priorities, layer order and lit-sphere ramps as uniforms and a 3D texture.
 // So changing a membership function (even its shape), a priority or a sphere ramp uploads data
 // and never recompiles; only a change of the rules themselves does.
@@ -33,7 +35,7 @@ namespace vsil {
 inline constexpr int kMembershipTableSize = 1024;
 
 // The membership functions of every attribute value, row after row (attribute by attribute, its
-// values in order): an R32F kMembershipTableSize × rows texture.
+// values in order); uploaded as their segments (semantic_technique.cpp tableSegments).
 struct MembershipTables {
   int size = 0;
   int rows = 0;

@@ -27,6 +27,25 @@ void uploadFetchTexture2D(gl::TextureName& texture, GLenum internalFormat, GLenu
   VSIL_GL(glBindTexture(GL_TEXTURE_2D, 0));
 }
 
+// A table of `rows` rows of `size` entries of `channels` floats each, as texels of its segments:
+// texel k of a row holds entries k and k + 1 (size − 1 texels a row), so that a lookup
+// interpolating between two entries (semantic.glsl) fetches one texel, not two. llvmpipe pays
+// a texel fetch mostly in its addressing, whatever the texel's width.
+std::vector<float> tableSegments(const std::vector<float>& entries, int size, int rows,
+                                 int channels) {
+  const std::size_t width = std::size_t(channels);
+  std::vector<float> segments(std::size_t(size - 1) * std::size_t(rows) * 2 * width, 0.0f);
+  if (entries.size() < std::size_t(size) * std::size_t(rows) * width) return segments;  // no rows
+  for (std::size_t row = 0; row < std::size_t(rows); ++row) {
+    for (std::size_t k = 0; k + 1 < std::size_t(size); ++k) {
+      const float* from = entries.data() + (row * std::size_t(size) + k) * width;
+      float* to = segments.data() + (row * std::size_t(size - 1) + k) * 2 * width;
+      std::copy(from, from + 2 * width, to);
+    }
+  }
+  return segments;
+}
+
 std::string membershipKeyOf(const RuleBase& rules) {
   std::string key;
   for (const Attribute& attribute : rules.attributes) {
@@ -108,9 +127,10 @@ ResolvedOptions SemanticTechnique::resolve(const FrameContext& frame) {
   const std::string membershipKey = membershipKeyOf(rules_);
   if (membershipKey != membershipKey_ || !membershipTexture_) {
     membership_ = buildMembershipTables(rules_);
-    uploadFetchTexture2D(membershipTexture_, GL_R32F, GL_RED, membership_.size,
-                         std::max(membership_.rows, 1),
-                         membership_.rows > 0 ? membership_.entries.data() : nullptr);
+    const std::vector<float> segments =
+        tableSegments(membership_.entries, membership_.size, std::max(membership_.rows, 1), 1);
+    uploadFetchTexture2D(membershipTexture_, GL_RG32F, GL_RG, membership_.size - 1,
+                         std::max(membership_.rows, 1), segments.data());
     membershipKey_ = membershipKey;
   }
   visible_ = visibleDataIntervals(rules_, membership_);
@@ -126,8 +146,10 @@ ResolvedOptions SemanticTechnique::resolve(const FrameContext& frame) {
       pairs[2 * i] = tables.numerator[i];
       pairs[2 * i + 1] = tables.denominator[i];
     }
-    uploadFetchTexture2D(defuzzTexture_, GL_RG32F, GL_RG, tables.size, std::max(tables.rows, 1),
-                         pairs.data());
+    const std::vector<float> segments =
+        tableSegments(pairs, tables.size, std::max(tables.rows, 1), 2);
+    uploadFetchTexture2D(defuzzTexture_, GL_RGBA32F, GL_RGBA, tables.size - 1,
+                         std::max(tables.rows, 1), segments.data());
     defuzzKey_ = defuzzKey;
   }
   const std::string atlasKey = atlasKeyOf(rules_);
