@@ -119,7 +119,7 @@ TEST_F(Nk3Run, JsonRowsHaveTheSchemaAndConsistentValues) {
 
 // Issue 36's ratio: per dataset and window, OPS at its default pipeline over RA at its default,
 // in frame time, from the rows the table itself marks as the defaults (one pipeline per
-// technique; silhouette's default is tiles, rightangle's fast: technique_table_test.cpp).
+// technique; both silhouette's and rightangle's default is tiles: technique_table_test.cpp).
 TEST_F(Nk3Run, OpsDefaultOverRaDefaultComesFromTheDefaultPipelines) {
   ASSERT_EQ(result_.exitCode, 0) << result_.err;
   const auto rows = nlohmann::json::parse(test::readFileBytes(dir_ / "nk3.json"))["rows"];
@@ -141,7 +141,7 @@ TEST_F(Nk3Run, OpsDefaultOverRaDefaultComesFromTheDefaultPipelines) {
   }
   ASSERT_EQ(defaultMs.size(), 2u);
   for (const auto& [dataset, pipelines] : defaultPipeline) {
-    EXPECT_EQ(pipelines.at("ra"), "fast") << dataset;
+    EXPECT_EQ(pipelines.at("ra"), "tiles") << dataset;
     EXPECT_EQ(pipelines.at("ops"), "tiles") << dataset;
     EXPECT_EQ(pipelines.at("bs"), "tiles") << dataset << ": BS is OPS broadened";
   }

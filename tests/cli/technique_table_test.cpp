@@ -44,10 +44,11 @@ TEST(TechniqueTable, AnOptionSharedByTechniquesMeansTheSameForAll) {
 
 // Each technique's default pipeline is its fastest that gives the same bytes (README, "The
 // default pipeline"): OPS's tiles march took 0.25-0.93 of the fast pipeline's time on every nk3
-// dataset; RA's lost to RA's fast pipeline on teddybear at 512².
+// dataset; RA's took 0.42-0.80 of RA fast's on all five nk3 datasets at 256² and 512² on a quiet
+// machine (2026-12-06; on a loaded one it had lost on teddybear at 512²).
 TEST(TechniqueTable, EachTechniqueDefaultsToItsFastestPipeline) {
   const std::map<std::string, std::string> expected{
-      {"silhouette", "tiles"}, {"rightangle", "fast"}, {"illustrate", "tiles"}};
+      {"silhouette", "tiles"}, {"rightangle", "tiles"}, {"illustrate", "tiles"}};
   for (const auto& technique : techniqueTable()) {
     const OptionSpec* pipeline = technique.option("pipeline");
     if (!pipeline) continue;
@@ -58,13 +59,9 @@ TEST(TechniqueTable, EachTechniqueDefaultsToItsFastestPipeline) {
   }
   const auto help = test::runVsil("render --help");
   ASSERT_EQ(help.exitCode, 0) << help.err;
-  EXPECT_NE(help.out.find("silhouette: default tiles (fast where the volume takes several "
-                          "bricks: tiles needs one texture)"),
-            std::string::npos)
-      << help.out;
-  EXPECT_NE(help.out.find("rightangle: default fast"), std::string::npos) << help.out;
-  EXPECT_NE(help.out.find("illustrate: default tiles (fast where the volume takes several "
-                          "bricks: tiles needs one texture)"),
+  // One default for the three, so the help states it once.
+  EXPECT_NE(help.out.find("(default tiles (fast where the volume takes several bricks: tiles "
+                          "needs one texture), fast | paper | tiles)"),
             std::string::npos)
       << help.out;
 }
@@ -78,7 +75,9 @@ TEST(TechniqueTable, DefaultTilesGiveWayToFastOverBricks) {
   const OptionValues tiles{{"pipeline", std::string("tiles")}};
   EXPECT_EQ(std::get<std::string>(optionsForBricks(silhouette, tiles, 2).at("pipeline")), "tiles");
   EXPECT_TRUE(silhouette.needsOneTextureWith(tiles));
-  EXPECT_FALSE(optionsForBricks(findTechnique("rightangle"), {}, 2).contains("pipeline"));
+  EXPECT_EQ(
+      std::get<std::string>(optionsForBricks(findTechnique("rightangle"), {}, 2).at("pipeline")),
+      "fast");
   EXPECT_EQ(
       std::get<std::string>(optionsForBricks(findTechnique("illustrate"), {}, 2).at("pipeline")),
       "fast");

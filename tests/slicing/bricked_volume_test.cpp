@@ -69,7 +69,7 @@ std::vector<TechniqueCase> techniqueCases() {
        withToneFillOptions(with(iso("silhouette"), "pipeline", "fast")), kToneFillColor},
       {"rightangle_paper_tone", "rightangle",
        withToneFillOptions(with(iso("rightangle"), "pipeline", "paper")), kToneFillColor},
-      {"rightangle_fast_tone", "rightangle", withToneFillOptions(iso("rightangle")),
+      {"rightangle_default_tone", "rightangle", withToneFillOptions(iso("rightangle")),
        kToneFillColor},
       {"firsthit", "firsthit", iso("firsthit"), std::nullopt},
       {"illustrate", "illustrate",

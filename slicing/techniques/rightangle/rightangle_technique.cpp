@@ -20,7 +20,7 @@ TechniqueInfo rightAngleTechniqueInfo() {
                OptionSpec::number("ra-threshold", 0.04,
                                   "a first hit is a line pixel where (1 - |n.v|)^k exceeds this "
                                   "(the defaults draw |n.v| < 0.33)"),
-               pipelineOption(SlicingPipeline::Fast)}),
+               pipelineOption(SlicingPipeline::Tiles)}),
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<RightAngleTechnique>(); },
           /*usesGradients=*/false,
@@ -47,7 +47,11 @@ void RightAngleTechnique::beginFrame(const FrameContext& frame) {
   finish_->use();
   finish_->set("rightAngleExponent", float(frame.options->number("ra-exponent")));
   finish_->set("rightAngleThreshold", float(frame.options->number("ra-threshold")));
-  hits_.beginFrame(frame, pipelineOf(*frame.options));
+  // A slab runs the default tiles as fast (the same bytes): the march walks every slice in one
+  // texture. Tiles asked for by name is refused across ranks before (needsOneTextureInSlab).
+  SlicingPipeline pipeline = pipelineOf(*frame.options);
+  if (frame.slab && pipeline == SlicingPipeline::Tiles) pipeline = SlicingPipeline::Fast;
+  hits_.beginFrame(frame, pipeline);
 }
 
 void RightAngleTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {
