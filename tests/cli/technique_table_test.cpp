@@ -44,7 +44,7 @@ TEST(TechniqueTable, AnOptionSharedByTechniquesMeansTheSameForAll) {
 
 // Each technique's default pipeline is its fastest that gives the same bytes (README, "The
 // default pipeline"): OPS's tiles march took 0.25-0.93 of the fast pipeline's time on every nk3
-// dataset; RA's took 0.42-0.80 of RA fast's on all five nk3 datasets at 256² and 512² on a quiet
+// dataset; RA's took 0.41-0.81 of RA fast's on all five nk3 datasets at 256² and 512² on a quiet
 // machine (2026-12-06; on a loaded one it had lost on teddybear at 512²).
 TEST(TechniqueTable, EachTechniqueDefaultsToItsFastestPipeline) {
   const std::map<std::string, std::string> expected{
