@@ -11,6 +11,13 @@ layout(local_size_x = MARCH_TILE_X, local_size_y = MARCH_TILE_Y) in;
 
 uniform float deadOpacity;
 
+// Slice k samples between the planes of slices k − 1 and k (boxAlignedVoxel): past the exit once
+// the plane of k − 1 is, where it and every later sample add nothing (mark_dead.frag's rule,
+// which retires a pixel once its slice's plane is past the exit, relies on the same).
+bool pastExit(int k, float exitDepth) {
+  return k > rangeFirstSlice && sliceWindowDepthAt(k - 1) >= exitDepth;
+}
+
 void main() {
   ivec2 pixel = tileOrigin() + ivec2(gl_LocalInvocationID.xy);
   bool inImage = insideImage(pixel);
@@ -29,15 +36,12 @@ void main() {
   // in the loop below a transparent sample costs as much as a shaded one. Skipped samples leave
   // the colour as it is, so the loop below composites what it would have.
   for (; first < rangeEndSlice; ++first) {
-    if (first > rangeFirstSlice && sliceWindowDepthAt(first - 1) >= exitDepth) break;
+    if (pastExit(first, exitDepth)) break;
     vec3 voxel = boxAlignedVoxel(ray, phase, first);
     if (insideVolume(voxel) && !addsNothing(voxel)) break;
   }
   for (int k = first; k < rangeEndSlice; ++k) {
-    // Slice k samples between the planes of slices k − 1 and k (boxAlignedVoxel): past the
-    // exit once the plane of k − 1 is, where every sample adds nothing (mark_dead.frag's rule,
-    // which retires a pixel once its slice's plane is past the exit, relies on the same).
-    if (k > rangeFirstSlice && sliceWindowDepthAt(k - 1) >= exitDepth) break;
+    if (pastExit(k, exitDepth)) break;
     vec3 voxel = boxAlignedVoxel(ray, phase, k);
     vec4 premultiplied;
     if (insideVolume(voxel) &&
