@@ -12,21 +12,26 @@ layout(binding = UNIT_AUXILIARY1) uniform sampler2D defuzzTable;      // RGBA32F
 float semanticData, semanticGradient, semanticCursorDistance, semanticPlaneDistance,
     semanticImageDistance, semanticViewAngle, semanticTime;
 
-float semanticMembership(int row, float x) {
-  int segments = textureSize(membershipTable, 0).x;
+// The segment of a row holding x (clamped to [0, 1]) in a table of `segments` segments a row,
+// and x's place in it, `f` in [0, 1] (MembershipTables::at computes the same on the CPU).
+int tableSegment(int segments, float x, out float f) {
   float t = clamp(x, 0.0, 1.0) * float(segments);
   int k = min(int(t), segments - 1);
-  float f = t - float(k);
+  f = t - float(k);
+  return k;
+}
+
+float semanticMembership(int row, float x) {
+  float f;
+  int k = tableSegment(textureSize(membershipTable, 0).x, x, f);
   vec2 ends = texelFetch(membershipTable, ivec2(k, row), 0).rg;
   return mix(ends.x, ends.y, f);
 }
 
 // (N(a), D(a)) of a consequent value's row at the rule degree a (core/rules.h DefuzzTables).
 vec2 semanticDefuzz(int row, float degree) {
-  int segments = textureSize(defuzzTable, 0).x;
-  float t = clamp(degree, 0.0, 1.0) * float(segments);
-  int k = min(int(t), segments - 1);
-  float f = t - float(k);
+  float f;
+  int k = tableSegment(textureSize(defuzzTable, 0).x, degree, f);
   vec4 ends = texelFetch(defuzzTable, ivec2(k, row), 0);
   return mix(ends.xy, ends.zw, f);
 }
