@@ -189,8 +189,8 @@ RenderResult Renderer::render(const RenderSettings& givenSettings) {
   const TechniqueInfo& info = findTechnique(settings.technique);
   Technique& technique = impl_->technique(info);
   RenderResult result;
-  const OptionValues given =
-      optionsForBricks(info, settings.options, impl_->volumeTexture->brickCount());
+  OptionValues given = optionsForBricks(info, settings.options, impl_->volumeTexture->brickCount());
+  if (slab) given = optionsForSlab(info, std::move(given));
   // The histogram's defaults take a pass over every sample: only for frames that need them.
   DerivedDefaults derived{
       .valueRangeWidth = double(impl_->valueRange.max) - double(impl_->valueRange.min),

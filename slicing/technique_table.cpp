@@ -134,9 +134,15 @@ bool TechniqueInfo::needsOneTextureWith(const OptionValues& given) const {
   return needsOneTexture && needsOneTexture(OptionReader(options, given, {}));
 }
 
+OptionValues optionsForSlab(const TechniqueInfo& info, OptionValues given) {
+  if (info.option("pipeline") && (info.slabRunsFastPipeline || !given.contains("pipeline"))) {
+    given["pipeline"] = std::string(pipelineName(SlicingPipeline::Fast));
+  }
+  return given;
+}
+
 bool TechniqueInfo::needsOneTextureInSlab(OptionValues given) const {
-  if (slabRunsFastPipeline) given["pipeline"] = std::string(pipelineName(SlicingPipeline::Fast));
-  return needsOneTextureWith(given);
+  return needsOneTextureWith(optionsForSlab(*this, std::move(given)));
 }
 
 SlicingPipeline pipelineOf(const OptionReader& options) {

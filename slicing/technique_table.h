@@ -52,9 +52,10 @@ struct TechniqueInfo {
   // vsil render`, core/composition.h, where each rule is proved against the sequential fold).
   // Set in the table (technique_table.cpp techniqueTable).
   Composition composition = Composition::None;
-  // A slab's frame runs the fast pipeline whatever --pipeline says (the silhouette: its tile
-  // march needs one texture and its paper pipeline's screen passes would clear pixels another
-  // process owns; silhouette_technique.cpp beginFrame).
+  // A slab's frame runs the fast pipeline whatever --pipeline says (optionsForSlab), not only
+  // at the default: the silhouette (its tile march needs one texture and its paper pipeline's
+  // screen passes would clear pixels another process owns) and illustrate (slabs relay the
+  // slice passes' colour and marks).
   bool slabRunsFastPipeline = false;
   // How far, in voxels along z, what a frame with these options reads beside its samples
   // reaches beyond them, for the frame's view of a volume of `dims` voxels: a slab holds that
@@ -71,8 +72,8 @@ struct TechniqueInfo {
   bool needsOneTextureWith(const OptionValues& given) const;
   // Whether a slab's frame (rendered across MPI ranks) with the `given` options needs the volume
   // in one texture, which a slab is not, so that it refuses: needsOneTextureWith the options the
-  // slab's frame runs with (--pipeline fast where slabRunsFastPipeline). The CLI asks before
-  // reading, the renderer again per frame.
+  // slab's frame runs with (optionsForSlab). The CLI asks before reading, the renderer again per
+  // frame.
   bool needsOneTextureInSlab(OptionValues given) const;
 };
 
@@ -111,5 +112,11 @@ bool tilesNeedOneTexture(const OptionReader& options);
 // volume takes several bricks (the tiles march needs one texture; uploading the volume again
 // would cost the time and memory the default is meant to save). The metadata then records fast.
 OptionValues optionsForBricks(const TechniqueInfo& info, OptionValues given, std::size_t bricks);
+// The options a slab's frame (one MPI rank's part, slab.h) runs with: `given`, plus --pipeline
+// fast where the technique has a pipeline and none was given (a slab is never one texture, which
+// the tiles march needs), or whatever was given where slabRunsFastPipeline. The renderer runs
+// the frame with them and the metadata records them; a tiles pipeline asked for by name
+// elsewhere is refused before reading (needsOneTextureInSlab).
+OptionValues optionsForSlab(const TechniqueInfo& info, OptionValues given);
 
 }  // namespace vsil

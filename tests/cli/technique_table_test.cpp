@@ -84,14 +84,36 @@ TEST(TechniqueTable, DefaultTilesGiveWayToFastOverBricks) {
   EXPECT_FALSE(optionsForBricks(findTechnique("mip"), {}, 2).contains("pipeline"));
 }
 
-// Across MPI ranks (a slab is never one texture): the silhouette's slab runs the fast pipeline
-// whatever --pipeline says, so tiles asked for by name is no reason to refuse there; the other
-// techniques' reasons stay (the CLI and the renderer both ask needsOneTextureInSlab).
+// A slab's frame runs fast where no pipeline was given, and whatever was given where the
+// table says slabRunsFastPipeline (silhouette, illustrate); the renderer runs and records these.
+TEST(TechniqueTable, ASlabRunsFastWhereTheTableSays) {
+  const auto pipelineInSlab = [](const std::string& technique, const OptionValues& given) {
+    const OptionValues slab = optionsForSlab(findTechnique(technique), given);
+    return slab.contains("pipeline") ? std::get<std::string>(slab.at("pipeline")) : "";
+  };
+  const OptionValues tiles{{"pipeline", std::string("tiles")}};
+  const OptionValues paper{{"pipeline", std::string("paper")}};
+  for (const char* technique : {"silhouette", "rightangle", "illustrate"}) {
+    EXPECT_EQ(pipelineInSlab(technique, {}), "fast") << technique;
+  }
+  EXPECT_EQ(pipelineInSlab("silhouette", tiles), "fast");
+  EXPECT_EQ(pipelineInSlab("silhouette", paper), "fast");
+  EXPECT_EQ(pipelineInSlab("illustrate", tiles), "fast");
+  EXPECT_EQ(pipelineInSlab("rightangle", paper), "paper");
+  EXPECT_EQ(pipelineInSlab("rightangle", tiles), "tiles");  // refused: needsOneTextureInSlab
+  EXPECT_EQ(pipelineInSlab("mip", {}), "");
+}
+
+// Across MPI ranks (a slab is never one texture): the silhouette's and illustrate's slabs run
+// the fast pipeline whatever --pipeline says, so tiles asked for by name is no reason to refuse
+// there; the other techniques' reasons stay (the CLI and the renderer both ask
+// needsOneTextureInSlab).
 TEST(TechniqueTable, ASlabNeedsOneTextureOnlyWhereItsFrameWould) {
   const OptionValues tiles{{"pipeline", std::string("tiles")}};
   const OptionValues exactHalo{{"effects", std::string("halo")},
                                {"halo-mode", std::string("exact")}};
   EXPECT_FALSE(findTechnique("silhouette").needsOneTextureInSlab(tiles));
+  EXPECT_FALSE(findTechnique("illustrate").needsOneTextureInSlab(tiles));
   EXPECT_TRUE(findTechnique("rightangle").needsOneTextureInSlab(tiles));
   EXPECT_FALSE(findTechnique("rightangle").needsOneTextureInSlab({}));
   EXPECT_TRUE(findTechnique("illustrate").needsOneTextureInSlab(exactHalo));

@@ -122,6 +122,11 @@ if [[ -e $engine ]]; then
   relay_case lmip "2" "$engine" --size 256x256 --view 30,20
   relay_case rightangle "4" "$engine" --size 256x256 --view 30,20 --fill tone
 fi
+# rightangle's default tiles runs fast in a slab (as the metadata says); paper stays paper.
+relay_case rightangle "2" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6
+grep -q '"pipeline": "fast"' "$work/many.json" || fail "rightangle -np 2: meta pipeline not fast"
+relay_case rightangle "2" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6 --pipeline paper
+grep -q '"pipeline": "paper"' "$work/many.json" || fail "rightangle paper -np 2: meta pipeline"
 # The last passes that shade at a hit's own point, in whichever slab it lies (relayScreenPass).
 relay_case rightangle "3" gen:spheres:64 --size 128x128 --view 37,-23 --zoom 1.6 --fill shaded
 echo "relay (rightangle, firsthit, demip, lmip): -np 2, 3, 4 byte-identical, PNG, depth, state"
@@ -146,6 +151,17 @@ if [[ -e $engine ]]; then
   relay_case illustrate "4" "$engine" --size 256x256 --effects "$every_effect"
 fi
 echo "illustrate (default, every effect, fig6 halo style): -np 2, 3, 4 byte-identical"
+# Its tiles march asked for by name: a slab runs the slice passes (optionsForSlab), as the
+# metadata says, not a refusal after reading on every rank.
+"$mpiexec" --oversubscribe -np 2 "$vsil" render "${common[@]}" "$volume" --technique illustrate \
+  --pipeline tiles --out "$work/many.png" --meta-out "$work/many.json" >/dev/null ||
+  fail "illustrate --pipeline tiles -np 2 failed"
+"$vsil" render "${common[@]}" "$volume" --technique illustrate --pipeline fast \
+  --out "$work/single.png" >/dev/null
+cmp -s "$work/single.png" "$work/many.png" || fail "illustrate --pipeline tiles -np 2 differs"
+grep -q '"pipeline": "fast"' "$work/many.json" || fail "illustrate --pipeline tiles -np 2: meta"
+rm -f "$work"/single.png "$work"/many.png
+echo "illustrate --pipeline tiles: -np 2 runs fast, byte-identical, recorded in --meta-out"
 
 # A perspective view whose rays leave the eye both ways along z: no slab order is every ray's.
 if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --technique firsthit \

@@ -61,15 +61,18 @@ if cmp -s "$work/single.state.png" "$work/noghost.state.png"; then
 fi
 echo "without ghost layers: differs (as it must)"
 
-# --pipeline paper or tiles across ranks runs the fast pipeline: the single process's bytes.
+# --pipeline paper or tiles across ranks runs the fast pipeline: the single process's bytes,
+# and the metadata says fast.
 for pipeline in paper tiles; do
   "$vsil" render gen:spheres:64 --size 96x96 --view 37,-23 --technique silhouette \
     --pipeline "$pipeline" --out "$work/one.png" >/dev/null
   "$mpiexec" --oversubscribe -np 2 "$vsil" render gen:spheres:64 --size 96x96 --view 37,-23 \
-    --technique silhouette --pipeline "$pipeline" --out "$work/two.png" >/dev/null
+    --technique silhouette --pipeline "$pipeline" --out "$work/two.png" \
+    --meta-out "$work/two.json" >/dev/null
   cmp -s "$work/one.png" "$work/two.png" || fail "--pipeline $pipeline: -np 2 differs"
+  grep -q '"pipeline": "fast"' "$work/two.json" || fail "--pipeline $pipeline: meta not fast"
 done
-echo "--pipeline paper, tiles: -np 2 byte-identical"
+echo "--pipeline paper, tiles: -np 2 byte-identical, recorded as fast"
 
 # --fill tone shades with the volume at every hit: refused in one line across ranks.
 if "$mpiexec" --oversubscribe -np 2 "$vsil" render gen:spheres:64 --size 64x64 \

@@ -47,11 +47,8 @@ void RightAngleTechnique::beginFrame(const FrameContext& frame) {
   finish_->use();
   finish_->set("rightAngleExponent", float(frame.options->number("ra-exponent")));
   finish_->set("rightAngleThreshold", float(frame.options->number("ra-threshold")));
-  // A slab runs the default tiles as fast (the same bytes): the march walks every slice in one
-  // texture. Tiles asked for by name is refused across ranks before (needsOneTextureInSlab).
-  SlicingPipeline pipeline = pipelineOf(*frame.options);
-  if (frame.slab && pipeline == SlicingPipeline::Tiles) pipeline = SlicingPipeline::Fast;
-  hits_.beginFrame(frame, pipeline);
+  // A slab's default is fast (technique_table.h optionsForSlab).
+  hits_.beginFrame(frame, pipelineOf(*frame.options));
 }
 
 void RightAngleTechnique::drawSlice(const FrameContext& frame, const SliceContext& slice) {

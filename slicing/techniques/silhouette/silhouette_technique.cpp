@@ -86,7 +86,7 @@ TechniqueInfo silhouetteTechniqueInfo() {
                      /*usesGradients=*/false,
                      /*checkValues=*/checkToneFillValues,
                      /*needsOneTexture=*/tilesNeedOneTexture};
-  info.slabRunsFastPipeline = true;  // beginFrame
+  info.slabRunsFastPipeline = true;  // its paper pipeline too (technique_table.h)
   // The contour test reads the 8 neighbours' footprints on the slice (one pixel's footprint
   // along z), plus one voxel for trilinear filtering.
   info.slabGhostVoxels = [](const OptionReader&, const View& view, glm::ivec3 dims) {
@@ -118,14 +118,9 @@ void SilhouetteTechnique::beginFrame(const FrameContext& frame) {
                 gl::EmptyFramebuffer(size, depth),
                 std::nullopt});
   }
+  // A slab's options say fast, whatever --pipeline said (technique_table.h optionsForSlab).
   pipeline_ = pipelineOf(*frame.options);
   slabCombined_ = false;
-  // A slab runs the fast pipeline, whatever --pipeline says (the three give the same pixels):
-  // the tile march walks every slice in one texture, and the paper pipeline's screen passes
-  // apply EMPTY at pixels whose sample another process owns. (Without --pipeline, a slab's
-  // bricks already choose fast: technique_table.cpp optionsForBricks.) The table says so
-  // (TechniqueInfo::slabRunsFastPipeline), so that --pipeline tiles is not refused in a slab.
-  if (frame.slab) pipeline_ = SlicingPipeline::Fast;
   const float iso = float(frame.options->number("iso"));
   programs_.finish = &finishProgram(frame, {"techniques/silhouette/silhouette.glsl"});
   if (pipeline_ == SlicingPipeline::Tiles) {
