@@ -54,7 +54,9 @@ Summary summarize(const Volume& volume) {
       const float value = float(sample);
       sum += value;
       sumSquares += double(value) * value;
-      const int bin = width > 0 ? int((value - s.range.min) / width * kHistogramBins) : 0;
+      // In double: in float, max − min overflows where the values span more than FLT_MAX.
+      const int bin =
+          width > 0 ? int((double(value) - s.range.min) / width * kHistogramBins) : 0;
       ++s.histogram[std::min(bin, kHistogramBins - 1)];
     }
   });

@@ -1,5 +1,7 @@
 // `vsil info` through the built binary: a dataset in text and JSON, and an error's exit status.
 #include <gtest/gtest.h>
+
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "reference/test_support.h"
@@ -63,6 +65,24 @@ TEST(InfoCommand, RawLayoutFlagsAndGenerators) {
   const auto generated = test::runVsil("info gen:torus:16");
   EXPECT_EQ(generated.exitCode, 0) << generated.err;
   EXPECT_NE(generated.out.find("float32"), std::string::npos);
+}
+
+// Float samples spanning more than FLT_MAX (max − min overflows in float): every sample lands
+// in the histogram, the lowest in the first bin and the highest in the last.
+TEST(InfoCommand, AValueRangeWiderThanAFloatHolds) {
+  const float samples[8] = {1.8e38f, -1.8e38f, 0, 0, 0, 0, 0, 0};
+  const auto raw = test::scratchDir() / "wide_range.raw";
+  std::ofstream(raw, std::ios::binary).write(reinterpret_cast<const char*>(samples), sizeof samples);
+  const auto result =
+      test::runVsil("info '" + raw.string() + "' --dims 2x2x2 --type float32 --json");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto counts = nlohmann::json::parse(result.out)["histogram"]["counts"];
+  ASSERT_GE(counts.size(), 2u);
+  EXPECT_EQ(counts.front().get<int>(), 1);
+  EXPECT_EQ(counts.back().get<int>(), 1);
+  std::size_t counted = 0;
+  for (const auto& count : counts) counted += count.get<std::size_t>();
+  EXPECT_EQ(counted, 8u);
 }
 
 TEST(InfoCommand, BadInputExitsTwoWithOneLineNamingTheFile) {
