@@ -55,8 +55,7 @@ Summary summarize(const Volume& volume) {
       sum += value;
       sumSquares += double(value) * value;
       // In double: in float, max − min overflows where the values span more than FLT_MAX.
-      const int bin =
-          width > 0 ? int((double(value) - s.range.min) / width * kHistogramBins) : 0;
+      const int bin = width > 0 ? int((double(value) - s.range.min) / width * kHistogramBins) : 0;
       ++s.histogram[std::min(bin, kHistogramBins - 1)];
     }
   });

@@ -72,7 +72,8 @@ TEST(InfoCommand, RawLayoutFlagsAndGenerators) {
 TEST(InfoCommand, AValueRangeWiderThanAFloatHolds) {
   const float samples[8] = {1.8e38f, -1.8e38f, 0, 0, 0, 0, 0, 0};
   const auto raw = test::scratchDir() / "wide_range.raw";
-  std::ofstream(raw, std::ios::binary).write(reinterpret_cast<const char*>(samples), sizeof samples);
+  std::ofstream(raw, std::ios::binary)
+      .write(reinterpret_cast<const char*>(samples), sizeof samples);
   const auto result =
       test::runVsil("info '" + raw.string() + "' --dims 2x2x2 --type float32 --json");
   ASSERT_EQ(result.exitCode, 0) << result.err;
