@@ -28,6 +28,7 @@
 #include "core/number_pair.h"
 #include "core/progress_line.h"
 #include "core/version.h"
+#include "io/file_access.h"
 #include "job/animation.h"
 #include "video/video_file.h"
 
@@ -65,11 +66,12 @@ void checkOutputs(const AnimateFlags& flags, glm::ivec2 size) {
   if (!flags.outDir.empty()) {
     const fs::path dir = flags.outDir;
     const std::string where = "--out-dir " + flags.outDir;
-    if (fs::exists(dir)) {
-      if (!fs::is_directory(dir)) throwInputError(where, "is not a folder");
+    const fs::file_type type = io::fileTypeAt(dir, where);
+    if (type != fs::file_type::not_found) {
+      if (type != fs::file_type::directory) throwInputError(where, "is not a folder");
     } else {
       const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
-      if (!fs::is_directory(parent)) {
+      if (io::fileTypeAt(parent, where) != fs::file_type::directory) {
         throwInputError(where, "folder " + parent.string() + " does not exist");
       }
     }
@@ -81,7 +83,7 @@ void checkOutputs(const AnimateFlags& flags, glm::ivec2 size) {
 // the first frame is rendered.
 void prepareOutDir(const fs::path& dir) {
   std::error_code error;
-  if (!fs::exists(dir) && !fs::create_directory(dir, error)) {
+  if (!fs::exists(dir, error) && !fs::create_directory(dir, error)) {
     throwInputError("--out-dir " + dir.string(), "cannot create the folder: " + error.message());
   }
   try {

@@ -39,6 +39,7 @@
 #include "core/json_input.h"
 #include "core/progress_line.h"
 #include "core/version.h"
+#include "io/file_access.h"
 #include "job/render_job.h"
 #include "mpi/mpi_world.h"
 #include "mpi/task_farm.h"
@@ -410,7 +411,8 @@ void run(const SweepFlags& flags) {
   const SweepPlan plan = readSweepPlan(flags.file);
   if (!flags.outDir.empty()) {
     const fs::path dir = flags.outDir;
-    if (fs::exists(dir) && !fs::is_directory(dir)) {
+    const fs::file_type type = io::fileTypeAt(dir, "--out-dir " + flags.outDir);
+    if (type != fs::file_type::not_found && type != fs::file_type::directory) {
       throwInputError("--out-dir " + flags.outDir, "is not a folder");
     }
   }

@@ -544,7 +544,7 @@ char axisLetter(const glm::dvec3& direction) {
 
 Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& options) {
   const std::filesystem::path given(path);
-  const bool folderGiven = std::filesystem::is_directory(given);
+  const bool folderGiven = fileTypeAt(given, path) == std::filesystem::file_type::directory;
   if (!folderGiven) regularFileSize(path);
   const std::string folder =
       folderGiven ? path : (given.has_parent_path() ? given.parent_path().string() : ".");

@@ -26,15 +26,21 @@ std::ifstream openForReading(const std::string& path) {
 
 }  // namespace
 
+std::filesystem::file_type fileTypeAt(const std::filesystem::path& path, const std::string& where) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (status.type() == std::filesystem::file_type::not_found) return status.type();
+  if (error) throwInputError(where, "cannot be examined: " + error.message());
+  return status.type();
+}
+
 std::uint64_t regularFileSize(const std::string& path) {
   namespace fs = std::filesystem;
+  const fs::file_type type = fileTypeAt(path, path);
+  if (type == fs::file_type::not_found) throwInputError(path, "no such file");
+  if (type == fs::file_type::directory) throwInputError(path, "is a directory, not a file");
+  if (type != fs::file_type::regular) throwInputError(path, "is not a regular file");
   std::error_code error;
-  const fs::file_status status = fs::status(path, error);
-  if (status.type() == fs::file_type::not_found) throwInputError(path, "no such file");
-  if (error) throwInputError(path, "cannot be examined: " + error.message());
-  if (status.type() == fs::file_type::directory)
-    throwInputError(path, "is a directory, not a file");
-  if (status.type() != fs::file_type::regular) throwInputError(path, "is not a regular file");
   const std::uintmax_t size = fs::file_size(path, error);
   if (error) throwInputError(path, "cannot be examined: " + error.message());
   if (size == 0) {

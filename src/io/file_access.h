@@ -2,6 +2,7 @@
 // Reading files with every failure turned into an InputError that names the path: missing,
 // a directory, empty, unreadable, shorter than needed, or larger than a caller's bound.
 #include <cstdint>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <vector>
@@ -9,6 +10,11 @@
 #include "core/unique_fd.h"
 
 namespace vsil::io {
+
+// The type of what `path` names, following links (not_found where nothing is). Throws
+// InputError "`where`: cannot be examined: ..." where the system cannot tell (a loop of links,
+// no permission to look), which std::filesystem's throwing calls report as an exception.
+std::filesystem::file_type fileTypeAt(const std::filesystem::path& path, const std::string& where);
 
 // The size of a regular, non-empty file. Throws for a missing path, a directory or other
 // non-regular file, an empty file, or one that cannot be opened for reading.

@@ -284,7 +284,7 @@ Volume readNifti(const std::string& path, const LoadOptions& options) {
   const auto offset = std::uint64_t(image->iname_offset);
   const bool bigEndian = image->byteorder == kMsbFirst;
 
-  if (dataPath != path && !std::filesystem::exists(dataPath)) {
+  if (dataPath != path && fileTypeAt(dataPath, dataPath) == std::filesystem::file_type::not_found) {
     throwInputError(path, "its image file " +
                               quote(std::filesystem::path(dataPath).filename().string()) +
                               " is missing");

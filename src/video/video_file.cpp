@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/plugin.h"
+#include "io/file_access.h"
 #include "video/video_encoder.h"
 
 namespace vsil {
@@ -64,7 +65,7 @@ void VideoFile::checkTarget(const std::string& flag, const std::filesystem::path
   }
   const std::filesystem::path folder =
       target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-  if (!std::filesystem::is_directory(folder)) {
+  if (io::fileTypeAt(folder, where) != std::filesystem::file_type::directory) {
     throwInputError(where, "folder " + folder.string() + " does not exist");
   }
   if (size.x % 2 != 0 || size.y % 2 != 0) {

@@ -109,6 +109,41 @@ TEST(BadInputs, UnreadableFile) {
   EXPECT_EQ(result.out, "");
 }
 
+// A loop of links where a file or folder is looked at (the NIfTI pair's image, the input, the
+// outputs' folders): one line naming it, exit 2, no output. std::filesystem's throwing calls
+// once made these "internal error" (exit 1).
+TEST(BadInputs, LoopsOfLinksAreRefusedInOneLine) {
+  const fs::path dir = test::scratchDir();
+  fs::copy_file(kCorpus / "nifti_pair_no_img.hdr", dir / "pair.hdr");
+  fs::create_symlink("pair.img", dir / "pair.img");
+  fs::create_symlink("b", dir / "a");
+  fs::create_symlink("a", dir / "b");
+  std::ofstream(dir / "sweep.json")
+      << R"({"render": {"input": "gen:sphere:16", "size": "16x16"}, "axes": {"zoom": [1, 2]}})";
+  const std::string loop = ": cannot be examined: Too many levels of symbolic links\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"info " + (dir / "pair.hdr").string(), (dir / "pair.img").string() + loop},
+      {"render " + (dir / "a").string() + " --out " + (dir / "o.png").string(),
+       (dir / "a").string() + loop},
+      {"animate gen:sphere:16 --size 16x16 --frames 2 --out-dir " + (dir / "a").string(),
+       "--out-dir " + (dir / "a").string() + loop},
+      {"animate gen:sphere:16 --size 16x16 --frames 2 --out-dir " + (dir / "a" / "new").string(),
+       "--out-dir " + (dir / "a" / "new").string() + loop},
+      {"animate gen:sphere:16 --size 16x16 --frames 2 --video " + (dir / "a" / "v.mp4").string(),
+       "--video " + (dir / "a" / "v.mp4").string() + loop},
+      {"sweep " + (dir / "sweep.json").string() + " --json " + (dir / "o.json").string() +
+           " --out-dir " + (dir / "a").string(),
+       "--out-dir " + (dir / "a").string() + loop},
+  };
+  for (const auto& [arguments, error] : cases) {
+    const test::CommandResult result = test::runVsil(arguments);
+    EXPECT_EQ(result.exitCode, 2) << arguments;
+    EXPECT_EQ(result.err, "vsil: " + error) << arguments;
+  }
+  EXPECT_FALSE(fs::exists(dir / "o.png"));
+  EXPECT_FALSE(fs::exists(dir / "o.json"));
+}
+
 // Outputs of one run are committed together: with --meta-out unwritable, the --out file that
 // existed before keeps its bytes and no temporary is left (the table's cases start from an
 // empty folder; this one from a previous render's file).
