@@ -7,11 +7,21 @@
 
 namespace vsil {
 
+// `text` with each control byte (a NUL, ESC, CR, a newline: what a hostile file may put in a
+// name or value that a message quotes) replaced by '?', so that it prints as one line, whole
+// (a NUL would cut what() short) and without driving the terminal.
+inline std::string oneLine(std::string text) {
+  for (char& c : text) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  return text;
+}
+
 // Something the user gave us is wrong. The message names the file or flag and the problem,
 // on one line, e.g. "bonsai.vti: zlib block 3 is truncated".
 class InputError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit InputError(const std::string& message) : std::runtime_error(oneLine(message)) {}
 };
 
 // This machine lacks something the work needs (an OpenGL back end, a driver feature). The message

@@ -113,9 +113,7 @@ MetaPayload locateMetaPayload(const std::string& path, const MetaImageHeader& he
   if (dataFile.find('%') != std::string::npos) {
     throwInputError(path, field + ": a file name pattern (one file per slice) is not supported");
   }
-  std::filesystem::path dataPath(dataFile);
-  if (dataPath.is_relative()) dataPath = std::filesystem::path(path).parent_path() / dataPath;
-  MetaPayload payload{dataPath.string(), "data file " + quote(dataFile), 0, 0};
+  MetaPayload payload{dataFilePath(path, field, dataFile), "data file " + quote(dataFile), 0, 0};
   try {
     payload.size = regularFileSize(payload.path);
   } catch (const InputError& e) {

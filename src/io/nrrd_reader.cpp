@@ -162,10 +162,8 @@ Payload locatePayload(const std::string& path, const NrrdHeader& header, std::ui
   if (dataFile->starts_with("LIST") || splitWhitespace(*dataFile).size() > 1) {
     throwInputError(path, "data file " + quote(*dataFile) + ": multi-file data is not supported");
   }
-  std::filesystem::path dataPath(*dataFile);
-  if (dataPath.is_relative()) dataPath = std::filesystem::path(path).parent_path() / dataPath;
-  payload.path = dataPath.string();
   payload.label = "data file " + quote(*dataFile);
+  payload.path = dataFilePath(path, payload.label, *dataFile);
   try {
     payload.size = regularFileSize(payload.path);
   } catch (const InputError& e) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "core/error.h"
@@ -40,6 +41,16 @@ std::vector<std::string_view> splitWhitespace(std::string_view text) {
     if (i > start) tokens.push_back(text.substr(start, i - start));
   }
   return tokens;
+}
+
+std::string dataFilePath(const std::string& header, const std::string& label,
+                         const std::string& name) {
+  if (name.find('\0') != std::string::npos) {
+    throwInputError(header, label + ": a file name cannot hold a NUL byte");
+  }
+  std::filesystem::path path(name);
+  if (path.is_relative()) path = std::filesystem::path(header).parent_path() / path;
+  return path.string();
 }
 
 std::string quote(std::string_view text) {

@@ -26,6 +26,13 @@ glm::dvec3 parseSpacing(const std::string& where, const std::string& field, std:
 // Throws unless every component is finite and positive.
 void checkSpacing(const std::string& where, const std::string& field, glm::dvec3 spacing);
 
+// The path of the detached data file that the header file `header` names (NRRD `data file`,
+// MetaImage ElementDataFile), a relative name from the header's folder. Throws InputError
+// "`header`: `label`: ..." for a name holding a NUL byte, which no file name can (opened, it
+// would name the file its first part names).
+std::string dataFilePath(const std::string& header, const std::string& label,
+                         const std::string& name);
+
 // Shortens text quoted in an error message and replaces control bytes, so a message stays on
 // one line whatever the file held.
 std::string quote(std::string_view text);
