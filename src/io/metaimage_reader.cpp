@@ -58,7 +58,10 @@ MetaImageHeader parseMetaImageHeader(const std::string& path, std::uint64_t file
                                 " is not 'Key = Value' (is this a MetaImage file?)");
     }
     const std::string key = toLower(trim(line.substr(0, equals)));
-    header.fields[key] = std::string(trim(line.substr(equals + 1)));
+    if (!header.fields.emplace(key, trim(line.substr(equals + 1))).second) {
+      throwInputError(path, "header line " + std::to_string(lineNumber) + ": field " + quote(key) +
+                                " is given twice");
+    }
     if (key == "elementdatafile") {  // always the last field: the data may follow
       header.dataOffset = std::min<std::uint64_t>(start, fileSize);
       return header;

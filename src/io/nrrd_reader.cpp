@@ -71,7 +71,12 @@ NrrdHeader parseHeader(const std::string& path, std::uint64_t fileSize) {
       throwInputError(path, "header line " + std::to_string(lineNumber) + " " + quote(line) +
                                 " is neither 'field: value' nor a comment");
     }
-    header.fields[toLower(trim(line.substr(0, colon)))] = std::string(trim(line.substr(colon + 2)));
+    // The format's rule: a field given twice is an error (which one would hold?).
+    const std::string field = toLower(trim(line.substr(0, colon)));
+    if (!header.fields.emplace(field, trim(line.substr(colon + 2))).second) {
+      throwInputError(path, "header line " + std::to_string(lineNumber) + ": field " +
+                                quote(field) + " is given twice");
+    }
   }
   return header;
 }

@@ -78,6 +78,7 @@ LegacyHeader parseHeader(const std::string& path, std::string_view text) {
   }
   nextLine("the title line");
   LegacyHeader header;
+  bool spacingGiven = false;
   // Old writers leave blank lines between the header lines.
   std::string mode;
   while (mode.empty()) mode = toLower(trim(nextLine("the ASCII/BINARY line")));
@@ -105,8 +106,11 @@ LegacyHeader parseHeader(const std::string& path, std::string_view text) {
             path, "DATASET " + quote(argument(1)) + " is not supported (STRUCTURED_POINTS only)");
       }
     } else if (keyword == "dimensions") {
+      if (header.dims) throwInputError(path, where + ": DIMENSIONS is given twice");
       header.dims = parseDims(path, "DIMENSIONS", arguments);
     } else if (keyword == "spacing" || keyword == "aspect_ratio") {
+      if (spacingGiven) throwInputError(path, where + ": SPACING is given twice");
+      spacingGiven = true;
       header.spacing = parseSpacing(path, "SPACING", arguments);
     } else if (keyword == "origin") {
       // Position only; vsil places volumes by their box.
