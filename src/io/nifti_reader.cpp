@@ -184,6 +184,14 @@ void checkRawHeader(const std::string& path, const RawHeader& header) {
     throwInputError(path, "nifticlib rejects its NIfTI-" + std::to_string(-header.version) +
                               " header (inconsistent fields)");
   }
+  // One file holds the header and 4 extension bytes before the image (the standard's rule for
+  // vox_offset); below that, nifticlib would read the image from inside the header.
+  const int dataStart = header.magic == "n+2" ? 540 + 4 : 348 + 4;
+  if (oneFile && header.voxOffset < dataStart) {
+    throwInputError(path, "vox_offset " + std::to_string(std::int64_t(header.voxOffset)) +
+                              " lies inside the header (a single-file image starts at " +
+                              std::to_string(dataStart) + " or later)");
+  }
 }
 
 glm::dmat4 toGlm(const nifti_dmat44& m) {
