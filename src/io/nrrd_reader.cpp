@@ -117,6 +117,7 @@ glm::dvec3 spacingFromDirections(const std::string& path, const std::string& tex
     throwInputError(path, field + " needs 3 vectors, found " + std::to_string(vectors.size()));
   }
   glm::dvec3 spacing;
+  glm::dmat3 columns;
   for (int axis = 0; axis < 3; ++axis) {
     std::string_view vector = vectors[axis];
     if (vector == "none") throwInputError(path, field + " has 'none' for a spatial axis");
@@ -130,6 +131,7 @@ glm::dvec3 spacingFromDirections(const std::string& path, const std::string& tex
       const std::size_t comma = vector.find(',');
       const double value = parseReal(path, field, trim(vector.substr(0, comma)));
       lengthSquared += value * value;
+      if (components < 3) columns[axis][components] = value;
       ++components;
       if (comma == std::string_view::npos) break;
       vector.remove_prefix(comma + 1);
@@ -140,6 +142,15 @@ glm::dvec3 spacingFromDirections(const std::string& path, const std::string& tex
     spacing[axis] = std::sqrt(lengthSquared);
   }
   checkSpacing(path, field, spacing);
+  // Vsil reads the spacing alone (the lengths), which only means something for axes spanning
+  // space: parallel or coplanar vectors would make the volume flat. (DICOM's orientations are
+  // checked alike.) The volume of the unit vectors' parallelepiped: 1 for orthogonal axes.
+  const glm::dmat3 unit(columns[0] / spacing[0], columns[1] / spacing[1], columns[2] / spacing[2]);
+  if (!(std::abs(glm::determinant(unit)) > 1e-6)) {
+    throwInputError(path, field + " " + quote(text) +
+                              ": the three axes do not span space (two are parallel, or all "
+                              "three lie in one plane)");
+  }
   return spacing;
 }
 
@@ -199,6 +210,10 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
 
   glm::dvec3 spacing(1.0);
   if (const std::string* directions = header.find({"space directions"})) {
+    // The format's rule: an axis has one or the other.
+    if (header.find({"spacings"})) {
+      throwInputError(path, "has both 'space directions' and 'spacings' (the format allows one)");
+    }
     spacing = spacingFromDirections(path, *directions);
   } else if (const std::string* spacings = header.find({"spacings"})) {
     spacing = parseSpacing(path, "spacings", *spacings);
