@@ -160,8 +160,12 @@ LoadOptions toLoadOptions(const VolumeOptions& options) {
   const auto dims = splitThree("--dims", options.dims, 'x', "XxYxZ, e.g. 256x256x128");
   for (int axis = 0; axis < 3; ++axis) {
     const std::int64_t value = io::parseInteger("--dims", "size", dims[axis]);
-    if (value <= 0 || value > std::numeric_limits<int>::max()) {
+    if (value <= 0) {
       throwInputError("--dims " + io::quote(options.dims), "sizes must be positive integers");
+    }
+    if (value > std::numeric_limits<int>::max()) {
+      throwInputError("--dims " + io::quote(options.dims),
+                      "size " + std::to_string(value) + " is out of range");
     }
     layout.dims[axis] = int(value);
   }

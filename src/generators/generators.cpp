@@ -183,6 +183,9 @@ Volume generateVolume(const std::string& spec, const VolumeLimits& limits,
   if (colon != std::string::npos) {
     const std::string edge = spec.substr(colon + 1);
     const auto [end, ec] = std::from_chars(edge.data(), edge.data() + edge.size(), n);
+    if (ec == std::errc::result_out_of_range && end == edge.data() + edge.size()) {
+      fail(spec, "edge length '" + edge + "' is out of range");
+    }
     if (edge.empty() || ec != std::errc() || end != edge.data() + edge.size()) {
       fail(spec, "edge length '" + edge + "' is not an integer");
     }
