@@ -142,7 +142,7 @@ glm::dvec3 spacingFromDirections(const std::string& path, const std::string& tex
     spacing[axis] = std::sqrt(lengthSquared);
   }
   checkSpacing(path, field, spacing);
-  // Vsil reads the spacing alone (the lengths), which only means something for axes spanning
+  // vsil reads the spacing alone (the lengths), which only means something for axes spanning
   // space: parallel or coplanar vectors would make the volume flat. (DICOM's orientations are
   // checked alike.) The volume of the unit vectors' parallelepiped: 1 for orthogonal axes.
   const glm::dmat3 unit(columns[0] / spacing[0], columns[1] / spacing[1], columns[2] / spacing[2]);
