@@ -309,16 +309,29 @@ std::vector<std::string> folderFiles(const std::string& where, const std::string
   return files;
 }
 
+// For the "missing slice?" error: the folder's files that hold no image slice, where one may
+// be the slice missing (unreadable, cut, not DICOM).
+std::string notSliceNote(const std::vector<std::string>& notSlices) {
+  if (notSlices.empty()) return "";
+  return " (" + std::to_string(notSlices.size()) +
+         (notSlices.size() == 1 ? " file of the folder is" : " files of the folder are") +
+         " not read as a DICOM slice: " + quote(notSlices.front()) +
+         (notSlices.size() > 1 ? ", ..." : "") + ")";
+}
+
 // The DICOM files of `folder` (not its subfolders) grouped by series, largest first.
 // `given`: the file name the caller named (empty for a folder). A file whose header would make
 // GDCM allocate beyond it (overlongElement) is left out of the scan, as GDCM would leave it
 // once it failed to read it, with a warning; the file named is refused instead. Files that end
 // inside their pixel data are scanned and go into `cutInPixelData`: a slice of the series read
-// is refused before GDCM decodes it (refuseTruncatedPixelData).
+// is refused before GDCM decodes it (refuseTruncatedPixelData). `notSlices`: the names of the
+// files looked at that hold no DICOM image slice (not DICOM, no image, left out), for the
+// "missing slice?" error, where such a file may be the slice missing.
 std::vector<Series> scanSeries(const std::string& where, const std::string& folder,
                                const std::string& given, gdcm::Scanner& scanner,
                                std::vector<std::string>& warnings,
-                               std::set<std::string>& cutInPixelData) {
+                               std::set<std::string>& cutInPixelData,
+                               std::vector<std::string>& notSlices) {
   const std::vector<std::string> listed = folderFiles(where, folder, given, warnings);
   for (const gdcm::Tag& tag : {kSeriesUid, kImagePosition, kImageOrientation, kRows, kColumns,
                                kModality, kSeriesDescription, kNumberOfFrames}) {
@@ -341,6 +354,7 @@ std::vector<Series> scanSeries(const std::string& where, const std::string& fold
     const std::string name = std::filesystem::path(file).filename().string();
     if (name == given) throwInputError(where, problem.text);
     warnings.push_back(where + ": left out " + quote(name) + ": " + problem.text);
+    notSlices.push_back(name);
     if (leftOut.empty()) leftOut = "; left out " + quote(name) + ": " + problem.text;
   }
   if (!withinGdcm([&] { return scanner.Scan(files); })) {
@@ -348,9 +362,12 @@ std::vector<Series> scanSeries(const std::string& where, const std::string& fold
   }
   std::map<std::string, Series> byUid;
   for (const std::string& file : files) {
-    if (!scanner.IsKey(file.c_str())) continue;  // not DICOM
-    const std::string uid = trimmed(scanner.GetValue(file.c_str(), kSeriesUid));
-    if (uid.empty() || !scanner.GetValue(file.c_str(), kRows)) continue;  // no image
+    const std::string uid =
+        scanner.IsKey(file.c_str()) ? trimmed(scanner.GetValue(file.c_str(), kSeriesUid)) : "";
+    if (uid.empty() || !scanner.GetValue(file.c_str(), kRows)) {  // not DICOM, or no image
+      notSlices.push_back(std::filesystem::path(file).filename().string());
+      continue;
+    }
     byUid[uid].uid = uid;
     byUid[uid].files.push_back(file);
   }
@@ -554,9 +571,10 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
   gdcm::Scanner scanner;
   std::vector<std::string> warnings;
   std::set<std::string> cutInPixelData;
+  std::vector<std::string> notSlices;
   const std::vector<Series> all =
       scanSeries(path, folder, folderGiven ? std::string() : given.filename().string(), scanner,
-                 warnings, cutInPixelData);
+                 warnings, cutInPixelData, notSlices);
   // The series: --series, else the given file's, else the largest.
   std::string wanted = options.series;
   if (wanted.empty() && !folderGiven) {
@@ -692,7 +710,7 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
                       (frames > 1 ? sliceLabel(before) + ", " + sliceLabel(after)
                                   : fileLabel(before.file) + ", " + fileLabel(after.file)) +
                       "), " + formatNumber(spacingZ) + " between most: a missing " +
-                      (frames > 1 ? "frame?" : "slice?"));
+                      (frames > 1 ? "frame?" : "slice?") + notSliceNote(notSlices));
       }
     }
     // Exact for evenly spaced slices, averaging the positions' rounding.
