@@ -55,11 +55,8 @@ std::string dataFilePath(const std::string& header, const std::string& label,
 
 std::string quote(std::string_view text) {
   constexpr std::size_t kMaxShown = 40;
-  std::string shown;
-  for (char c : text.substr(0, kMaxShown)) {
-    shown += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
-  }
-  return "'" + shown + (text.size() > kMaxShown ? "...'" : "'");
+  return "'" + oneLine(std::string(text.substr(0, kMaxShown))) +
+         (text.size() > kMaxShown ? "...'" : "'");
 }
 
 namespace {
