@@ -186,7 +186,7 @@ void checkRawHeader(const std::string& path, const RawHeader& header) {
   }
   // One file holds the header and 4 extension bytes before the image (the standard's rule for
   // vox_offset); below that, nifticlib would read the image from inside the header.
-  const int dataStart = header.magic == "n+2" ? 540 + 4 : 348 + 4;
+  const int dataStart = header.version == 2 ? 540 + 4 : 348 + 4;
   if (oneFile && header.voxOffset < dataStart) {
     throwInputError(path, "vox_offset " + std::to_string(std::int64_t(header.voxOffset)) +
                               " lies inside the header (a single-file image starts at " +
