@@ -410,10 +410,10 @@ void run(const SweepFlags& flags) {
   batch.claim("--csv", flags.csv);
   const SweepPlan plan = readSweepPlan(flags.file);
   if (!flags.outDir.empty()) {
-    const fs::path dir = flags.outDir;
-    const fs::file_type type = io::fileTypeAt(dir, "--out-dir " + flags.outDir);
+    const std::string where = "--out-dir " + flags.outDir;
+    const fs::file_type type = io::fileTypeAt(flags.outDir, where);
     if (type != fs::file_type::not_found && type != fs::file_type::directory) {
-      throwInputError("--out-dir " + flags.outDir, "is not a folder");
+      throwInputError(where, "is not a folder");
     }
   }
   if (validateOnly()) return;
