@@ -231,8 +231,11 @@ std::unique_ptr<AtomicOutputFile> writeTemporary(const std::filesystem::path& pa
 std::filesystem::path resolvedOutput(const std::filesystem::path& path) {
   std::error_code ec;
   const std::filesystem::path written = linkTarget(path);
-  std::filesystem::path resolved = std::filesystem::weakly_canonical(written, ec);
-  if (ec) resolved = std::filesystem::absolute(written, ec).lexically_normal();
+  // Absolute first: weakly_canonical leaves a relative path whose first part does not exist
+  // ("o.png") relative, while "./o.png" becomes absolute, and the two would compare unequal.
+  const std::filesystem::path absolute = std::filesystem::absolute(written, ec);
+  std::filesystem::path resolved = std::filesystem::weakly_canonical(absolute, ec);
+  if (ec) resolved = absolute.lexically_normal();
   return resolved;
 }
 
@@ -263,7 +266,14 @@ void OutputBatch::add(const std::filesystem::path& path, std::string_view text) 
 }
 
 void OutputBatch::commit() {
-  for (const auto& file : files_) file->commit();
+  // Writes into special files first: they fail (a full device) more readily than renames, and
+  // while they do no target has been replaced yet.
+  for (const auto& file : files_) {
+    if (file->intoSpecialFile()) file->commit();
+  }
+  for (const auto& file : files_) {
+    if (!file->intoSpecialFile()) file->commit();
+  }
 }
 
 void writeFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {

@@ -37,6 +37,9 @@ class AtomicOutputFile {
   const std::filesystem::path& temporaryPath() const { return temporary_; }
   // The temporary's descriptor, open for writing until commit() (for writers that take one).
   int descriptor() const { return fd_.get(); }
+  // Whether commit() writes into the target (not a file or folder: /dev/null, a FIFO) instead
+  // of renaming over it.
+  bool intoSpecialFile() const { return intoSpecialFile_; }
   // Closes the descriptor and renames the temporary over the target (mode 0644), or for a
   // target that is not a file copies it in. Throws InputError naming the target when that
   // fails; the temporary is then removed.
@@ -61,8 +64,9 @@ class AtomicOutputFile {
 // The outputs of one run (render's --out, --state-out, --depth-out, --meta-out), all or none:
 // each is written whole to its temporary first and only when every one is complete (written,
 // closed) are they renamed over their targets, so a full disk or an unwritable folder for one
-// leaves every target as it was. (The renames themselves, in one folder each, and the writes
-// into a target that is not a file, are the only steps that could fail between two outputs.)
+// leaves every target as it was. The writes into targets that are not files (/dev/full) go
+// before the renames, so one failing leaves the files as they were. (The renames themselves, in
+// one folder each, are the only steps that could fail between two outputs.)
 //
 //   OutputBatch outputs;
 //   outputs.claim("--out", out); outputs.claim("--meta-out", meta);   // before any work

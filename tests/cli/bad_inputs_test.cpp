@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -195,6 +197,42 @@ TEST(BadInputs, OutputsNamingOneNewFileThroughALink) {
                             ": names the same file as --out " + (dir / "link.png").string() +
                             "; give each output its own file\n");
   EXPECT_FALSE(fs::exists(dir / "new.png"));
+}
+
+// A relative name and another spelling of it ("./o.png", "sub/../o.png", the absolute path),
+// none of them there yet: one file, refused before any work (weakly_canonical alone left
+// "o.png" relative and made the others absolute, so they compared unequal).
+TEST(BadInputs, OutputsNamingOneNewFileSpelledTwoWays) {
+  const fs::path dir = test::scratchDir();
+  fs::create_directory(dir / "sub");
+  const fs::path previous = fs::current_path();
+  fs::current_path(dir);  // the child runs here: relative outputs
+  for (const std::string& other :
+       std::vector<std::string>{"./o.png", "sub/../o.png", (dir / "o.png").string()}) {
+    const test::CommandResult result =
+        test::runVsil("render gen:sphere:16 --size 32x32 --out o.png --meta-out " + other);
+    EXPECT_EQ(result.exitCode, 2) << other;
+    EXPECT_EQ(result.err, "vsil: --meta-out " + other +
+                              ": names the same file as --out o.png; give each output its own "
+                              "file\n");
+    EXPECT_FALSE(fs::exists(dir / "o.png")) << other;
+  }
+  fs::current_path(previous);
+}
+
+// A write into a special file (/dev/full: no space) fails before any file output replaces its
+// target: the PNG beside it is not left behind.
+TEST(BadInputs, AFullDeviceAmongTheOutputsLeavesNoFileBehind) {
+  ASSERT_TRUE(fs::exists("/dev/full"));
+  const fs::path dir = test::scratchDir();
+  for (const char* flag : {"--depth-out", "--meta-out"}) {
+    const test::CommandResult result =
+        test::runVsil("render gen:sphere:16 --size 32x32 --out " + (dir / "o.png").string() + " " +
+                      flag + " /dev/full");
+    EXPECT_EQ(result.exitCode, 2) << flag;
+    EXPECT_EQ(result.err, "vsil: /dev/full: cannot write: No space left on device\n") << flag;
+    EXPECT_FALSE(fs::exists(dir / "o.png")) << flag;
+  }
 }
 
 }  // namespace
