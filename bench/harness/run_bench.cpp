@@ -15,12 +15,27 @@
 namespace vsil::bench {
 namespace {
 
+// Before any table runs (they take minutes): the output's folder exists and the output is not
+// a folder itself.
 void checkOutputFolder(const std::string& flag, const std::filesystem::path& path) {
   if (path.empty()) return;
   const auto folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   if (!std::filesystem::is_directory(folder)) {
     throwInputError(flag + " " + path.string(), "folder " + folder.string() + " does not exist");
   }
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throwInputError(flag + " " + path.string(), "is a folder, not a file");
+  }
+}
+
+// The three outputs, each its own file (OutputBatch::claim refuses two naming one).
+OutputBatch claimOutputs(const BenchOptions& options) {
+  OutputBatch outputs;
+  outputs.claim("--json", options.json);
+  outputs.claim("--markdown", options.markdown);
+  outputs.claim("--plot", options.plot);
+  return outputs;
 }
 
 std::string joined(const std::vector<std::string>& items, const std::string& separator) {
@@ -96,7 +111,10 @@ BenchOptions validateOptions(BenchOptions options) {
       options.datasetsDir = beside.lexically_normal();
     }
   } else if (!std::filesystem::is_directory(options.datasetsDir)) {
-    throw InputError("--datasets " + options.datasetsDir.string() + ": no such folder");
+    std::error_code error;
+    throw InputError("--datasets " + options.datasetsDir.string() +
+                     (std::filesystem::exists(options.datasetsDir, error) ? ": is not a folder"
+                                                                          : ": no such folder"));
   }
   checkOutputFolder("--json", options.json);
   checkOutputFolder("--markdown", options.markdown);
@@ -104,6 +122,7 @@ BenchOptions validateOptions(BenchOptions options) {
   if (!options.plot.empty() && options.plot.extension() != ".png") {
     throw InputError("--plot " + options.plot.string() + ": the plot is a PNG (name it .png)");
   }
+  claimOutputs(options);
   return options;
 }
 
@@ -131,6 +150,8 @@ BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostrea
     tables.push_back(std::move(table));
   }
 
+  // All written, or none (a full disk for one leaves the others as they were).
+  OutputBatch outputs = claimOutputs(options);
   if (!options.json.empty()) {
     nlohmann::json document;
     document["format"] = "vsil-bench-1";
@@ -146,17 +167,18 @@ BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostrea
                                     {"failures", table.failures}});
     }
     document["rows"] = rows;
-    writeFileAtomically(options.json, document.dump(2) + "\n");
+    outputs.add(options.json, document.dump(2) + "\n");
   }
   if (!options.markdown.empty()) {
-    writeFileAtomically(options.markdown, markdownReport(machine, tables));
+    outputs.add(options.markdown, markdownReport(machine, tables));
   }
   if (!options.plot.empty()) {
     std::vector<const PlotSpec*> plots;
     for (const auto& table : tables) plots.push_back(&table.plot);
     const cv::Mat image = drawPlots(plots);
-    if (!image.empty()) writePng(options.plot, image);
+    if (!image.empty()) outputs.add(options.plot, encodePng(options.plot, image));
   }
+  outputs.commit();
   return report;
 }
 

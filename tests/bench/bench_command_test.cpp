@@ -272,7 +272,12 @@ INSTANTIATE_TEST_SUITE_P(
                       BadFlags{"MissingDatasetsFolder", "--datasets /nonexistent/vsil",
                                "/nonexistent/vsil"},
                       BadFlags{"JsonInMissingFolder", "--json /nonexistent/vsil/x.json", "--json"},
-                      BadFlags{"PlotNotPng", "--plot /tmp/x.jpg", "--plot"}),
+                      BadFlags{"PlotNotPng", "--plot /tmp/x.jpg", "--plot"},
+                      BadFlags{"JsonIsAFolder", "--table fft --json /tmp", "is a folder"},
+                      BadFlags{"DatasetsIsAFile", "--datasets /etc/hostname", "is not a folder"},
+                      BadFlags{"JsonAndMarkdownOneFile",
+                               "--table fft --json /tmp/vsil-j.json --markdown /tmp/./vsil-j.json",
+                               "names the same file as --json"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
