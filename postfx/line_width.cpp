@@ -10,6 +10,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "core/limits.h"
+#include "core/options.h"
 
 namespace vsil {
 namespace {
@@ -55,8 +57,11 @@ cv::Mat1b lineMaskFromImage(const cv::Mat& image, const Rgba& lineColor, int tol
     return mask;
   }
   cv::Mat3b bgr;
+  cv::Mat1b opaque;  // at least half opaque
   if (image.channels() == 4) {
     cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+    cv::extractChannel(image, opaque, 3);
+    opaque = opaque >= 128;
   } else {
     bgr = image;
   }
@@ -66,10 +71,12 @@ cv::Mat1b lineMaskFromImage(const cv::Mat& image, const Rgba& lineColor, int tol
                         std::min(255, lineColor.g + tolerance),
                         std::min(255, lineColor.r + tolerance));
   cv::inRange(bgr, low, high, mask);
+  if (!opaque.empty()) mask &= opaque;
   return mask;
 }
 
-std::vector<LineWidthSample> measureLineWidths(const cv::Mat1b& lineMask) {
+std::vector<LineWidthSample> measureLineWidths(const cv::Mat1b& lineMask, const std::string& where,
+                                               std::size_t maxBytes) {
   if (lineMask.empty()) return {};
   // Work on the lines' bounding box plus a margin of non-line pixels (the image border counts
   // as non-line).
@@ -77,6 +84,11 @@ std::vector<LineWidthSample> measureLineWidths(const cv::Mat1b& lineMask) {
   std::vector<LineWidthSample> samples;
   if (box.empty()) return samples;
   const int margin = 4;  // the edge smoothing's reach plus one
+  limits::checkMemory(where + ": measuring lines across " + std::to_string(box.width) + "x" +
+                          std::to_string(box.height) + " pixels",
+                      std::uint64_t(box.width + 2 * margin) *
+                          std::uint64_t(box.height + 2 * margin) * kLineWidthBytesPerPixel,
+                      maxBytes);
   cv::Mat1f coarse(box.height + 2 * margin, box.width + 2 * margin, 0.0f);
   cv::Mat1f(lineMask(box) != 0)
       .convertTo(coarse(cv::Rect(margin, margin, box.width, box.height)), CV_32F, 1.0 / 255.0);
@@ -121,6 +133,13 @@ std::vector<LineWidthSample> measureLineWidths(const cv::Mat1b& lineMask) {
     }
   }
   return samples;
+}
+
+void checkHistogramBinWidth(const std::string& name, double binWidth) {
+  if (!(std::isfinite(binWidth) && binWidth >= kMinHistogramBinWidth)) {
+    throwInputError(name + " " + formatNumber(binWidth),
+                    "must be at least " + formatNumber(kMinHistogramBinWidth) + " pixels");
+  }
 }
 
 WidthStatistics summarizeWidths(std::vector<double> widths, double binWidth) {

@@ -14,7 +14,9 @@
 // within ±0.25 px for widths 2..21, exact on axis-aligned bands. Limits: one-pixel lines
 // (W = 1) read 0.5 px (the smoothing thins them), line ends and junctions give their own
 // (smaller, larger) values, and the image border counts as outside.
+#include <cstddef>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -44,11 +46,27 @@ struct DepthBin {
 };
 
 // Line pixels: those within `tolerance` (per channel, 0..255) of `lineColor`; grey images compare
-// with the colour's grey value. Alpha is ignored.
+// with the colour's grey value. In images with alpha, pixels less than half opaque are background
+// whatever their colour (a transparent render's background is black, the default line colour).
 cv::Mat1b lineMaskFromImage(const cv::Mat& image, const Rgba& lineColor, int tolerance = 40);
 
-// One sample per medial pixel of the non-zero pixels of lineMask.
-std::vector<LineWidthSample> measureLineWidths(const cv::Mat1b& lineMask);
+// What measureLineWidths holds at its peak per pixel of the lines' bounding box (and its 4-pixel
+// margin): on the 4x finer grid (16 fine pixels) the smoothed mask, the binary mask, the
+// distances and OpenCV's buffers for the transform, about 11 bytes each (a solid 2048² square
+// measured 156 bytes per pixel).
+inline constexpr std::size_t kLineWidthBytesPerPixel = 176;
+
+// One sample per medial pixel of the non-zero pixels of lineMask. Throws InputError "<where>:
+// measuring lines across WxH pixels needs N MiB, over the --max-memory limit of M MiB" when
+// the lines' bounding box needs more than `maxBytes`.
+std::vector<LineWidthSample> measureLineWidths(const cv::Mat1b& lineMask, const std::string& where,
+                                               std::size_t maxBytes);
+
+// The narrowest histogram bin: widths are measured to about 0.05 px, and a narrower bin only
+// makes the histogram longer (1e-9 asked for billions of bins).
+inline constexpr double kMinHistogramBinWidth = 0.01;
+// Throws InputError naming `name` unless binWidth is finite and at least kMinHistogramBinWidth.
+void checkHistogramBinWidth(const std::string& name, double binWidth);
 
 WidthStatistics summarizeWidths(std::vector<double> widths, double binWidth = 1.0);
 

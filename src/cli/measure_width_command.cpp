@@ -3,6 +3,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -13,6 +14,8 @@
 #include "core/depth_image.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "core/limits.h"
+#include "core/options.h"
 #include "postfx/line_width.h"
 
 namespace vsil::cli {
@@ -26,10 +29,22 @@ struct MeasureWidthArgs {
   std::string plot;
   int bins = 10;
   double binWidth = 1.0;
+  std::optional<long long> maxMemoryMiB;
 };
 
 void run(const MeasureWidthArgs& args) {
   const Rgba color = parseColor(args.lineColor, "--line-color");
+  checkHistogramBinWidth("--bin-width", args.binWidth);
+  std::size_t maxBytes = limits::defaultMemoryBytes();
+  if (args.maxMemoryMiB) {
+    const long long mib = *args.maxMemoryMiB;
+    if (mib < 1 || mib > limits::kMaxMemoryMiBFlag) {
+      throwInputError(
+          "--max-memory " + std::to_string(mib),
+          "must be between 1 and " + std::to_string(limits::kMaxMemoryMiBFlag) + " MiB");
+    }
+    maxBytes = std::size_t(mib) << 20;
+  }
   OutputBatch outputs;  // both written, or neither
   outputs.claim("--plot", args.plot);
   outputs.claim("--json", args.json);
@@ -40,7 +55,7 @@ void run(const MeasureWidthArgs& args) {
   if (cv::countNonZero(mask) == 0) {
     throwInputError(args.image, "no pixel has the line colour " + args.lineColor);
   }
-  const auto samples = measureLineWidths(mask);
+  const auto samples = measureLineWidths(mask, args.image, maxBytes);
   std::vector<double> widths;
   for (const auto& s : samples) widths.push_back(s.width);
   const WidthStatistics stats = summarizeWidths(widths, args.binWidth);
@@ -87,8 +102,13 @@ const CommandRegistration registerMeasureWidthCommand(30, [](CLI::App& app) {
                       "the render's --depth-out image: report width against depth");
   command->add_option("--bins", args->bins, "depth bins (with --depth)")
       ->check(CLI::Range(1, 1000));
-  command->add_option("--bin-width", args->binWidth, "histogram bin width in pixels")
-      ->check(CLI::PositiveNumber);
+  command->add_option("--bin-width", args->binWidth,
+                      "histogram bin width in pixels (at least " +
+                          formatNumber(kMinHistogramBinWidth) + ", default 1)");
+  command->add_option("--max-memory", args->maxMemoryMiB,
+                      "refuse to measure when it needs more than this many MiB of memory "
+                      "(default: half the physical memory, " +
+                          std::to_string(limits::defaultMemoryBytes() >> 20) + ")");
   auto* plot = command->add_option("--plot", args->plot, "plot width against depth (PNG)");
   plot->needs("--depth");
   command->callback([args] { run(*args); });

@@ -343,7 +343,10 @@ class TaskRunner {
     if (!findTechnique(request.settings.technique).outputs.state) return nullptr;
     const cv::Mat1b mask = lineMaskFromImage(output.image, request.postfx.lineColor);
     std::vector<double> widths;
-    for (const auto& sample : measureLineWidths(mask)) widths.push_back(sample.width);
+    for (const auto& sample :
+         measureLineWidths(mask, "the rendered image", limits::defaultMemoryBytes())) {
+      widths.push_back(sample.width);
+    }
     if (widths.empty()) return nullptr;
     const WidthStatistics stats = summarizeWidths(widths);
     return {{"count", stats.count}, {"mean", stats.mean}, {"median", stats.median},
@@ -408,6 +411,7 @@ void run(const SweepFlags& flags) {
   OutputBatch batch;
   batch.claim("--json", flags.json);
   batch.claim("--csv", flags.csv);
+  batch.claim("--out-dir", flags.outDir);  // a folder of images where a result file goes
   const SweepPlan plan = readSweepPlan(flags.file);
   if (!flags.outDir.empty()) {
     const std::string where = "--out-dir " + flags.outDir;

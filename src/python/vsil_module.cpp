@@ -1132,9 +1132,9 @@ py::dict measureWidth(const py::array& image, std::optional<py::array> depth, in
     throw InputError(function + ": expected a 2-dimensional line mask (non-zero = line)");
   }
   if (!(bins >= 1 && bins <= 1000)) throw InputError(function + ": bins must be in 1 .. 1000");
-  if (!(binWidth > 0)) throw InputError(function + ": bin_width must be positive");
+  checkHistogramBinWidth(function + ": bin_width", binWidth);
   const cv::Mat1b mask = maskFromArray(image, function);
-  const auto samples = measureLineWidths(mask);
+  const auto samples = measureLineWidths(mask, function, limits::defaultMemoryBytes());
   std::vector<double> widths;
   for (const auto& s : samples) widths.push_back(s.width);
   nlohmann::json report = {{"widths", widthStatisticsJson(summarizeWidths(widths, binWidth))}};

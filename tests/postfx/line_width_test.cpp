@@ -7,11 +7,17 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
+
 #include "digital_curves.h"
 #include "postfx/broaden.h"
 
 namespace vsil {
 namespace {
+
+std::vector<LineWidthSample> measureLineWidths(const cv::Mat1b& lineMask) {
+  return vsil::measureLineWidths(lineMask, "test band", std::size_t(1) << 30);
+}
 
 TEST(LineWidth, MedianOnBroadenedCirclesMatchesTheAreaWidth) {
   FftGaussianBlur blur;
@@ -84,6 +90,41 @@ TEST(LineWidth, StatisticsAndHistogram) {
   EXPECT_DOUBLE_EQ(stats.mean, 3.6);
   ASSERT_EQ(stats.histogram.size(), 11u);
   EXPECT_EQ(stats.histogram[2], 2);
+}
+
+// The memory the measurement needs is checked before it is taken: a solid 2048² square (its
+// lines' box) needs ~710 MiB, over a 100 MiB limit; a thin line across the same image fits.
+TEST(LineWidth, ALineBoxOverTheMemoryLimitIsRefused) {
+  const cv::Mat1b square(2048, 2048, std::uint8_t(255));
+  try {
+    vsil::measureLineWidths(square, "square.png", std::size_t(100) << 20);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "square.png: measuring lines across 2048x2048 pixels needs 710 MiB, over the "
+              "--max-memory limit of 100 MiB");
+  }
+  cv::Mat1b line(2048, 2048, std::uint8_t(0));
+  line.row(1000).setTo(255);
+  line.row(1001).setTo(255);
+  EXPECT_FALSE(vsil::measureLineWidths(line, "line.png", std::size_t(100) << 20).empty());
+}
+
+// A transparent render's background is black (0, 0, 0, 0): not a line of the default black.
+TEST(LineWidth, TransparentPixelsAreNoLine) {
+  cv::Mat4b image(8, 8, cv::Vec4b(0, 0, 0, 0));
+  image(3, 4) = cv::Vec4b(0, 0, 0, 255);
+  image(5, 4) = cv::Vec4b(0, 0, 0, 127);  // less than half opaque
+  const cv::Mat1b mask = lineMaskFromImage(image, Rgba{0, 0, 0, 255});
+  EXPECT_EQ(cv::countNonZero(mask), 1);
+  EXPECT_EQ(mask(3, 4), 255);
+}
+
+TEST(LineWidth, HistogramBinWidthBelowAHundredthIsRefused) {
+  EXPECT_NO_THROW(checkHistogramBinWidth("--bin-width", 0.01));
+  for (double bad : {0.0, 1e-9, -1.0, std::nan(""), double(INFINITY)}) {
+    EXPECT_THROW(checkHistogramBinWidth("--bin-width", bad), InputError) << bad;
+  }
 }
 
 }  // namespace

@@ -3,7 +3,8 @@
 # renders, plus one failing task) gets a row per task, the failure is reported in its row and
 # on stderr while the other 99 complete (exit 3), the progress comes as milestone lines (not a
 # terminal) up to "task 100/100"; a malformed sweep file stops before any render with one line
-# naming the file (exit 2) and writes no result file. With mpirun (where found, $2), the same
+# naming the file (exit 2) and writes no result file, nor does an --out-dir naming the result
+# file. With mpirun (where found, $2), the same
 # sweep over 3 ranks gives the same rows, spread over the ranks.
 set -uo pipefail
 vsil=$1
@@ -54,6 +55,15 @@ rc=$?
 [[ $(wc -l <"$dir/err") == 1 ]] && grep -q "bad.json" "$dir/err" ||
   fail "a malformed sweep file does not get one line naming it: $(cat "$dir/err")"
 [[ ! -e $dir/bad-out.json ]] || fail "a malformed sweep file left a result file"
+
+# An --out-dir naming a result file (either spelling) is refused before any render, as two
+# outputs naming one file are (it rendered every task, then failed with "Is a directory").
+(cd "$dir" && "$vsil" sweep bad.json --json r.json --out-dir ./r.json 2>err)
+rc=$?
+[[ $rc == 2 ]] || fail "--out-dir naming the --json file exited $rc, not 2"
+grep -qx "vsil: --out-dir ./r.json: names the same file as --json r.json; give each output its own file" \
+  "$dir/err" || fail "--out-dir naming the --json file: $(cat "$dir/err")"
+[[ ! -e $dir/r.json ]] || fail "--out-dir naming the --json file left r.json"
 
 if [[ -n $mpirun ]]; then
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
