@@ -2,9 +2,13 @@
 // 2 for bad input (files, flags, parameters), 1 for internal failures and for what this machine
 // lacks (UnavailableError: no usable OpenGL back end, a driver without a needed feature), 3 when
 // a command finished with some of its parts failed (PartialFailure: tasks of `vsil sweep`).
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
+#include <string>
 
 #include "cli/commands.h"
 #include "core/atomic_file.h"
@@ -23,6 +27,14 @@ int run(int argc, char** argv) {
   vsil::cli::setUpApp(app);
   try {
     app.parse(argc, argv);
+    // A report lost on its way out (a full disk behind `> info.json`, a closed stdout) is no
+    // success: stdout's buffer is flushed here, where a failure can still be told.
+    std::cout.flush();
+    if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+      const int error = errno;
+      throw vsil::InputError(std::string("standard output: cannot write") +
+                             (error ? std::string(": ") + std::strerror(error) : ""));
+    }
     return 0;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

@@ -192,5 +192,21 @@ TEST(OutputTargets, DevicesAreWrittenIntoNeverReplaced) {
   EXPECT_EQ(temporaries.leftBehind(), std::vector<std::string>{});
 }
 
+// A report that cannot reach standard output (a full disk behind `> info.json`, a closed
+// stdout) is a failure: exit 2 and one line, not exit 0 with the report lost.
+TEST(OutputTargets, AReportThatCannotBeWrittenFails) {
+  const fs::path err = test::scratchDir() / "vsil.err";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {">/dev/full", "No space left on device"}, {">&-", "Bad file descriptor"}};
+  for (const auto& [redirect, reason] : cases) {
+    // The shell's own redirections follow "exit": they do not reach vsil.
+    const auto result =
+        test::runVsil("info gen:sphere:8 --json " + redirect + " 2>" + err.string() + "; exit $?");
+    EXPECT_EQ(result.exitCode, 2) << redirect;
+    EXPECT_EQ(test::readFileBytes(err), "vsil: standard output: cannot write: " + reason + "\n")
+        << redirect;
+  }
+}
+
 }  // namespace
 }  // namespace vsil
