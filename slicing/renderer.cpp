@@ -39,8 +39,9 @@ void validate(const RenderSettings& settings) {
   if (!(settings.samplesPerVoxel > 0) || settings.samplesPerVoxel > kMaxSamplesPerVoxel) {
     throw InputError("--sampling: must be in (0, 64] slices per voxel");
   }
-  if (!(settings.camera.zoom > 0) || !std::isfinite(settings.camera.zoom)) {
-    throw InputError("--zoom: must be a positive number");
+  if (!(settings.camera.zoom >= limits::kMinZoom && settings.camera.zoom <= limits::kMaxZoom)) {
+    throw InputError("--zoom: must be in [" + formatNumber(limits::kMinZoom) + ", " +
+                     formatNumber(limits::kMaxZoom) + "]");
   }
   if (!std::isfinite(settings.camera.azimuthDeg) || !std::isfinite(settings.camera.elevationDeg)) {
     throw InputError("--view: angles must be finite");

@@ -18,7 +18,7 @@ void addRenderOptions(CLI::App& command, RenderFlags& flags) {
   command.add_option("--size", flags.size, "Image size WxH")->capture_default_str();
   command.add_option("--view", flags.view, "Orbit angles AZ,EL in degrees")->capture_default_str();
   command.add_flag("--ortho", flags.orthographic, "Orthographic instead of perspective");
-  command.add_option("--zoom", flags.zoom, "Magnification (> 0)")->capture_default_str();
+  command.add_option("--zoom", flags.zoom, "Magnification (0.001 .. 1000)")->capture_default_str();
   command.add_option("--sampling", flags.sampling, "Slices per voxel along the view")
       ->capture_default_str();
   addVolumeOptions(command, flags.volume);

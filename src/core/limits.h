@@ -22,6 +22,10 @@ inline constexpr std::uint64_t kMaxTextureBytes =
 // Pixels per image side (--size), and slices per voxel along the view (--sampling).
 inline constexpr int kMaxImageSide = 16384;
 inline constexpr double kMaxSamplesPerVoxel = 64.0;
+// --zoom: 1/1000 .. 1000 (beyond, the volume is far below a pixel or a voxel covers the image:
+// 1e-308 underflowed in the float camera matrix and gave a blank image without a word).
+inline constexpr double kMinZoom = 1e-3;
+inline constexpr double kMaxZoom = 1e3;
 // Line width in pixels (--width, --width-near, --width-far): the broadening pads by a few widths.
 inline constexpr double kMaxLineWidth = 1024.0;
 // Slices per frame: the box's diagonal in voxels times --sampling.

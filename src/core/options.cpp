@@ -163,6 +163,12 @@ OptionSpec& OptionSpec::atMost(double bound) {
   return *this;
 }
 
+OptionSpec& OptionSpec::below(double bound) {
+  max = bound;
+  maxExclusive = true;
+  return *this;
+}
+
 OptionSpec& OptionSpec::validatedBy(std::function<void(const OptionValue&)> check) {
   validate = std::move(check);
   return *this;

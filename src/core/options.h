@@ -68,6 +68,7 @@ struct OptionSpec {
   OptionSpec& above(double bound);                             // > bound
   OptionSpec& atLeast(double bound);                           // >= bound
   OptionSpec& atMost(double bound);                            // <= bound
+  OptionSpec& below(double bound);                             // < bound
   OptionSpec& validatedBy(std::function<void(const OptionValue&)> check);
   // Text: `count` numbers separated by commas (numberCount).
   OptionSpec& holdsNumbers(int count);

@@ -121,14 +121,14 @@ TEST(Animation, BothEndsAreCheckedNamingTheSweep) {
   EXPECT_EQ(errorOf([] {
               AnimationPlan(baseRequest("rightangle"), specWith(3, {"ra-exponent=0:8"}), {});
             }),
-            "--sweep ra-exponent=0:8: first frame: --ra-exponent: must be > 0 (got 0)");
+            "--sweep ra-exponent=0:8: first frame: --ra-exponent: must be in (0, 1000] (got 0)");
   EXPECT_EQ(errorOf([] { AnimationPlan(baseRequest(), specWith(3, {"sampling=1:65"}), {}); }),
             "--sweep sampling=1:65: last frame: --sampling: must be in (0, 64] slices per voxel");
   EXPECT_EQ(
       errorOf([] { AnimationPlan(baseRequest(), specWith(3, {"width=0.5:4"}), {}); }),
       "--sweep width=0.5:4: first frame: --width: line width must be a number >= 1 pixel, got 0.5");
   EXPECT_EQ(errorOf([] { AnimationPlan(baseRequest(), specWith(3, {"zoom=2:-1"}), {}); }),
-            "--sweep zoom=2:-1: last frame: --zoom: must be a positive number");
+            "--sweep zoom=2:-1: last frame: --zoom: must be in [0.001, 1000]");
 }
 
 TEST(Animation, MalformedAndConflictingSweepsAreRefused) {

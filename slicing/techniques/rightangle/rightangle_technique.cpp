@@ -9,7 +9,8 @@ TechniqueInfo rightAngleTechniqueInfo() {
               {isoOption(),
                OptionSpec::number("ra-exponent", 8.0,
                                   "exponent k of the line test (1 - |n.v|)^k > threshold")
-                   .above(0),
+                   .above(0)
+                   .atMost(1000),  // beyond, (1 - |n.v|)^k underflows: no line anywhere
                // The pair only sets the largest |n.v| drawn, c = 1 - threshold^(1/k): 0.33 with
                // the defaults (0.04^(1/8) = 0.669). Where the surface's radial curvature radius is
                // r pixels, |n.v| < c holds in a band about r·c²/2 px wide inside the outline: a
@@ -19,7 +20,9 @@ TechniqueInfo rightAngleTechniqueInfo() {
                // r = 50 px (the analytic torus). README "Right-angle line width".
                OptionSpec::number("ra-threshold", 0.04,
                                   "a first hit is a line pixel where (1 - |n.v|)^k exceeds this "
-                                  "(the defaults draw |n.v| < 0.33)"),
+                                  "(the defaults draw |n.v| < 0.33)")
+                   .atLeast(0)  // below 0 every hit is a line,
+                   .below(1),   // from 1 on none is
                pipelineOption(SlicingPipeline::Tiles)}),
           FrameOutputs{.state = true, .color = false, .depth = true},
           [] { return std::make_unique<RightAngleTechnique>(); },
