@@ -401,6 +401,14 @@ class Parser {
       if (maximumOnUnit(value.function) <= 0.0) {
         fail(value.position, value.function.text() + " is zero everywhere on [0, 1]");
       }
+      const std::vector<float> row = value.function.table(kMembershipTableSize);
+      if (*std::max_element(row.begin(), row.end()) <= 0.0f) {
+        fail(value.position, value.function.text() + " falls between the " +
+                                 std::to_string(kMembershipTableSize) +
+                                 " points where the renderer looks it up (x = k/" +
+                                 std::to_string(kMembershipTableSize - 1) +
+                                 "): make it wider, or put its peak on one of them");
+      }
       attribute.values.push_back(std::move(value));
     }
     lexer_.next();  // }

@@ -83,6 +83,12 @@ using AttributeInputs = std::array<double, kAttributeSourceCount>;
 enum class Shape { Trapezoid, Triangle, Gauss, Points };
 const char* shapeName(Shape shape);
 
+// Entries per membership-function row the renderer looks terms up in: entry k at x = k / (size
+// − 1). 1024 keeps the linear interpolation within slope/4096 of a piecewise-linear function (a
+// trapezoid's edge 0.1 wide: 0.6/255) and of a Gaussian (sd 0.05) within 1e-4. An attribute
+// value zero at every entry never holds there, and is refused.
+inline constexpr int kMembershipTableSize = 1024;
+
 struct MembershipFunction {
   Shape shape = Shape::Trapezoid;
   std::vector<double> parameters;  // trapezoid a, b, c, d; triangle a, b, c; gauss mean, sd

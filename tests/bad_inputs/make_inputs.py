@@ -70,6 +70,7 @@ write('style_bad_parameter.json', '{"parameters": {"k_gc": "high"}}\n')
 
 # Rule bases (technique semantic): a malformed shape, sphere files missing or not images.
 write('rules_bad_shape.rules', 'attribute density from data {\n  high = trapezoid(0.2, 0.5, 1)\n}\n')
+write('rules_spike_shape.rules', 'attribute density from data {\n  spike = triangle(0.5, 0.5, 0.5)\n}\n')
 rules = ('attribute density from data { high = trapezoid(0.2, 0.5, 1, 1) }\n'
          'style bone { spheres = "%s"  opaque = trapezoid(0.6, 0.9, 1, 1) }\n'
          'rule if density is high then bone is opaque\n')

@@ -29,10 +29,7 @@
 
 namespace vsil {
 
-// Entries per membership-function row: entry k at x = k / (size − 1). 1024 keeps the linear
-// interpolation within slope/4096 of a piecewise-linear function (a trapezoid's edge 0.1 wide:
-// 0.6/255) and of a Gaussian (sd 0.05) within 1e-4.
-inline constexpr int kMembershipTableSize = 1024;
+// kMembershipTableSize (core/rules.h): entries per membership-function row.
 
 // The membership functions of every attribute value, row after row (attribute by attribute, its
 // values in order); uploaded as their segments (semantic_technique.cpp tableSegments).
