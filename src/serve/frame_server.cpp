@@ -39,6 +39,9 @@ bool isLoopback(const std::string& host) {
   return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
 }
 
+// Connections served at once (frames still render one at a time: LatestOnlyQueue).
+constexpr std::size_t kConnectionWorkers = 64;
+
 struct FrameServer::Impl {
   ServeOptions options;
   PageParameters page;
@@ -168,6 +171,12 @@ struct FrameServer::Impl {
     });
     // Requests are small: a query string, no body.
     http.set_payload_max_length(64 * 1024);
+    // A connection holds a worker while its request comes in: eight idle or half-sent ones
+    // starved the library's default pool (8 workers, 5 s waits) and the page with it. Many
+    // workers (they sleep in poll), short waits for a request and between kept-alive ones.
+    http.new_task_queue = [] { return new httplib::ThreadPool(kConnectionWorkers); };
+    http.set_read_timeout(2, 0);
+    http.set_keep_alive_timeout(2);
   }
 
   void bind() {

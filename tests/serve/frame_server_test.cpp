@@ -1,8 +1,15 @@
 // vsil serve's endpoints over HTTP on loopback: the page, the option table, frames that are the
 // PNG of the command line they report, bad parameters answered 400 while the server goes on.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <httplib.h>
@@ -44,6 +51,7 @@ class Running {
     return client;
   }
   httplib::Result get(const std::string& path) { return client().Get(path); }
+  int port() const { return server_.port(); }
 
  private:
   FrameServer server_;
@@ -196,6 +204,35 @@ TEST(FrameServer, BadParametersAre400WithTheOneLineMessageAndTheServerGoesOn) {
   auto preset = server.get("/frame?technique=semantic&rules=example");
   ASSERT_TRUE(preset);
   EXPECT_EQ(preset->status, 200) << preset->body;
+}
+
+// Connections that send half a request and wait (or never send one) do not lock the page out:
+// with the library's defaults (8 workers, 5 s read timeout) 24 of them delayed the next request
+// by 15 s.
+TEST(FrameServer, IdleConnectionsDoNotStarveTheNextRequest) {
+  Running server(smallServer());
+  ASSERT_TRUE(server.get("/api/state"));  // listening
+  std::vector<int> idle;
+  for (int i = 0; i < 24; ++i) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    ASSERT_GE(fd, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(std::uint16_t(server.port()));
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+    const std::string half = "GET /frame HTTP/1.1\r\nHost: x\r\n";
+    if (i % 2 == 0) ASSERT_EQ(::send(fd, half.data(), half.size(), 0), ssize_t(half.size()));
+    idle.push_back(fd);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const auto answer = server.get("/frame?size=32x32");
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (int fd : idle) ::close(fd);
+  ASSERT_TRUE(answer);
+  EXPECT_EQ(answer->status, 200);
+  EXPECT_LT(seconds, 4.0);
 }
 
 TEST(FrameServer, ATokenIsAskedOfEveryRequest) {
