@@ -27,9 +27,11 @@ namespace {
 std::string toText(const Volume& volume, const Summary& s) {
   const DerivedDefaults derived = derivedDefaults(volume);
   std::ostringstream out;
-  out << "source    " << volume.source << "\n";
+  // Names from the command line or the file go through oneLine (control bytes as '?'), as in
+  // errors: a newline or an escape sequence in a file name must not reach the terminal.
+  out << "source    " << oneLine(volume.source) << "\n";
   if (!volume.format.empty()) out << "format    " << volume.format << "\n";
-  out << "name      " << volume.name << "\n"
+  out << "name      " << oneLine(volume.name) << "\n"
       << "dims      " << volume.dims.x << " x " << volume.dims.y << " x " << volume.dims.z << " ("
       << volume.voxelCount() << " samples)\n"
       << "type      " << sampleTypeName(volume.type());
@@ -43,9 +45,9 @@ std::string toText(const Volume& volume, const Summary& s) {
         << volume.rescale->intercept << "\n";
   }
   for (const Orientation& o : volume.orientations) {
-    out << "placement " << o.name << " (" << o.space << "), axes " << o.axes << ", origin "
-        << o.worldFromIndex[3].x << " " << o.worldFromIndex[3].y << " " << o.worldFromIndex[3].z
-        << "\n";
+    out << "placement " << oneLine(o.name) << " (" << oneLine(o.space) << "), axes " << o.axes
+        << ", origin " << o.worldFromIndex[3].x << " " << o.worldFromIndex[3].y << " "
+        << o.worldFromIndex[3].z << "\n";
   }
   if (volume.subset) {
     const VolumeSubset& subset = *volume.subset;

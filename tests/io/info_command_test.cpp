@@ -86,6 +86,19 @@ TEST(InfoCommand, AValueRangeWiderThanAFloatHolds) {
   EXPECT_EQ(counted, 8u);
 }
 
+// A file name with a newline and an escape sequence: the text report shows them as '?', one
+// line per field, as errors do (the JSON report escapes them).
+TEST(InfoCommand, ControlBytesInANameDoNotReachTheTerminal) {
+  const float samples[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  const auto raw = test::scratchDir() / "a\x1b[31mb\nc.raw";
+  std::ofstream(raw, std::ios::binary)
+      .write(reinterpret_cast<const char*>(samples), sizeof samples);
+  const auto result = test::runVsil("info '" + raw.string() + "' --dims 2x2x2 --type float32");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_EQ(result.out.find('\x1b'), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("a?[31mb?c.raw\n"), std::string::npos) << result.out;
+}
+
 TEST(InfoCommand, BadInputExitsTwoWithOneLineNamingTheFile) {
   const auto path = (test::scratchDir() / "absent.nrrd").string();
   const auto result = test::runVsil("info '" + path + "'");
