@@ -294,8 +294,11 @@ void RenderJob::checkRequest(const RenderRequest& request, const VolumeLimits& l
   }
   const double width = maxLineWidth(request.postfx);
   if (width > limits::kMaxLineWidth) {
-    throw InputError("--width: " + std::to_string(int(std::min(width, 1e9))) +
-                     " pixels is over the limit of " + std::to_string(int(limits::kMaxLineWidth)));
+    const char* flag = law.isFixed()         ? "--width"
+                       : law.near >= law.far ? "--width-near"
+                                             : "--width-far";
+    throwInputError(flag, formatNumber(width) + " pixels is over the limit of " +
+                              std::to_string(int(limits::kMaxLineWidth)));
   }
   const glm::ivec2 size = request.settings.size;
   limits::checkMemory("--size " + std::to_string(size.x) + "x" + std::to_string(size.y),
