@@ -260,7 +260,19 @@ const CommandRegistration registerAnimateCommand(20, [](CLI::App& app) {
       ->capture_default_str()
       ->group(group);
   command->add_flag("--quiet", flags->quiet, "No progress line on stderr")->group(group);
-  command->callback([renderFlags, flags] { run(*renderFlags, *flags); });
+  command->callback([command, renderFlags, flags] {
+    // A swept option sets its value on every frame: given as a flag too, one would be lost.
+    for (const auto& text : flags->sweeps) {
+      const std::string flag = "--" + parseSweep(text).name;
+      const CLI::Option* option = command->get_option_no_throw(flag);
+      if (option && option->count() > 0) {
+        throwInputError("--sweep " + text, flag +
+                                               " is given too, and the sweep sets it on every "
+                                               "frame: give one of them");
+      }
+    }
+    run(*renderFlags, *flags);
+  });
 });
 
 }  // namespace
