@@ -250,11 +250,12 @@ const CommandRegistration registerAnimateCommand(20, [](CLI::App& app) {
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->group(group);
-  command
-      ->add_option("--out-dir", flags->outDir,
-                   "Folder for frame_0000.png ... and frames.json (created if missing)")
+  nonEmpty(
+      command->add_option("--out-dir", flags->outDir,
+                          "Folder for frame_0000.png ... and frames.json (created if missing)"))
       ->group(group);
-  command->add_option("--video", flags->video, "Video file: .mp4 (mp4v) or .avi (Motion JPEG)")
+  nonEmpty(
+      command->add_option("--video", flags->video, "Video file: .mp4 (mp4v) or .avi (Motion JPEG)"))
       ->group(group);
   command->add_option("--fps", flags->fps, "Frames per second of the video")
       ->capture_default_str()

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "cli/cli_gl_options.h"
+#include "cli/cli_parse.h"
 #include "cli/cli_report.h"
 #include "cli/commands.h"
 #include "core/error.h"
@@ -54,8 +55,8 @@ const CommandRegistration registerBenchCommand(40, [](CLI::App& app) {
       ->add_option("--table", o.tables,
                    "Table(s) to run: nk3, fft, animate, dv1, illustrate, semantic; default: all")
       ->delimiter(',');
-  command->add_option("--datasets", flags->datasets,
-                      "Folder with the classic datasets (default ../shared/datasets)");
+  nonEmpty(command->add_option("--datasets", flags->datasets,
+                               "Folder with the classic datasets (default ../shared/datasets)"));
   command->add_option("--only", o.only, "Datasets to run, e.g. bonsai,neghip")->delimiter(',');
   command
       ->add_option("--sizes", o.sizes,
@@ -63,9 +64,9 @@ const CommandRegistration registerBenchCommand(40, [](CLI::App& app) {
       ->delimiter(',');
   command->add_option("--frames", o.frames, "Timed frames per case")->capture_default_str();
   command->add_option("--warmup", o.warmup, "Untimed frames before them")->capture_default_str();
-  command->add_option("--json", o.json, "Write the rows and the machine as JSON");
-  command->add_option("--markdown", o.markdown, "Write the tables as Markdown");
-  command->add_option("--plot", o.plot, "Write a bar chart (PNG)");
+  nonEmpty(command->add_option("--json", o.json, "Write the rows and the machine as JSON"));
+  nonEmpty(command->add_option("--markdown", o.markdown, "Write the tables as Markdown"));
+  nonEmpty(command->add_option("--plot", o.plot, "Write a bar chart (PNG)"));
   addGlOptions(*command, flags->gl);
   command->callback([flags] { run(*flags); });
 });

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_parse.h"
 #include "cli/cli_report.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
@@ -97,9 +98,9 @@ const CommandRegistration registerMeasureWidthCommand(30, [](CLI::App& app) {
   command->add_option("image", args->image, "the illustration (PNG)")->required();
   command->add_option("--line-color", args->lineColor,
                       "colour of the lines: a name or #rgb, #rrggbb (default black)");
-  command->add_option("--json", args->json, "write the report as JSON to this file");
-  command->add_option("--depth", args->depth,
-                      "the render's --depth-out image: report width against depth");
+  nonEmpty(command->add_option("--json", args->json, "write the report as JSON to this file"));
+  nonEmpty(command->add_option("--depth", args->depth,
+                               "the render's --depth-out image: report width against depth"));
   command->add_option("--bins", args->bins, "depth bins (with --depth)")
       ->check(CLI::Range(1, 1000));
   command->add_option("--bin-width", args->binWidth,
@@ -109,7 +110,8 @@ const CommandRegistration registerMeasureWidthCommand(30, [](CLI::App& app) {
                       "refuse to measure when it needs more than this many MiB of memory "
                       "(default: half the physical memory, " +
                           std::to_string(limits::defaultMemoryBytes() >> 20) + ")");
-  auto* plot = command->add_option("--plot", args->plot, "plot width against depth (PNG)");
+  auto* plot =
+      nonEmpty(command->add_option("--plot", args->plot, "plot width against depth (PNG)"));
   plot->needs("--depth");
   command->callback([args] { run(*args); });
 });

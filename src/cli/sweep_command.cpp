@@ -28,6 +28,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_parse.h"
 #include "cli/cli_progress.h"
 #include "cli/cli_render_options.h"
 #include "cli/cli_report.h"
@@ -496,10 +497,10 @@ const CommandRegistration registerSweepCommand(25, [](CLI::App& app) {
       "Render a parameter sweep (SWEEP.json: base flags, axes, tasks), one render per task, over "
       "the MPI ranks when launched by mpirun/srun; rows gathered into JSON/CSV");
   command->add_option("sweep", flags->file, "The sweep file (JSON)")->required();
-  command->add_option("--json", flags->json, "JSON of the sweep and one row per task");
-  command->add_option("--csv", flags->csv, "CSV: one row per task, one column per field");
-  command->add_option("--out-dir", flags->outDir,
-                      "Folder for each task's image task_0000.png ... (none without it)");
+  nonEmpty(command->add_option("--json", flags->json, "JSON of the sweep and one row per task"));
+  nonEmpty(command->add_option("--csv", flags->csv, "CSV: one row per task, one column per field"));
+  nonEmpty(command->add_option("--out-dir", flags->outDir,
+                               "Folder for each task's image task_0000.png ... (none without it)"));
   command->add_flag("--state-images", flags->stateImages,
                     "Also task_NNNN_state.png (line techniques; with --out-dir)");
   command->add_flag("--depth-images", flags->depthImages,
