@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/options.h"
 #include "io/sample_sink.h"
 #include "io/text_fields.h"
 
@@ -168,7 +169,7 @@ void parseTextSamples(const std::string& where, std::string_view text, StoredTyp
       if (std::isnan(value)) throwInputError(where, "sample " + std::to_string(i) + " is NaN");
       if (std::isinf(value)) throwInputError(where, "sample " + std::to_string(i) + " is infinite");
       if (std::abs(value) > double(std::numeric_limits<float>::max())) {
-        throwInputError(where, "sample " + std::to_string(i) + " (" + std::to_string(value) +
+        throwInputError(where, "sample " + std::to_string(i) + " (" + formatNumber(value) +
                                    ") is beyond the float32 range");
       }
     } else if (!(value >= lo && value <= hi) || value != std::floor(value)) {

@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "core/error.h"
+#include "core/options.h"
 
 namespace vsil::io {
 namespace {
@@ -45,7 +46,7 @@ FileC load(const std::uint8_t* p, bool swap) {
 void checkFloat32(const std::string& where, std::uint64_t index, double value, const char* what) {
   checkFinite(where, index, value);
   if (std::abs(value) > double(std::numeric_limits<float>::max())) {
-    badSample(where, index, what + ("(" + std::to_string(value) + ") is beyond the float32 range"));
+    badSample(where, index, what + ("(" + formatNumber(value) + ") is beyond the float32 range"));
   }
 }
 

@@ -17,6 +17,8 @@ write('oversized_dims.nrrd', (nrrd % ('uint8', '100000 100000 100000', '', 'raw'
 write('huge_number.nrrd', (nrrd % ('uint8', '4 4 99999999999999999999999', '', 'raw')).encode() + bytes(8))
 write('nan_floats.nrrd', (nrrd % ('float', '2 2 2', 'endian: little\n', 'raw')).encode() +
       struct.pack('<8f', 0, 1, 2, float('nan'), 4, 5, 6, 7))
+write('double_beyond_float32.nrrd', (nrrd % ('double', '2 1 1', 'endian: little\n', 'raw')).encode() +
+      struct.pack('<2d', 1e300, 0))
 write('wrong_magic.nrrd', (nrrd % ('uint8', '2 2 2', '', 'raw')).replace('NRRD0004', 'NRRX0004').encode() + bytes(8))
 # 1 MiB of zeros in ~1 KiB of gzip, for a 64-byte volume: must stop after 65 bytes of output.
 write('gzip_bomb.nrrd', (nrrd % ('uint8', '4 4 4', '', 'gzip')).encode() + gzip.compress(bytes(1 << 20), 9, mtime=0))
