@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/limits.h"
 #include "io/file_access.h"
+#include "io/text_fields.h"
 
 namespace vsil {
 
@@ -34,20 +38,35 @@ nlohmann::json parseJsonText(std::string_view text, const std::string& source) {
   // The parser itself keeps its nesting on the heap, but every later walk of the value
   // (dump, comparison, the readers) recurses: a file of 100000 '[' would overflow the stack
   // there. The callback sees each container open with the count of those enclosing it.
+  // A key given twice in one object is refused too: nlohmann keeps the last one silently (as
+  // duplicate header fields are refused in the volume formats).
   struct TooDeep {};
-  const auto depthGuard = [](int depth, nlohmann::json::parse_event_t event, nlohmann::json&) {
-    if ((event == nlohmann::json::parse_event_t::object_start ||
-         event == nlohmann::json::parse_event_t::array_start) &&
+  struct DuplicateKey {
+    std::string key;
+  };
+  std::vector<std::set<std::string>> objectKeys;  // of each object being parsed
+  const auto guard = [&objectKeys](int depth, nlohmann::json::parse_event_t event,
+                                   nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    if ((event == Event::object_start || event == Event::array_start) &&
         depth >= limits::kMaxJsonDepth) {
       throw TooDeep{};
+    }
+    if (event == Event::object_start) objectKeys.emplace_back();
+    if (event == Event::object_end) objectKeys.pop_back();
+    if (event == Event::key && !objectKeys.back().insert(parsed.get<std::string>()).second) {
+      throw DuplicateKey{parsed.get<std::string>()};
     }
     return true;
   };
   try {
-    return nlohmann::json::parse(text.begin(), text.end(), depthGuard);
+    return nlohmann::json::parse(text.begin(), text.end(), guard);
   } catch (const TooDeep&) {
     throwInputError(source, "not valid JSON (nested more than " +
                                 std::to_string(limits::kMaxJsonDepth) + " levels deep)");
+  } catch (const DuplicateKey& e) {
+    throwInputError(source, "the key " + io::quote(e.key) +
+                                " is given twice in one object (which one counts?)");
   } catch (const nlohmann::json::exception& e) {
     throwInputError(source, "not valid JSON (" + conciseReason(e.what()) + ")");
   }

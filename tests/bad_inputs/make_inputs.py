@@ -66,6 +66,7 @@ write('tf_not_json.json', '[{"value": 0, "color": "red", "opacity": 0.5}\n')
 write('tf_nonmonotonic.json', '[{"value": 10, "color": "red", "opacity": 0.5},\n'
                               ' {"value": 5, "color": "blue", "opacity": 1}]\n')
 write('tf_bad_opacity.json', '[{"value": 0, "color": "red", "opacity": 1.5}]\n')
+write('tf_duplicate_key.json', '[{"value": 0, "color": "red", "opacity": 0.5, "opacity": 1}]\n')
 write('style_unknown_key.json', '{"effects": ["tone"], "shininess": 3}\n')
 write('style_bad_effect.json', '{"effects": ["tone", "glow"]}\n')
 write('style_bad_parameter.json', '{"parameters": {"k_gc": "high"}}\n')
