@@ -228,6 +228,14 @@ OptionValue OptionSpec::parse(const std::string& text) const {
   return value;
 }
 
+void requireSinglePrecision(const std::string& where, std::initializer_list<double> numbers) {
+  for (double number : numbers) {
+    if (!(std::abs(number) <= double(std::numeric_limits<float>::max()))) {
+      throwInputError(where, "must be within +-3.4e38 (the GPU computes in single precision)");
+    }
+  }
+}
+
 void OptionSpec::check(const OptionValue& value) const {
   if (!holdsKind(value, kind)) throwInputError(flag(), std::string("must be ") + kindName(kind));
   if (kind == OptionKind::Number || kind == OptionKind::Integer) {
@@ -242,12 +250,17 @@ void OptionSpec::check(const OptionValue& value) const {
       throwInputError(flag(),
                       "must be " + describeRange(*this) + " (got " + formatNumber(number) + ")");
     }
+    requireSinglePrecision(flag(), {number});  // after the range, which says more where given
   }
   if (kind == OptionKind::Text && numberCount > 0) {
     const std::string& text = std::get<std::string>(value);
-    if (!text.empty() && !parseNumberList(text, numberCount)) {
+    const auto numbers = text.empty() ? std::nullopt : parseNumberList(text, numberCount);
+    if (!text.empty() && !numbers) {
       throwInputError(flag(), "'" + text + "' is not " + std::to_string(numberCount) +
                                   " numbers separated by commas");
+    }
+    for (double number : numbers.value_or(std::vector<double>{})) {
+      requireSinglePrecision(flag() + ": '" + text + "'", {number});
     }
   }
   if (kind == OptionKind::Choice) {

@@ -5,6 +5,7 @@
 // declarations. A technique reads its values by name through OptionReader; values given for an
 // option it does not declare are reported (checkOptions), never silently ignored.
 #include <functional>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <optional>
@@ -88,6 +89,10 @@ struct OptionSpec {
 // when the text is not such a list. formatNumberList writes the shortest text that reads back
 // to the same doubles.
 std::optional<std::vector<double>> parseNumberList(std::string_view text, int count = 0);
+// Options reach the GPU as 32-bit floats, where a larger number turns infinite (a --window of
+// -1e308,1e308 drew an all-black image without a word): InputError "<where>: must be within
+// +-3.4e38 ..." for a number beyond. OptionSpec::check applies it to numbers and number lists.
+void requireSinglePrecision(const std::string& where, std::initializer_list<double> numbers);
 std::string formatNumberList(const std::vector<double>& numbers);
 // The shortest text that reads back to the same double (what error messages quote).
 std::string formatNumber(double number);

@@ -54,6 +54,7 @@ void checkWindowOrTf(const OptionValues& given) {
   const std::string* text = givenText(given, "window");
   if (!text || text->empty()) return;
   const glm::dvec2 pair = parseNumberPair("--window", *text);
+  requireSinglePrecision("--window: '" + *text + "'", {pair.x, pair.y});
   if (!(pair.x < pair.y)) {
     throwInputError("--window", "'" + *text + "' needs LO < HI");
   }
@@ -124,7 +125,8 @@ void checkDemipValues(const OptionValues& given) {
   checkWindowOrTf(given);
   if (const std::string* name = givenText(given, "sphere-map")) checkSphereMap(*name);
   if (const std::string* text = givenText(given, "sphere-rotate")) {
-    parseNumberPair("--sphere-rotate", *text);
+    const glm::dvec2 angles = parseNumberPair("--sphere-rotate", *text);
+    requireSinglePrecision("--sphere-rotate: '" + *text + "'", {angles.x, angles.y});
   }
 }
 
