@@ -412,7 +412,6 @@ void run(const SweepFlags& flags) {
   OutputBatch batch;
   batch.claim("--json", flags.json);
   batch.claim("--csv", flags.csv);
-  batch.claim("--out-dir", flags.outDir);  // a folder of images where a result file goes
   const SweepPlan plan = readSweepPlan(flags.file);
   if (!flags.outDir.empty()) {
     const std::string where = "--out-dir " + flags.outDir;
@@ -420,6 +419,7 @@ void run(const SweepFlags& flags) {
     if (type != fs::file_type::not_found && type != fs::file_type::directory) {
       throwInputError(where, "is not a folder");
     }
+    batch.claim("--out-dir", flags.outDir);  // a folder of images where a result file goes
   }
   if (validateOnly()) return;
   if (!flags.outDir.empty() && mpi::rank() == 0) {

@@ -58,7 +58,7 @@ rc=$?
 
 # An --out-dir naming a result file (either spelling) is refused before any render, as two
 # outputs naming one file are (it rendered every task, then failed with "Is a directory").
-(cd "$dir" && "$vsil" sweep bad.json --json r.json --out-dir ./r.json 2>err)
+(cd "$dir" && "$vsil" sweep sweep.json --json r.json --out-dir ./r.json 2>err)
 rc=$?
 [[ $rc == 2 ]] || fail "--out-dir naming the --json file exited $rc, not 2"
 grep -qx "vsil: --out-dir ./r.json: names the same file as --json r.json; give each output its own file" \
