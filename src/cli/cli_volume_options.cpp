@@ -109,23 +109,28 @@ void addVolumeOptions(CLI::App& command, VolumeOptions& options) {
       command.add_option("--series", options.series,
                          "DICOM: the Series Instance UID to read from a folder holding several (by "
                          "default the series with the most slices; `vsil info` lists the others)"));
-  command.add_option("--max-memory", options.maxMemoryMiB,
+  addMaxMemoryOption(command, options.maxMemoryMiB);
+}
+
+void addMaxMemoryOption(CLI::App& command, std::optional<long long>& mib) {
+  command.add_option("--max-memory", mib,
                      "refuse work needing more than this many MiB of memory (default: half the "
                      "physical memory, " +
                          std::to_string(limits::defaultMemoryBytes() >> 20) + ")");
 }
 
+std::size_t maxMemoryBytes(const std::optional<long long>& mib) {
+  if (!mib) return limits::defaultMemoryBytes();
+  if (*mib < 1 || *mib > limits::kMaxMemoryMiBFlag) {
+    throwInputError("--max-memory " + std::to_string(*mib),
+                    "must be between 1 and " + std::to_string(limits::kMaxMemoryMiBFlag) + " MiB");
+  }
+  return std::size_t(*mib) << 20;
+}
+
 LoadOptions toLoadOptions(const VolumeOptions& options) {
   LoadOptions load;
-  if (options.maxMemoryMiB) {
-    const long long mib = *options.maxMemoryMiB;
-    if (mib < 1 || mib > limits::kMaxMemoryMiBFlag) {
-      throwInputError(
-          "--max-memory " + std::to_string(mib),
-          "must be between 1 and " + std::to_string(limits::kMaxMemoryMiBFlag) + " MiB");
-    }
-    load.limits.maxBytes = std::size_t(mib) << 20;
-  }
+  load.limits.maxBytes = maxMemoryBytes(options.maxMemoryMiB);
   if (options.maxTextureMiB) {
     const long long mib = *options.maxTextureMiB;
     const long long most = (long long)(limits::kMaxTextureBytes >> 20);

@@ -31,6 +31,11 @@ struct VolumeOptions {
 // --max-texture-mib, --series and --max-memory.
 void addVolumeOptions(CLI::App& command, VolumeOptions& options);
 
+// --max-memory MiB alone (commands without a volume: measure-width), and its value in bytes:
+// the default (half the physical memory) when not given; InputError outside 1 MiB .. 1 TiB.
+void addMaxMemoryOption(CLI::App& command, std::optional<long long>& mib);
+std::size_t maxMemoryBytes(const std::optional<long long>& mib);
+
 // Checks the flags together and turns them into LoadOptions. Throws InputError naming the flag
 // (e.g. "--dims '12x12': expected XxYxZ"); --spacing/--endian without --dims and --type, or
 // only one of --dims/--type, are errors. A --crop range beyond the file is found when its

@@ -10,12 +10,12 @@
 
 #include "cli/cli_parse.h"
 #include "cli/cli_report.h"
+#include "cli/cli_volume_options.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/depth_image.h"
 #include "core/error.h"
 #include "core/image_file.h"
-#include "core/limits.h"
 #include "core/options.h"
 #include "postfx/line_width.h"
 
@@ -36,16 +36,7 @@ struct MeasureWidthArgs {
 void run(const MeasureWidthArgs& args) {
   const Rgba color = parseColor(args.lineColor, "--line-color");
   checkHistogramBinWidth("--bin-width", args.binWidth);
-  std::size_t maxBytes = limits::defaultMemoryBytes();
-  if (args.maxMemoryMiB) {
-    const long long mib = *args.maxMemoryMiB;
-    if (mib < 1 || mib > limits::kMaxMemoryMiBFlag) {
-      throwInputError(
-          "--max-memory " + std::to_string(mib),
-          "must be between 1 and " + std::to_string(limits::kMaxMemoryMiBFlag) + " MiB");
-    }
-    maxBytes = std::size_t(mib) << 20;
-  }
+  const std::size_t maxBytes = maxMemoryBytes(args.maxMemoryMiB);
   OutputBatch outputs;  // both written, or neither
   outputs.claim("--plot", args.plot);
   outputs.claim("--json", args.json);
@@ -106,10 +97,7 @@ const CommandRegistration registerMeasureWidthCommand(30, [](CLI::App& app) {
   command->add_option("--bin-width", args->binWidth,
                       "histogram bin width in pixels (at least " +
                           formatNumber(kMinHistogramBinWidth) + ", default 1)");
-  command->add_option("--max-memory", args->maxMemoryMiB,
-                      "refuse to measure when it needs more than this many MiB of memory "
-                      "(default: half the physical memory, " +
-                          std::to_string(limits::defaultMemoryBytes() >> 20) + ")");
+  addMaxMemoryOption(*command, args->maxMemoryMiB);
   auto* plot =
       nonEmpty(command->add_option("--plot", args->plot, "plot width against depth (PNG)"));
   plot->needs("--depth");
