@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -145,6 +146,21 @@ py::array samplesArray(const py::array& array) {
                   std::string(py::str(array.attr("strides"))) + ") copied into C order");
   }
   if (why.empty()) return array;
+  if (py::str(dtype.attr("kind")).cast<std::string>() == "f" && dtype.itemsize() > 4) {
+    // A finite sample beyond float32 turns infinite in the copy, which would call it infinite:
+    // named here as the readers name it (io/sample_sink.cpp).
+    const py::module_ np = py::module_::import("numpy");
+    const py::object beyond = np.attr("logical_and")(
+        np.attr("isfinite")(array),
+        np.attr("greater")(np.attr("abs")(array), double(std::numeric_limits<float>::max())));
+    const py::array_t<py::ssize_t> at = np.attr("flatnonzero")(beyond);
+    if (at.size() > 0) {
+      const py::ssize_t index = at.at(0);
+      const double value = np.attr("ravel")(array).attr("__getitem__")(index).cast<double>();
+      throw InputError("vsil.Volume: sample " + std::to_string(index) + " (" + formatNumber(value) +
+                       ") is beyond the float32 range");
+    }
+  }
   std::string message = "vsil.Volume: ";
   for (std::size_t i = 0; i < why.size(); ++i) message += (i ? "; " : "") + why[i];
   message += ": one copy of " + std::to_string(array.size() * target->itemsize()) +

@@ -257,6 +257,20 @@ def test_a_non_finite_sample_is_refused_as_the_cli_refuses_it(tmp_path, renderer
     assert cli.stderr.strip().endswith(f"bad.raw: sample 69 {what}")
 
 
+def test_a_float64_sample_beyond_float32_is_named_as_the_cli_names_it(tmp_path):
+    samples = np.ones((4, 5, 6), np.float64)
+    samples[2, 1, 3] = -1e300  # finite, but infinite once converted to float32
+    with pytest.raises(ValueError) as error:
+        vsil.Volume(samples)
+    assert str(error.value) == "vsil.Volume: sample 69 (-1e+300) is beyond the float32 range"
+    nrrd = tmp_path / "big.nrrd"  # raw volumes take float32 at most; NRRD holds doubles
+    nrrd.write_bytes(b"NRRD0004\ntype: double\ndimension: 3\nsizes: 6 5 4\nendian: little\n"
+                     b"encoding: raw\n\n" + samples.astype("<f8").tobytes())
+    cli = subprocess.run([VSIL, "info", str(nrrd)], capture_output=True, text=True)
+    assert cli.returncode == 2
+    assert cli.stderr.strip().endswith("big.nrrd: sample 69 (-1e+300) is beyond the float32 range")
+
+
 def test_an_iso_outside_the_range_warns(renderer):
     with pytest.warns(UserWarning, match="outside the data's range"):
         renderer.render("gen:sphere:16", iso=1000, size=(32, 32))
