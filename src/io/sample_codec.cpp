@@ -1,10 +1,8 @@
 #include "io/sample_codec.h"
 
 #include <cmath>
-#include <limits>
 
 #include "core/error.h"
-#include "core/options.h"
 #include "io/sample_sink.h"
 #include "io/text_fields.h"
 
@@ -166,12 +164,7 @@ void parseTextSamples(const std::string& where, std::string_view text, StoredTyp
     const std::string_view token(start, std::size_t(p - start));
     const double value = parseReal(where, "sample " + std::to_string(i), token);
     if (isFloat) {
-      if (std::isnan(value)) throwInputError(where, "sample " + std::to_string(i) + " is NaN");
-      if (std::isinf(value)) throwInputError(where, "sample " + std::to_string(i) + " is infinite");
-      if (std::abs(value) > double(std::numeric_limits<float>::max())) {
-        throwInputError(where, "sample " + std::to_string(i) + " (" + formatNumber(value) +
-                                   ") is beyond the float32 range");
-      }
+      checkFloat32(where, i, value);
     } else if (!(value >= lo && value <= hi) || value != std::floor(value)) {
       throwInputError(where, "sample " + std::to_string(i) + " " + quote(token) + " is not a " +
                                  storedTypeName(type) + " value");

@@ -41,15 +41,6 @@ FileC load(const std::uint8_t* p, bool swap) {
   throwInputError(where, "sample " + std::to_string(index) + " " + what);
 }
 
-// Throws unless `value` is finite and within float32's range; `what` ("" or "rescaled ")
-// names it in the message.
-void checkFloat32(const std::string& where, std::uint64_t index, double value, const char* what) {
-  checkFinite(where, index, value);
-  if (std::abs(value) > double(std::numeric_limits<float>::max())) {
-    badSample(where, index, what + ("(" + formatNumber(value) + ") is beyond the float32 range"));
-  }
-}
-
 // Whether float32 `kept` holds the integer `value` exactly (every integer up to 2^24 does).
 // Compared as integers: the float of a 64-bit value may be 2^63 or 2^64, beyond its type.
 template <typename Integer>
@@ -109,6 +100,13 @@ decltype(auto) withStoredCType(StoredType type, F&& f) {
 void checkFinite(const std::string& where, std::uint64_t index, double value) {
   if (std::isnan(value)) badSample(where, index, "is NaN");
   if (std::isinf(value)) badSample(where, index, "is infinite");
+}
+
+void checkFloat32(const std::string& where, std::uint64_t index, double value, const char* what) {
+  checkFinite(where, index, value);
+  if (std::abs(value) > double(std::numeric_limits<float>::max())) {
+    badSample(where, index, what + ("(" + formatNumber(value) + ") is beyond the float32 range"));
+  }
 }
 
 SampleSink::SampleSink(const std::string& where, Volume& volume, const VolumeSubset& subset,

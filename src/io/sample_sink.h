@@ -18,6 +18,10 @@ namespace vsil::io {
 // Throws InputError "<where>: sample <index> is NaN" (or "is infinite") unless `value` is finite:
 // what every reader, and vsil.Volume over a numpy array, refuses to render.
 void checkFinite(const std::string& where, std::uint64_t index, double value);
+// checkFinite, and "<where>: sample <index> <what>(<value>) is beyond the float32 range" for a
+// finite value that float32 cannot hold; `what` ("" or "rescaled ") names it.
+void checkFloat32(const std::string& where, std::uint64_t index, double value,
+                  const char* what = "");
 
 class SampleSink {
  public:

@@ -156,9 +156,8 @@ py::array samplesArray(const py::array& array) {
     const py::array_t<py::ssize_t> at = np.attr("flatnonzero")(beyond);
     if (at.size() > 0) {
       const py::ssize_t index = at.at(0);
-      const double value = np.attr("ravel")(array).attr("__getitem__")(index).cast<double>();
-      throw InputError("vsil.Volume: sample " + std::to_string(index) + " (" + formatNumber(value) +
-                       ") is beyond the float32 range");
+      io::checkFloat32("vsil.Volume", std::uint64_t(index),
+                       np.attr("ravel")(array).attr("__getitem__")(index).cast<double>());
     }
   }
   std::string message = "vsil.Volume: ";
