@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/options.h"
 #include "slicing/gl.h"
 #include "slicing/gl_backends/backend.h"
 #include "slicing/gl_loader.h"
@@ -133,12 +134,6 @@ struct Candidate {
     return std::string(backendName(backend)) + (where.empty() ? "" : " " + where);
   }
 };
-
-std::string joined(const std::vector<std::string>& parts, const std::string& separator) {
-  std::string text;
-  for (const auto& part : parts) text += (text.empty() ? "" : separator) + part;
-  return text;
-}
 
 // The candidates the options allow, in the order to try them, and why each failed, or why
 // some could not even be listed (a library missing, a back end not built). Under auto every

@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "core/options.h"
 #include "harness/machine_info.h"
 #include "harness/plot.h"
 #include "harness/table_registry.h"
@@ -36,12 +37,6 @@ OutputBatch claimOutputs(const BenchOptions& options) {
   outputs.claim("--markdown", options.markdown);
   outputs.claim("--plot", options.plot);
   return outputs;
-}
-
-std::string joined(const std::vector<std::string>& items, const std::string& separator) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : separator) + item;
-  return out;
 }
 
 std::string markdownReport(const MachineInfo& machine, const std::vector<TableResult>& tables) {

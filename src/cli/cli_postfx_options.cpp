@@ -14,7 +14,8 @@ vsil::FillMode parseFillMode(const std::string& text, const std::string& flagNam
   throwInputError(flagName, "'" + text + "' is not a fill mode (none, flat, shaded or tone)");
 }
 
-void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options) {
+void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options,
+                      std::vector<std::string>& lineFlagsGiven) {
   const auto width = [](const std::string& flag) {
     return [flag](const std::string& text) {
       double value = 0;
@@ -76,6 +77,11 @@ void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options) {
         options.fillColor = vsil::parseColor(text, "--fill-color");
       },
       "colour of --fill flat / shaded / tone");
+  for (const char* flag :
+       {"--width", "--width-near", "--width-far", "--line-color", "--fill", "--fill-color"}) {
+    command.get_option(flag)->each(
+        [&lineFlagsGiven, flag](const std::string&) { lineFlagsGiven.push_back(flag); });
+  }
 }
 
 }  // namespace vsil::cli

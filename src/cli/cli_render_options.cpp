@@ -22,7 +22,7 @@ void addRenderOptions(CLI::App& command, RenderFlags& flags) {
   command.add_option("--sampling", flags.sampling, "Slices per voxel along the view")
       ->capture_default_str();
   addVolumeOptions(command, flags.volume);
-  addPostfxOptions(command, flags.postfx);
+  addPostfxOptions(command, flags.postfx, flags.lineFlagsGiven);
   addGlOptions(command, flags.gl);
 }
 
@@ -40,6 +40,7 @@ RenderRequest toRenderRequest(const RenderFlags& flags) {
   settings.samplesPerVoxel = flags.sampling;
   settings.emptySpaceSkipping = !flags.noEmptySpaceSkipping;
   request.postfx = flags.postfx;
+  request.lineFlagsGiven = flags.lineFlagsGiven;
   return request;
 }
 

@@ -10,6 +10,7 @@
 //   addRenderOptions(*command, *flags);
 //   command->callback([flags] { RenderRequest request = toRenderRequest(*flags); ... });
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -36,6 +37,7 @@ struct RenderFlags {
   bool noEmptySpaceSkipping = false;
   VolumeOptions volume;
   PostfxOptions postfx;
+  std::vector<std::string> lineFlagsGiven;  // cli_postfx_options.h addPostfxOptions
   GlOptions gl;
 };
 

@@ -23,12 +23,6 @@ namespace {
 constexpr const char* kEffectNames[kEffectCount] = {"boundary", "silhouette", "fading", "sketch",
                                                     "distance", "halo",       "tone"};
 
-std::string joined(const std::vector<std::string>& items) {
-  std::string text;
-  for (const auto& item : items) text += (text.empty() ? "" : ", ") + item;
-  return text;
-}
-
 std::string_view trimmed(std::string_view text) {
   const auto isSpace = [](char c) { return c == ' ' || c == '\t'; };
   while (!text.empty() && isSpace(text.front())) text.remove_prefix(1);

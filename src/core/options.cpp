@@ -15,12 +15,6 @@ namespace vsil {
 
 namespace {
 
-std::string joined(const std::vector<std::string>& items, const std::string& separator) {
-  std::string text;
-  for (const auto& item : items) text += (text.empty() ? "" : separator) + item;
-  return text;
-}
-
 // What a value of each kind is, in OptionKind's order, for messages.
 const char* kindName(OptionKind kind) {
   static const char* const names[] = {"a number", "a whole number", "a name",
@@ -92,6 +86,12 @@ std::string formatNumber(double number) {
   char buffer[32];
   const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, number);
   return std::string(buffer, end);  // 32 chars hold any double's shortest form
+}
+
+std::string joined(const std::vector<std::string>& items, const std::string& separator) {
+  std::string text;
+  for (const auto& item : items) text += (text.empty() ? "" : separator) + item;
+  return text;
 }
 
 std::string formatNumberList(const std::vector<double>& numbers) {

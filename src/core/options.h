@@ -96,6 +96,8 @@ void requireSinglePrecision(const std::string& where, std::initializer_list<doub
 std::string formatNumberList(const std::vector<double>& numbers);
 // The shortest text that reads back to the same double (what error messages quote).
 std::string formatNumber(double number);
+// The items with `separator` between them (what messages list: "known: a, b, c").
+std::string joined(const std::vector<std::string>& items, const std::string& separator = ", ");
 // Whether a --tf, --style or --rules value is the content itself (a JSON list or object, rule
 // text) rather than a preset name or a file: it holds '{', which no preset name holds and every
 // transfer function, style and rule base does (a point, an object, an attribute block). The

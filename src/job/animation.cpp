@@ -5,17 +5,12 @@
 
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/options.h"
 #include "slicing/technique_table.h"
 
 namespace vsil {
 
 namespace {
-
-std::string joined(const std::vector<std::string>& items) {
-  std::string text;
-  for (const auto& item : items) text += (text.empty() ? "" : ", ") + item;
-  return text;
-}
 
 nlohmann::json valueJson(const SweepTarget& target, const std::vector<double>& value) {
   if (target.text) return value;

@@ -185,6 +185,16 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
 std::vector<std::string> warnings(const RenderRequest& request, const Volume& volume,
                                   ValueRange uploadedRange) {
   std::vector<std::string> found;
+  const TechniqueInfo& technique = findTechnique(request.settings.technique);
+  if (!technique.outputs.state && !request.lineFlagsGiven.empty()) {
+    std::string drawers;
+    for (const TechniqueInfo& info : techniqueTable()) {
+      if (info.outputs.state) drawers += (drawers.empty() ? "" : " and ") + info.name;
+    }
+    found.push_back(joined(request.lineFlagsGiven, ", ") + ": technique '" + technique.name +
+                    "' draws no lines or filled pixels; ignored (the line flags go with " +
+                    drawers + ")");
+  }
   const auto given = request.settings.options.find("iso");
   if (given == request.settings.options.end()) return found;
   const double iso = std::get<double>(given->second);

@@ -27,6 +27,9 @@ namespace vsil {
 struct RenderRequest {
   RenderSettings settings;
   PostfxOptions postfx;
+  // The line flags the caller was given (--width, --line-color, --fill, ...: cli_postfx_options.h).
+  // A technique that draws no lines ignores `postfx` but the background, and warns that it did.
+  std::vector<std::string> lineFlagsGiven;
 };
 
 struct RenderOutput {

@@ -142,6 +142,32 @@ TEST(RenderCommand, WarnsWhenTheIsoValueLiesOutsideTheData) {
   EXPECT_EQ(inside.err, "") << "no warning inside the range";
 }
 
+// The line flags shape nothing of a technique that draws no lines: the frame is made and says
+// which it ignored; the silhouette takes them without a word.
+TEST(RenderCommand, WarnsThatATechniqueWithoutLinesIgnoresTheLineFlags) {
+  const auto dir = test::scratchDir();
+  const auto out = (dir / "mip.png").string();
+  const auto plain = (dir / "plain.png").string();
+  const auto mip = test::runVsil(
+      "render gen:sphere:16 --size 32x32 --technique mip --width 3 "
+      "--fill flat --background white --out " +
+      out);
+  EXPECT_EQ(mip.exitCode, 0);
+  EXPECT_EQ(mip.err,
+            "vsil: warning: --width, --fill: technique 'mip' draws no lines or filled pixels; "
+            "ignored (the line flags go with silhouette and rightangle)\n");
+  const auto without = test::runVsil(
+      "render gen:sphere:16 --size 32x32 --technique mip "
+      "--background white --out " +
+      plain);
+  EXPECT_EQ(without.err, "");
+  EXPECT_EQ(test::readFileBytes(out), test::readFileBytes(plain)) << "the flags changed the frame";
+  const auto lines =
+      test::runVsil("render gen:sphere:16 --size 32x32 --width 3 --fill flat --out " + out);
+  EXPECT_EQ(lines.exitCode, 0);
+  EXPECT_EQ(lines.err, "");
+}
+
 // Every pipeline, and the default (no --pipeline: each technique's own, which the metadata
 // records), gives the same state and depth bytes.
 TEST(RenderCommand, EveryPipelineGivesIdenticalImages) {

@@ -72,13 +72,14 @@ TEST(Compose, ToneFillShowsTheTechniquesColourAtFilledPixels) {
 
 struct ParsedFlags {
   PostfxOptions options;
-  std::string error;  // "" when parsing succeeded
+  std::vector<std::string> lineFlags;  // the line flags given, in the order they are declared
+  std::string error;                   // "" when parsing succeeded
 };
 
 ParsedFlags parseFlags(std::vector<std::string> args) {
   ParsedFlags result;
   CLI::App app;
-  cli::addPostfxOptions(app, result.options);
+  cli::addPostfxOptions(app, result.options, result.lineFlags);
   std::reverse(args.begin(), args.end());  // CLI11 takes a reversed vector
   try {
     app.parse(args);
@@ -101,6 +102,16 @@ TEST(PostfxFlags, FixedAndAdaptiveWidths) {
   EXPECT_EQ(adaptive.options.width.far, 12);
   EXPECT_EQ(adaptive.options.fill, FillMode::Shaded);
   EXPECT_EQ(parseFlags({"--fill", "tone"}).options.fill, FillMode::Tone);
+}
+
+// The flags that shape lines and fills are recorded as given (--background is not
+// one: every technique composes over it); a technique without lines warns that it ignored them.
+TEST(PostfxFlags, RecordsTheLineFlagsGiven) {
+  const ParsedFlags given =
+      parseFlags({"--background", "white", "--fill-color", "red", "--width", "3"});
+  ASSERT_EQ(given.error, "");
+  EXPECT_EQ(given.lineFlags, (std::vector<std::string>{"--width", "--fill-color"}));
+  EXPECT_TRUE(parseFlags({"--background", "white"}).lineFlags.empty());
 }
 
 TEST(PostfxFlags, ImpossibleValuesNameTheFlag) {

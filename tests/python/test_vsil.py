@@ -276,6 +276,14 @@ def test_an_iso_outside_the_range_warns(renderer):
         renderer.render("gen:sphere:16", iso=1000, size=(32, 32))
 
 
+def test_line_keywords_on_a_technique_without_lines_warn(renderer):
+    with pytest.warns(UserWarning, match=r"--line-color: technique 'firsthit' draws no lines"):
+        frame = renderer.render("gen:sphere:16", technique="firsthit", line_color="red",
+                                size=(32, 32))
+    assert frame.warnings == ["--line-color: technique 'firsthit' draws no lines or filled "
+                              "pixels; ignored (the line flags go with silhouette and rightangle)"]
+
+
 # ---- one process, many frames ----
 
 def test_a_sweep_reuses_one_renderer(renderer):

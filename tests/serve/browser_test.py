@@ -185,6 +185,20 @@ def main():
         print("drag: frame changed; the screen shows the PNG; its command line reproduces it:",
               dragged_command)
 
+        # A fill chosen for the silhouette is cleared when the technique changes to one that
+        # draws no lines (the CLI refuses the line flags there): the page shows the MIP frame.
+        Select(driver.find_element("id", "option-fill")).select_by_value("flat")
+        wait_for("the filled frame", lambda: "--fill flat" in (frame.get_attribute("data-command") or ""))
+        settled(driver)
+        Select(driver.find_element("id", "technique")).select_by_value("mip")
+        wait_for("the MIP frame", lambda: "--technique mip" in (frame.get_attribute("data-command") or ""))
+        mip_command = settled(driver)
+        assert "--fill" not in mip_command, mip_command
+        assert not driver.find_elements("id", "option-fill"), "a fill control beside a MIP"
+        error = driver.find_element("id", "error").text
+        assert error == "", error
+        print("technique change: the fill went with the silhouette:", mip_command)
+
         # semantic: a click sets --cursor-pixel; the focus region follows the click.
         focus_server = Server(binary, "gen:spheres:96", "--size", "320x320", "--technique",
                               "semantic", "--rules", rules)

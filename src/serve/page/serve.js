@@ -171,6 +171,10 @@ function rangeOf(option) {
   return null;
 }
 
+// The flags that shape lines and fills: only techniques that draw lines take them (the CLI
+// refuses them for the others).
+const lineFlags = ['width', 'width-near', 'width-far', 'line-color', 'fill', 'fill-color'];
+
 // The shared flags the page shows as controls (the view itself is the drag and the wheel).
 const widthRange = [1, 16, 1];
 const sharedControls = {
@@ -187,7 +191,7 @@ function buildControls() {
   const shared = document.getElementById('shared-options');
   shared.replaceChildren(...table.shared
       .filter((o) => o.name in sharedControls)
-      .filter((o) => info.draws_lines || !o.name.startsWith('width'))
+      .filter((o) => info.draws_lines || !lineFlags.includes(o.name))
       .map((o) => {
         const how = sharedControls[o.name];
         const choices = how && typeof how[0] === 'string' ? how : null;
@@ -210,7 +214,8 @@ function chooseTechnique(name) {
       values[option.key] = '';
     }
   }
-  if (!next.draws_lines) for (const key of ['width', 'width_near', 'width_far']) {
+  if (!next.draws_lines) for (const name of lineFlags) {
+    const key = name.replaceAll('-', '_');
     if (key in values) values[key] = '';
   }
   buildControls();
