@@ -72,7 +72,10 @@ Backend parseBackend(const std::string& text, const std::string& where) {
 ContextOptions contextOptionsFromEnvironment() {
   ContextOptions options;
   const char* backend = std::getenv("VSIL_GL");
-  if (backend && *backend) options.backend = parseBackend(backend, "VSIL_GL");
+  if (backend && *backend) {
+    options.backend = parseBackend(backend, "VSIL_GL");
+    options.backendFromEnvironment = true;
+  }
   const char* device = std::getenv("VSIL_GL_DEVICE");
   if (device && *device) {
     const std::string text = device;
@@ -80,6 +83,7 @@ ContextOptions contextOptionsFromEnvironment() {
       throw InputError("VSIL_GL_DEVICE '" + text + "': expected an EGL device number 0, 1, ...");
     }
     options.eglDevice = std::stoi(text);
+    options.deviceFromEnvironment = true;
   }
   return options;
 }
@@ -265,11 +269,23 @@ bool works(const ContextOptions& options) {
   return made;
 }
 
+// The back end or device as the user chose it: "--gl egl" or "VSIL_GL=egl", "--gl-device 1" or
+// "VSIL_GL_DEVICE=1".
+std::string backendChoice(const ContextOptions& options) {
+  return (options.backendFromEnvironment ? "VSIL_GL=" : "--gl ") +
+         std::string(backendName(options.backend));
+}
+std::string deviceChoice(const ContextOptions& options) {
+  return (options.deviceFromEnvironment ? "VSIL_GL_DEVICE=" : "--gl-device ") +
+         std::to_string(options.eglDevice.value_or(-1));
+}
+
 // "; try --gl osmesa", or what to install when no choice is left. Tries each choice it names.
 std::string remainingChoices(const ContextOptions& options) {
   std::vector<std::string> choices;
   if (options.eglDevice && works({Backend::Egl, std::nullopt})) {
-    choices.push_back("--gl egl without --gl-device");
+    choices.push_back(options.deviceFromEnvironment ? "--gl egl with VSIL_GL_DEVICE unset"
+                                                    : "--gl egl without --gl-device");
   }
   if (options.backend != Backend::Auto || options.eglDevice) {  // auto tried every back end
     for (Backend other : builtBackends()) {
@@ -284,16 +300,17 @@ std::string remainingChoices(const ContextOptions& options) {
 }
 
 std::string failureHeader(const ContextOptions& options) {
-  if (options.eglDevice) return "--gl-device " + std::to_string(*options.eglDevice);
+  if (options.eglDevice) return deviceChoice(options);
   switch (options.backend) {
     case Backend::Osmesa:
-      return "--gl osmesa: no OSMesa OpenGL 4.5 core context";
+      return backendChoice(options) + ": no OSMesa OpenGL 4.5 core context";
     case Backend::Egl:
-      return "--gl egl: no EGL device or surfaceless platform gave an OpenGL 4.5 core context";
+      return backendChoice(options) +
+             ": no EGL device or surfaceless platform gave an OpenGL 4.5 core context";
     case Backend::Auto:
       break;
   }
-  return "--gl auto: no back end gave an OpenGL 4.5 core context";
+  return backendChoice(options) + ": no back end gave an OpenGL 4.5 core context";
 }
 
 std::string glString(GLenum name) {
@@ -358,17 +375,21 @@ struct GlContext::Impl {
   }
 };
 
-GlContext::GlContext(const ContextOptions& options) : impl_(std::make_unique<Impl>()) {
-  if (options.eglDevice) {
-    if (*options.eglDevice < 0) {
-      throw InputError("--gl-device " + std::to_string(*options.eglDevice) +
-                       ": expected an EGL device number 0, 1, ...");
-    }
-    if (options.backend == Backend::Osmesa) {
-      throw InputError(
-          "--gl-device picks an EGL device: it goes with --gl egl or auto, not osmesa");
-    }
+void checkContextOptions(const ContextOptions& options) {
+  if (!options.eglDevice) return;
+  if (*options.eglDevice < 0) {
+    throw InputError(deviceChoice(options) + ": expected an EGL device number 0, 1, ...");
   }
+  if (options.backend == Backend::Osmesa) {
+    throw InputError(deviceChoice(options) +
+                     " picks an EGL device: it goes with --gl egl or auto, "
+                     "not " +
+                     backendChoice(options));
+  }
+}
+
+GlContext::GlContext(const ContextOptions& options) : impl_(std::make_unique<Impl>()) {
+  checkContextOptions(options);
   Plan plan(options);
   for (const Candidate& candidate : plan.candidates()) {
     try {

@@ -30,12 +30,20 @@ struct ContextOptions {
   // This EGL device only (its index in eglQueryDevicesEXT's list, as `vsil info --gl` prints
   // them); with auto it means egl. Unset: every device in turn.
   std::optional<int> eglDevice;
+  // Whether each came from $VSIL_GL and $VSIL_GL_DEVICE rather than --gl and --gl-device: the
+  // messages name what the user set ("VSIL_GL_DEVICE=9: there is no EGL device 9 ...").
+  bool backendFromEnvironment = false;
+  bool deviceFromEnvironment = false;
 };
 
 // The choice a front end makes when the user gave none: $VSIL_GL (auto, osmesa, egl) and
 // $VSIL_GL_DEVICE (an index); unset or empty: auto, every device. Bad values throw InputError
 // naming the variable.
 ContextOptions contextOptionsFromEnvironment();
+// InputError for choices that contradict each other or cannot name a device (a negative device;
+// a device with osmesa), naming them as the user set them. GlContext checks too; a front end
+// calls it to refuse before any work.
+void checkContextOptions(const ContextOptions& options);
 
 // What was made, for `vsil info --gl`, --meta-out and the benchmark's machine header.
 struct ContextInfo {

@@ -1,7 +1,5 @@
 #include "cli/cli_gl_options.h"
 
-#include "core/error.h"
-
 namespace vsil::cli {
 
 void addGlOptions(CLI::App& command, GlOptions& options, bool valueOptional) {
@@ -38,9 +36,9 @@ gl::ContextOptions toContextOptions(const GlOptions& options) {
     if (context.backend == gl::Backend::Osmesa) context.eglDevice.reset();
   }
   if (options.device) context.eglDevice = *options.device;
-  if (context.eglDevice && context.backend == gl::Backend::Osmesa) {
-    throw InputError("--gl-device picks an EGL device: it goes with --gl egl or auto, not osmesa");
-  }
+  if (!options.backend.empty()) context.backendFromEnvironment = false;
+  if (options.device) context.deviceFromEnvironment = false;
+  gl::checkContextOptions(context);
   return context;
 }
 

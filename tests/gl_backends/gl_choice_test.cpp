@@ -170,6 +170,24 @@ TEST_F(GlChoice, AnEglDeviceThatDoesNotExist) {
       << result.err;
 }
 
+// A device chosen by $VSIL_GL_DEVICE is named as the user set it, with the way out.
+TEST_F(GlChoice, AnEglDeviceFromTheEnvironmentIsNamedSo) {
+  VSIL_REQUIRE_GL_BACKEND(gl::Backend::Osmesa);
+  VSIL_REQUIRE_GL_BACKEND(gl::Backend::Egl);
+  const test::ScopedEnvironment device("VSIL_GL_DEVICE", "99");
+  const auto dir = test::scratchDir();
+  const auto result = renderInto(dir, "");
+  expectUnavailable(result, dir, "VSIL_GL_DEVICE=99: there is no EGL device 99 (found ");
+  EXPECT_TRUE(contains(result.err, "; try --gl egl with VSIL_GL_DEVICE unset, or --gl osmesa\n"))
+      << result.err;
+  const test::ScopedEnvironment osmesa("VSIL_GL", "osmesa");
+  const auto both = renderInto(dir, "");
+  EXPECT_EQ(both.exitCode, 2);
+  EXPECT_EQ(both.err,
+            "vsil: VSIL_GL_DEVICE=99 picks an EGL device: it goes with --gl egl or auto, not "
+            "VSIL_GL=osmesa\n");
+}
+
 TEST_F(GlChoice, BadChoicesAreBadInput) {
   const auto dir = test::scratchDir();
   for (const char* flags : {"--gl vulkan", "--gl osmesa --gl-device 0", "--gl-device -1"}) {
