@@ -34,8 +34,7 @@ void run(const CLI::App& command, const ServeFlags& flags) {
   if (validateOnly()) return;
 
   serve::FrameServer server(std::move(options));
-  const std::string token = flags.token.empty() ? "" : "?token=" + flags.token;
-  std::cout << "vsil serve: " << server.url() << token << std::endl;
+  std::cout << "vsil serve: " << server.url() << std::endl;
   runningServer = &server;
   std::signal(SIGINT, stopServing);
   std::signal(SIGTERM, stopServing);

@@ -1,9 +1,12 @@
 #include "serve/frame_server.h"
 
+#include <cctype>
 #include <chrono>
 #include <future>
 #include <iostream>
 #include <thread>
+
+#include <sys/socket.h>
 
 #include <httplib.h>
 
@@ -140,7 +143,11 @@ struct FrameServer::Impl {
   void routes() {
     http.set_pre_routing_handler(
         [this](const httplib::Request& request, httplib::Response& response) {
-          if (options.token.empty()) return httplib::Server::HandlerResponse::Unhandled;
+          // The page's script is static and holds nothing of the server's: the page at
+          // /?token=... loads it by a plain <script src>.
+          if (options.token.empty() || request.path == "/serve.js") {
+            return httplib::Server::HandlerResponse::Unhandled;
+          }
           std::string given = request.get_param_value("token");
           if (given.empty()) given = request.get_header_value("X-Vsil-Token");
           if (sameToken(given, options.token)) return httplib::Server::HandlerResponse::Unhandled;
@@ -180,6 +187,13 @@ struct FrameServer::Impl {
   }
 
   void bind() {
+    // The library's default sockets add SO_REUSEPORT, with which a second server on a port in
+    // use started too and the kernel split the requests between the two. SO_REUSEADDR alone
+    // lets a restarted server take its port back from connections still closing.
+    http.set_socket_options([](socket_t socket) {
+      int yes = 1;
+      setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+    });
     if (options.port == 0) {
       port = http.bind_to_any_port(options.bind);
     } else {
@@ -225,7 +239,21 @@ int FrameServer::port() const {
 std::string FrameServer::url() const {
   const std::string& host = impl_->options.bind;
   const bool v6 = host.find(':') != std::string::npos;
-  return "http://" + (v6 ? "[" + host + "]" : host) + ":" + std::to_string(impl_->port) + "/";
+  std::string address =
+      "http://" + (v6 ? "[" + host + "]" : host) + ":" + std::to_string(impl_->port) + "/";
+  const std::string& token = impl_->options.token;
+  if (token.empty()) return address;
+  // RFC 3986: all but the unreserved characters percent-encoded (a token holding & or %).
+  address += "?token=";
+  for (const unsigned char c : token) {
+    if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~') {
+      address += char(c);
+    } else {
+      static const char kHex[] = "0123456789ABCDEF";
+      address += {'%', kHex[c >> 4], kHex[c & 15]};
+    }
+  }
+  return address;
 }
 
 void FrameServer::listen() {

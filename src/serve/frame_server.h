@@ -45,7 +45,8 @@ class FrameServer {
   FrameServer& operator=(const FrameServer&) = delete;
 
   int port() const;
-  std::string url() const;  // http://HOST:PORT/
+  // The page's address: http://HOST:PORT/, with ?token=... (percent-encoded) when one is asked.
+  std::string url() const;
   // Answers requests until stop() (from any thread).
   void listen();
   void stop();

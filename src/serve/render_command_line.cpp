@@ -10,7 +10,9 @@
 #include "cli/cli_volume_options.h"
 #include "core/error.h"
 #include "core/illustration.h"
+#include "core/options.h"
 #include "core/rules.h"
+#include "core/transfer_function.h"
 #include "slicing/technique_table.h"
 
 namespace vsil::serve {
@@ -38,7 +40,7 @@ const std::map<std::string, std::vector<std::string>>& presetOnlyOptions() {
   static const std::map<std::string, std::vector<std::string>> options{
       {"rules", rulePresetNames()},
       {"style", stylePresetNames()},
-      {"tf", {}},
+      {"tf", transferFunctionPresetNames()},
       {"sphere-map", {"red-blue", "green-red", "green-blue"}},
   };
   return options;
@@ -216,10 +218,8 @@ RenderCommandLine PageParameters::apply(
       if (presets != presetOnlyOptions().end()) {
         const auto& names = presets->second;
         if (std::find(names.begin(), names.end(), value) == names.end()) {
-          std::string known;
-          for (const auto& preset : names) known += (known.empty() ? "" : ", ") + preset;
           throwInputError(flag, "'" + value + "': the page names no files (built-in: " +
-                                    (known.empty() ? "none" : known) +
+                                    (names.empty() ? "none" : joined(names)) +
                                     "; give a file on vsil serve's command line)");
         }
       }

@@ -17,6 +17,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
+#include "core/transfer_function.h"
 #include "serve/frame_server.h"
 #include "slicing/technique_table.h"
 #include "test_support.h"
@@ -251,6 +252,49 @@ TEST(FrameServer, ATokenIsAskedOfEveryRequest) {
   auto header = server.client().Get("/", {{"X-Vsil-Token", "a-long-secret"}});
   ASSERT_TRUE(header);
   EXPECT_EQ(header->status, 200);
+  // The page at /?token=... loads its script by a plain <script src>: static, no token.
+  auto script = server.get("/serve.js");
+  ASSERT_TRUE(script);
+  EXPECT_EQ(script->status, 200);
+  EXPECT_NE(script->body.find("frameUrl"), std::string::npos);
+}
+
+// The address printed for the page carries the token percent-encoded, so that it opens the page.
+TEST(FrameServer, ThePageAddressCarriesTheTokenEncoded) {
+  ServeOptions options = smallServer();
+  options.token = "a&b%c d~";
+  const FrameServer server(options);
+  EXPECT_EQ(server.url(),
+            "http://127.0.0.1:" + std::to_string(server.port()) + "/?token=a%26b%25c%20d~");
+  options.token.clear();
+  const FrameServer open(options);
+  EXPECT_EQ(open.url(), "http://127.0.0.1:" + std::to_string(open.port()) + "/");
+}
+
+// A second server on a port in use fails to start instead of sharing the port's requests.
+TEST(FrameServer, APortInUseIsRefused) {
+  Running first(smallServer());
+  ServeOptions options = smallServer();
+  options.port = first.port();
+  try {
+    FrameServer second(options);
+    FAIL() << "a second server listens on port " << first.port();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "--port " + std::to_string(first.port()) +
+                                         ": cannot listen on 127.0.0.1 (in use, or not an "
+                                         "address here)");
+  }
+}
+
+// The page offers the transfer-function presets, and a frame takes one.
+TEST(FrameServer, TransferFunctionPresetsAreTheBuiltInChoices) {
+  Running server(smallServer());
+  const auto table = nlohmann::json::parse(server.get("/api/options")->body);
+  EXPECT_EQ(table["presets"]["tf"], nlohmann::json(transferFunctionPresetNames()));
+  ASSERT_FALSE(transferFunctionPresetNames().empty());
+  auto frame = server.get("/frame?technique=mip&tf=" + transferFunctionPresetNames().front());
+  ASSERT_TRUE(frame);
+  EXPECT_EQ(frame->status, 200) << frame->body;
 }
 
 TEST(FrameServer, BindingBeyondLoopbackNeedsAToken) {
