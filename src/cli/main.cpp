@@ -23,6 +23,8 @@ int run(int argc, char** argv) {
   // Ctrl-C, SIGTERM, SIGHUP: remove the temporary file of an output being written, then die
   // of the signal as usual (core/atomic_file.h). Targets are only ever replaced by rename().
   vsil::installOutputCleanupOnSignals();
+  // No output of the command may replace a file it reads (core/atomic_file.h).
+  vsil::recordInputFiles();
   CLI::App app{"vsil: silhouettes and illustrations of volume data, rendered offscreen"};
   vsil::cli::setUpApp(app);
   try {

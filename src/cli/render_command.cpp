@@ -37,6 +37,7 @@ struct RenderOutputs {
 // Outputs the technique cannot make, and two outputs naming one file, are refused before any
 // work.
 void checkOutputs(const RenderFlags& flags, const RenderOutputs& outputs, OutputBatch& batch) {
+  noteInputFile(flags.input);  // an output naming the volume file is refused before any work
   batch.claim("--out", outputs.out);
   batch.claim("--state-out", outputs.stateOut);
   batch.claim("--depth-out", outputs.depthOut);

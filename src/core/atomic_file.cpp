@@ -10,12 +10,46 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <mutex>
 #include <string>
+#include <utility>
 
 #include "core/error.h"
 
 namespace vsil {
 namespace {
+
+// The regular files the command read (recordInputFiles), by device and inode.
+struct InputFiles {
+  std::mutex mutex;
+  bool recording = false;
+  std::vector<std::pair<dev_t, ino_t>> ids;
+  std::vector<std::string> names;  // as first opened, for messages
+};
+InputFiles& inputFiles() {
+  static InputFiles files;
+  return files;
+}
+
+// The input file that writing `target` (links followed) would replace, as it was named; "" for
+// none.
+std::string inputNamedBy(const std::filesystem::path& target) {
+  InputFiles& inputs = inputFiles();
+  const std::lock_guard lock(inputs.mutex);
+  struct stat status;
+  if (inputs.ids.empty() || ::stat(target.c_str(), &status) != 0) return "";
+  for (std::size_t i = 0; i < inputs.ids.size(); ++i) {
+    if (inputs.ids[i] == std::pair(status.st_dev, status.st_ino)) return inputs.names[i];
+  }
+  return "";
+}
+
+void refuseInputTarget(const std::string& output, const std::filesystem::path& target) {
+  const std::string input = inputNamedBy(target);
+  if (input.empty()) return;
+  throw InputError(output + ": names " + (input == target.string() ? "" : input + ", ") +
+                   "a file this command reads; give the output its own file");
+}
 
 // The temporaries being written, for the signal handler: fixed slots, claimed and released with
 // lock-free atomics (async-signal-safe), paths copied in before a slot is marked in use.
@@ -127,9 +161,29 @@ struct AtomicOutputFile::Registration {
   TempRegistration slot;
 };
 
+void recordInputFiles() {
+  InputFiles& inputs = inputFiles();
+  const std::lock_guard lock(inputs.mutex);
+  inputs.recording = true;
+}
+
+void noteInputFile(const std::filesystem::path& path) {
+  InputFiles& inputs = inputFiles();
+  const std::lock_guard lock(inputs.mutex);
+  struct stat status;
+  if (!inputs.recording || ::stat(path.c_str(), &status) != 0 || !S_ISREG(status.st_mode)) return;
+  const std::pair id(status.st_dev, status.st_ino);
+  for (const auto& known : inputs.ids) {
+    if (known == id) return;
+  }
+  inputs.ids.push_back(id);
+  inputs.names.push_back(path.string());
+}
+
 AtomicOutputFile::AtomicOutputFile(const std::filesystem::path& target) : target_(target) {
   namespace fs = std::filesystem;
   if (target.empty()) throw InputError("output path is empty");
+  refuseInputTarget(target.string(), target);
   // A link is followed: the file it names is replaced and the link stays (a rename over the
   // link would replace the link itself).
   destination_ = linkTarget(target);
@@ -243,6 +297,7 @@ std::filesystem::path resolvedOutput(const std::filesystem::path& path) {
 
 void OutputBatch::claim(const std::string& flag, const std::filesystem::path& path) {
   if (path.empty()) return;
+  refuseInputTarget(flag + " " + path.string(), path);
   Claim claim{flag, path, resolvedOutput(path)};
   for (const Claim& other : claims_) {
     std::error_code ec;
@@ -257,6 +312,10 @@ void OutputBatch::claim(const std::string& flag, const std::filesystem::path& pa
 }
 
 void OutputBatch::add(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+  // An input read since the claims (a header's detached data file), named by the output's flag.
+  for (const Claim& claim : claims_) {
+    if (claim.path == path) refuseInputTarget(claim.flag + " " + path.string(), path);
+  }
   files_.push_back(writeTemporary(path, bytes));
 }
 

@@ -15,6 +15,16 @@
 
 namespace vsil {
 
+// The files one command reads, so that none of its outputs replaces one: `vsil render a.nrrd
+// --out a.nrrd` replaced the volume with its picture (the input was read whole, then the output
+// renamed over it), as did an output naming a header's detached data file, or measure-width's
+// --json naming its image. The CLI turns the record on for its one command (main.cpp; a Python
+// session reads and writes at will); the readers note each regular file they open; every output
+// (AtomicOutputFile, OutputBatch::claim) that is one of them, links followed or a hard link, is
+// refused with InputError before anything is written.
+void recordInputFiles();
+void noteInputFile(const std::filesystem::path& path);
+
 // An output that a writer of its own makes (a video encoder that opens files by name), written
 // whole or not at all like writeFileAtomically's: a hidden temporary ".NAME.XXXXXX.EXT" beside
 // the target (it keeps the extension, which some writers choose their format by), registered
@@ -27,7 +37,7 @@ namespace vsil {
 class AtomicOutputFile {
  public:
   // Creates the temporary (empty). Throws InputError naming the target when its folder is
-  // missing or not writable.
+  // missing or not writable, or when it is a file the command read (noteInputFile).
   explicit AtomicOutputFile(const std::filesystem::path& target);
   ~AtomicOutputFile();
   AtomicOutputFile(const AtomicOutputFile&) = delete;
@@ -75,9 +85,9 @@ class AtomicOutputFile {
 //   outputs.commit();
 class OutputBatch {
  public:
-  // Refuses (InputError) an output naming the same file as one claimed before: the same path
-  // spelled otherwise (./o.png, dir/../o.png), or a symlink or hard link to it. Empty paths
-  // (an output not asked for) are ignored.
+  // Refuses (InputError) an output naming the same file as one claimed before, or as a file the
+  // command read so far (noteInputFile): the same path spelled otherwise (./o.png, dir/../o.png),
+  // or a symlink or hard link to it. Empty paths (an output not asked for) are ignored.
   void claim(const std::string& flag, const std::filesystem::path& path);
   // Writes `bytes` to a temporary for `path` (not yet the target).
   void add(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);

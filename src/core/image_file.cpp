@@ -118,12 +118,14 @@ void writePng(const std::filesystem::path& path, const cv::Mat& image) {
 
 namespace {
 
+// And notes it as one the command reads (atomic_file.h noteInputFile).
 void requireRegularFile(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     throwInputError(path.string(),
                     std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
   }
+  noteInputFile(path);
 }
 
 std::uint32_t bigEndian32(const unsigned char* bytes) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace vsil::io {
@@ -21,6 +22,7 @@ std::ifstream openForReading(const std::string& path) {
     throwInputError(path, std::string("cannot be opened for reading") +
                               (error ? std::string(": ") + std::strerror(error) : ""));
   }
+  noteInputFile(path);  // no output of the command may replace it (core/atomic_file.h)
   return in;
 }
 
@@ -75,6 +77,7 @@ FileReader::FileReader(const std::string& path) : path_(path) {
   if (!fd_.valid()) {
     throwInputError(path, std::string("cannot be opened for reading: ") + std::strerror(errno));
   }
+  noteInputFile(path);
 }
 
 void FileReader::readAt(std::uint64_t offset, std::span<std::uint8_t> out) const {

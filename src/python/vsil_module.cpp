@@ -1255,7 +1255,9 @@ PYBIND11_MODULE(_vsil, m) {
                     "H x W uint8 pixel states; None for techniques that make none (mip, ...)")
       .def_readonly("depth", &Frame::depth,
                     "H x W float32 normalized depth, NaN where none; None for techniques that "
-                    "make no depth")
+                    "make no depth. For silhouette and rightangle every first hit's depth, "
+                    "Filled pixels too; `vsil render --depth-out` keeps the line pixels' only "
+                    "(where state == 3)")
       .def_readonly("metadata", &Frame::metadata,
                     "what `vsil render --meta-out` writes, less parameters.out; timings_ms and "
                     "cpu_ms hold this call's read, upload (0: the texture was resident) and the "

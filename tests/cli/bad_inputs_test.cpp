@@ -164,6 +164,51 @@ TEST(BadInputs, AFailedOutputLeavesEveryPreviousOutputUntouched) {
   EXPECT_EQ(files, 1) << "a temporary was left behind";
 }
 
+// An output naming a file the command reads (the volume, a header's detached data file through a
+// link, measure-width's image, the sweep file) is refused, and the file keeps its bytes.
+TEST(BadInputs, AnOutputNamingAnInputIsRefused) {
+  const fs::path dir = test::scratchDir();
+  std::ofstream(dir / "v.nhdr") << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\n"
+                                   "encoding: raw\ndata file: v.raw\n\n";
+  const std::string samples(64, '\x40');
+  std::ofstream(dir / "v.raw") << samples;
+  fs::create_symlink(dir / "v.raw", dir / "link.png");
+  const std::string volume = (dir / "v.nhdr").string();
+  const auto header = test::readFileBytes(dir / "v.nhdr");
+  const test::CommandResult self = test::runVsil("render " + volume + " --out " + volume);
+  EXPECT_EQ(self.exitCode, 2);
+  EXPECT_EQ(self.err, "vsil: --out " + volume +
+                          ": names a file this command reads; give the output its own file\n");
+  EXPECT_EQ(test::readFileBytes(dir / "v.nhdr"), header);
+  const test::CommandResult data =
+      test::runVsil("render " + volume + " --size 16x16 --out " + (dir / "link.png").string());
+  EXPECT_EQ(data.exitCode, 2);
+  EXPECT_TRUE(data.err.starts_with("vsil: --out " + (dir / "link.png").string() + ": names ") &&
+              data.err.ends_with("v.raw, a file this command reads; give the output its own "
+                                 "file\n"))
+      << data.err;
+  EXPECT_EQ(test::readFileBytes(dir / "v.raw"), samples);
+
+  const std::string image = (dir / "lines.png").string();
+  ASSERT_EQ(test::runVsil("render gen:sphere:16 --size 32x32 --out " + image).exitCode, 0);
+  const auto lines = test::readFileBytes(image);
+  const test::CommandResult measured = test::runVsil("measure-width " + image + " --json " + image);
+  EXPECT_EQ(measured.exitCode, 2);
+  EXPECT_TRUE(measured.err.ends_with("a file this command reads; give the output its own file\n"))
+      << measured.err;
+  EXPECT_EQ(test::readFileBytes(image), lines);
+
+  const std::string plan = (dir / "sweep.json").string();
+  std::ofstream(plan) << R"({"render": {"input": "gen:sphere:16", "size": "16x16"},
+                             "axes": {"width": [1, 2]}})";
+  const auto planBytes = test::readFileBytes(plan);
+  const test::CommandResult swept = test::runVsil("sweep " + plan + " --json " + plan);
+  EXPECT_EQ(swept.exitCode, 2);
+  EXPECT_TRUE(swept.err.ends_with("a file this command reads; give the output its own file\n"))
+      << swept.err;
+  EXPECT_EQ(test::readFileBytes(plan), planBytes);
+}
+
 // Two outputs naming one file through a symlink or a hard link: refused before any work.
 TEST(BadInputs, OutputsNamingOneFileThroughALink) {
   const fs::path dir = test::scratchDir();
