@@ -48,8 +48,12 @@ std::optional<double> depthNear(const cv::Mat1f& depth, cv::Point p) {
 
 }  // namespace
 
-cv::Mat1b lineMaskFromImage(const cv::Mat& image, const Rgba& lineColor, int tolerance) {
-  if (image.depth() != CV_8U) throw std::invalid_argument("lineMaskFromImage: 8-bit images only");
+cv::Mat1b lineMaskFromImage(const cv::Mat& given, const Rgba& lineColor, int tolerance) {
+  cv::Mat image = given;
+  if (given.depth() == CV_16U) given.convertTo(image, CV_8U, 1.0 / 257.0);  // 65535 -> 255
+  if (image.depth() != CV_8U) {
+    throw std::invalid_argument("lineMaskFromImage: 8- or 16-bit images only");
+  }
   cv::Mat1b mask;
   if (image.channels() == 1) {
     const int grey = (lineColor.r * 299 + lineColor.g * 587 + lineColor.b * 114) / 1000;

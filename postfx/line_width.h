@@ -46,8 +46,9 @@ struct DepthBin {
 };
 
 // Line pixels: those within `tolerance` (per channel, 0..255) of `lineColor`; grey images compare
-// with the colour's grey value. In images with alpha, pixels less than half opaque are background
-// whatever their colour (a transparent render's background is black, the default line colour).
+// with the colour's grey value; 16-bit images compare at 8 bits (a value v as v/257, rounded). In
+// images with alpha, pixels less than half opaque are background whatever their colour (a
+// transparent render's background is black, the default line colour).
 cv::Mat1b lineMaskFromImage(const cv::Mat& image, const Rgba& lineColor, int tolerance = 40);
 
 // What measureLineWidths holds at its peak per pixel of the lines' bounding box (and its 4-pixel

@@ -42,7 +42,6 @@ void run(const MeasureWidthArgs& args) {
   outputs.claim("--json", args.json);
   if (validateOnly()) return;
   const cv::Mat image = readImage(args.image);
-  if (image.depth() != CV_8U) throwInputError(args.image, "only 8-bit images are measured");
   const cv::Mat1b mask = lineMaskFromImage(image, color);
   if (cv::countNonZero(mask) == 0) {
     throwInputError(args.image, "no pixel has the line colour " + args.lineColor);

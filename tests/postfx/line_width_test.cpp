@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
 
@@ -118,6 +119,27 @@ TEST(LineWidth, TransparentPixelsAreNoLine) {
   const cv::Mat1b mask = lineMaskFromImage(image, Rgba{0, 0, 0, 255});
   EXPECT_EQ(cv::countNonZero(mask), 1);
   EXPECT_EQ(mask(3, 4), 255);
+}
+
+// A 16-bit PNG of the same picture (v * 257) gives the same line pixels, grey, RGB and RGBA.
+TEST(LineWidth, SixteenBitImagesGiveTheEightBitMask) {
+  cv::Mat4b image(16, 16, cv::Vec4b(255, 255, 255, 255));
+  image(3, 4) = cv::Vec4b(0, 0, 0, 255);
+  image(7, 9) = cv::Vec4b(20, 30, 35, 255);    // within the tolerance of black
+  image(9, 2) = cv::Vec4b(0, 0, 0, 100);       // less than half opaque
+  image(12, 12) = cv::Vec4b(90, 90, 90, 255);  // too light
+  cv::Mat3b bgr;
+  cv::Mat1b grey;
+  cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+  cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  for (const cv::Mat& eight : {cv::Mat(image), cv::Mat(bgr), cv::Mat(grey)}) {
+    cv::Mat sixteen;
+    eight.convertTo(sixteen, CV_16U, 257.0);
+    const cv::Mat1b expected = lineMaskFromImage(eight, Rgba{0, 0, 0, 255});
+    const cv::Mat1b got = lineMaskFromImage(sixteen, Rgba{0, 0, 0, 255});
+    EXPECT_EQ(cv::countNonZero(expected != got), 0) << eight.channels() << " channels";
+    EXPECT_GE(cv::countNonZero(got), 2);
+  }
 }
 
 TEST(LineWidth, HistogramBinWidthBelowAHundredthIsRefused) {
