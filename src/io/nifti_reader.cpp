@@ -1,7 +1,7 @@
 // NIfTI-1 and NIfTI-2 (and their ANALYZE 7.5 ancestor): `.nii`, `.hdr` + `.img`, each gzipped
 // or not, through Debian's nifticlib (libnifti2: nifti2_io reads both versions, znzlib the
 // gzip layer). nifticlib parses the header and finds the data; vsil checks the dims and type
-// against its limits before any sample is read, then streams the samples through znzlib (or,
+// against its limits before any sample is read, then streams the samples through zlib (or,
 // uncompressed, reads only the rows --crop/--stride keep) into the volume: no second copy.
 // scl_slope/scl_inter are applied as the standard says (slope 0: none; not finite: refused); the
 // qform and sform are recorded as the volume's orientations, not applied.
@@ -24,6 +24,8 @@
 #include "io/readers.h"
 #include "io/text_fields.h"
 
+#include <zlib.h>
+
 extern "C" {
 #include <nifti2_io.h>
 }
@@ -40,8 +42,8 @@ constexpr int kMsbFirst = 2;
 struct NiftiImageFree {
   void operator()(nifti_image* image) const { nifti_image_free(image); }
 };
-struct ZnzClose {
-  void operator()(znzFile file) const { Xznzclose(&file); }
+struct GzipClose {
+  void operator()(gzFile file) const { gzclose(file); }
 };
 
 StoredType storedTypeOfNifti(const std::string& path, int datatype) {
@@ -85,11 +87,29 @@ struct RawHeader {
   std::string magic;                  // "n+1", "ni1", "n+2", "ni2"; anything else: ANALYZE 7.5
 };
 
+// Whether the gzip file at `path` fails to inflate (a broken stream, a CRC that does not match)
+// within its first 64 MiB: what to blame when nifticlib reads no header from a .nii.gz.
+bool gzipStreamFails(const std::string& path) {
+  const gzFile file = gzopen(path.c_str(), "rb");
+  if (!file) return false;
+  std::vector<char> piece(std::size_t(1) << 16);
+  int got = 0;
+  for (int pieces = 0; pieces < 1024; ++pieces) {
+    got = gzread(file, piece.data(), unsigned(piece.size()));
+    if (got <= 0) break;
+  }
+  gzclose(file);
+  return got < 0;
+}
+
 RawHeader readRawHeader(const std::string& path) {
   int version = 0;
   // check = 0: vsil says what is wrong with the fields below; nifticlib's own check follows.
   void* raw = nifti_read_header(path.c_str(), &version, 0);
   if (!raw) {
+    if (nifti_is_gzfile(path.c_str()) && gzipStreamFails(path)) {
+      throwInputError(path, "is not a whole gzip stream (cut short, or its CRC check fails)");
+    }
     throwInputError(path,
                     "is not a NIfTI-1 or NIfTI-2 file (no 348- or 540-byte header "
                     "nifticlib can read)");
@@ -326,26 +346,37 @@ Volume readNifti(const std::string& path, const LoadOptions& options) {
     readUncompressed(FileReader(dataPath), offset, sink, options);
     return volume;
   }
-  // gzip: read in order through znzlib (a gzip stream cannot seek backward cheaply); the sink
-  // keeps the samples of --crop/--stride.
-  const std::unique_ptr<znzptr, ZnzClose> file(znzopen(dataPath.c_str(), "rb", 1));
+  // gzip: read in order through zlib (a gzip stream cannot seek backward cheaply); the sink
+  // keeps the samples of --crop/--stride. zlib directly, not znzlib: the end of the stream (its
+  // length and CRC) is checked only by its error state, which znzlib does not pass on.
+  const std::unique_ptr<gzFile_s, GzipClose> file(gzopen(dataPath.c_str(), "rb"));
   if (!file) throwInputError(path, "cannot open " + dataLabel);
-  if (znzseek(file.get(), znz_off_t(offset), SEEK_SET) < 0) {
+  if (gzseek(file.get(), z_off_t(offset), SEEK_SET) < 0) {
     throwInputError(path, dataLabel + " ends before its offset " + std::to_string(offset));
   }
+  const std::string corrupt =
+      dataLabel + " is not a whole gzip stream (cut short, or its CRC check fails)";
   std::vector<std::uint8_t> piece(std::size_t(1) << 20);
   std::uint64_t read = 0;
   while (read < expected) {
-    const auto want = std::size_t(std::min<std::uint64_t>(piece.size(), expected - read));
-    const std::size_t got = znzread(piece.data(), 1, want, file.get());
-    if (got != want) {
-      throwInputError(path, dataLabel + " ends after " + std::to_string(read + got) + " of " +
-                                std::to_string(expected) + " bytes (" + describeLayout(dims, type) +
-                                "; truncated or corrupt gzip)");
+    const auto want = unsigned(std::min<std::uint64_t>(piece.size(), expected - read));
+    const int got = gzread(file.get(), piece.data(), want);
+    if (got < 0) throwInputError(path, corrupt);
+    if (unsigned(got) != want) {
+      throwInputError(path, dataLabel + " ends after " + std::to_string(read + unsigned(got)) +
+                                " of " + std::to_string(expected) + " bytes (" +
+                                describeLayout(dims, type) + "; truncated or corrupt gzip)");
     }
-    sink.append(std::span(piece.data(), got));
-    read += got;
+    sink.append(std::span(piece.data(), std::size_t(got)));
+    read += unsigned(got);
     if (options.progress) options.progress(read, expected);
+  }
+  // One byte more reaches the stream's end, where zlib checks its length and CRC; a stream cut
+  // before its trailer reads as an end with Z_BUF_ERROR. Both refused, as the NRRD reader does.
+  std::uint8_t beyond = 0;
+  int error = Z_OK;
+  if (gzread(file.get(), &beyond, 1) < 0 || (gzerror(file.get(), &error), error != Z_OK)) {
+    throwInputError(path, corrupt);
   }
   sink.finishAppending();
   return volume;

@@ -147,6 +147,12 @@ write('nifti_vox_offset.nii', nifti1(vox_offset=1e12) + bytes(64))
 noise = bytes((i * 7919 + (i >> 3) * 104729) % 251 for i in range(16 * 16 * 8))
 whole = gzip.compress(nifti1(dims=(16, 16, 8)) + noise, 9, mtime=0)
 write('nifti_cut.nii.gz', whole[:len(whole) * 3 // 4])
+# The same stream with its CRC flipped, and without its 8-byte trailer (length and CRC): the
+# samples all inflate, the stream's check fails.
+bad_crc = bytearray(whole)
+bad_crc[-8] ^= 1
+write('nifti_bad_crc.nii.gz', bytes(bad_crc))
+write('nifti_no_trailer.nii.gz', whole[:-8])
 write('nifti_pair_no_img.hdr', nifti1(vox_offset=0.0, magic=b'ni1\0'))
 write('nifti_text.nii', 'this is not a NIfTI file, only text named like one\n' * 10)
 write('nifti_oversized.nii', nifti1(dims=(30000, 30000, 30000)) + bytes(64))
