@@ -325,6 +325,17 @@ float quantileAbove(const LevelHistogram& h, float low, double fraction) {
   return h.range.max;
 }
 
+// The default window's top: above Otsu's threshold `iso` even where nothing lies above it (a
+// constant volume), by a thousandth of the value range or one data unit, so that the window is
+// one --window takes (LO < HI) and --meta-out's parameters replay. The picture is the same:
+// values at or below LO show nothing.
+float defaultWindowHigh(const LevelHistogram& h, float iso) {
+  const float high = quantileAbove(h, iso, kDefaultWindowQuantile);
+  if (high > iso) return high;
+  const float above = iso + float(h.span > 0 ? h.span / 1000.0 : 1.0);
+  return above > iso ? above : std::nextafter(iso, std::numeric_limits<float>::infinity());
+}
+
 }  // namespace
 
 float defaultIso(const Volume& volume) {
@@ -362,7 +373,7 @@ DerivedDefaults derivedDefaultsFromCounts(ValueRange range, const LevelCounts& c
   return {.iso = iso,
           .valueRangeWidth = h.span,
           .valueMin = h.range.min,
-          .windowHigh = std::max(quantileAbove(h, iso, kDefaultWindowQuantile), iso)};
+          .windowHigh = defaultWindowHigh(h, iso)};
 }
 
 DerivedDefaults derivedDefaults(const Volume& volume, ValueRange range) {
@@ -371,7 +382,7 @@ DerivedDefaults derivedDefaults(const Volume& volume, ValueRange range) {
   return {.iso = iso,
           .valueRangeWidth = h.span,
           .valueMin = h.range.min,
-          .windowHigh = std::max(quantileAbove(h, iso, kDefaultWindowQuantile), iso)};
+          .windowHigh = defaultWindowHigh(h, iso)};
 }
 
 }  // namespace vsil

@@ -242,7 +242,8 @@ float defaultIso(const Volume& volume, ValueRange range);
 // (mip, lmip, demip), which runs from Otsu's threshold (air and noise lie below it and show as
 // background) to the top of the 256-level bin holding the 99.5th percentile of the samples above
 // it (a few outliers, metal in a CT, do not darken the rest; on 8-bit data that is the exact
-// percentile's level). Low == high only where nothing lies above the threshold (a constant one).
+// percentile's level). Where nothing lies above the threshold (a constant volume) the top lies a
+// thousandth of the value range above it, or one data unit for a constant volume: LO < HI.
 inline constexpr double kDefaultWindowQuantile = 0.995;
 DerivedDefaults derivedDefaults(const Volume& volume);
 // The same for a volume whose valueRange is known (a pass over the samples saved).

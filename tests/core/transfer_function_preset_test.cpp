@@ -140,14 +140,18 @@ TEST(DefaultWindow, RunsFromOtsuToTheHighPercentileAboveIt) {
   const double level = 100.0 + std::ceil(wanted / perLevel) - 1.0;  // the level holding it
   EXPECT_NEAR(derived.windowHigh, level + 1.0, 1.0);
   EXPECT_LT(derived.windowHigh, 201.0) << "the outliers at 255 do not set the top";
-  // A constant volume: the window collapses on its value.
+  // A constant volume: the window starts at its value and ends one data unit above, a window
+  // --window takes (LO < HI: the metadata replays), showing nothing as the value is LO.
   Volume flat;
   flat.dims = {2, 2, 2};
   flat.allocate(SampleType::Float32);
   for (float& v : flat.samples<float>()) v = 3.5f;
   const DerivedDefaults constant = derivedDefaults(flat);
   EXPECT_EQ(constant.iso, 3.5);
-  EXPECT_EQ(constant.windowHigh, 3.5);
+  EXPECT_EQ(constant.windowHigh, 4.5);
+  for (float& v : flat.samples<float>()) v = 1e9f;  // one unit is below a float's step there
+  const DerivedDefaults large = derivedDefaults(flat);
+  EXPECT_EQ(large.windowHigh, std::nextafter(1e9f, INFINITY));
 }
 
 // --tf takes the JSON list itself too (what the Python package's tf=[{...}] becomes): the same
