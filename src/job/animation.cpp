@@ -181,7 +181,8 @@ glm::dvec2 AnimationPlan::viewAt(int frame) const {
     const double s = t(frame);
     view = (1.0 - s) * *spec_.viewFrom + s * *spec_.viewTo;
   }
-  view.x += spec_.orbitDeg * double(frame) / double(frames());
+  // The fraction first: --orbit 1e308 times the frame number overflowed to infinity.
+  view.x += spec_.orbitDeg * (double(frame) / double(frames()));
   return view;
 }
 

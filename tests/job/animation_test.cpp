@@ -1,6 +1,7 @@
 // The frames of an animation (job/animation.h): where each frame looks from and what each sweep
 // sets, which names can be swept with which technique, and the checks made before any frame is
 // rendered. No GL: a plan is requests, not images.
+#include <cmath>
 #include <functional>
 #include <string>
 
@@ -52,6 +53,17 @@ TEST(Animation, AnOrbitStepsDegreesOverFramesAndDoesNotRepeatItsStart) {
     const CameraSpec camera = plan.request(i).settings.camera;
     EXPECT_DOUBLE_EQ(camera.azimuthDeg, 30 + 90 * i) << "frame " << i;
     EXPECT_EQ(camera.elevationDeg, 20);
+  }
+}
+
+// The largest finite orbit gives finite views (frame × orbit overflowed to infinity, and the
+// renderer then blamed --view).
+TEST(Animation, TheLargestOrbitGivesFiniteViews) {
+  AnimationSpec spec = specWith(3);
+  spec.orbitDeg = 1e308;
+  const AnimationPlan plan(baseRequest(), spec, {});
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_TRUE(std::isfinite(plan.request(i).settings.camera.azimuthDeg)) << "frame " << i;
   }
 }
 
