@@ -38,4 +38,19 @@ glm::ivec2 parseSize(const std::string& flag, const std::string& text) {
   return size;
 }
 
+std::string parseErrorText(const CLI::ParseError& error) {
+  const std::string text = error.what();
+  const std::string conversion = "Could not convert: ";
+  if (text.starts_with(conversion)) {
+    const std::size_t equals = text.find(" = ", conversion.size());
+    if (equals != std::string::npos) {
+      return text.substr(conversion.size(), equals - conversion.size()) + ": '" +
+             text.substr(equals + 3) + "' is not a value it takes";
+    }
+  }
+  const std::size_t atMostOne = text.find(": At Most 1 required but received ");
+  if (atMostOne != std::string::npos) return text.substr(0, atMostOne) + ": given more than once";
+  return text;
+}
+
 }  // namespace vsil::cli

@@ -6,7 +6,8 @@
 
 namespace CLI {
 class Option;
-}
+class ParseError;
+}  // namespace CLI
 
 namespace vsil::cli {
 
@@ -17,5 +18,10 @@ CLI::Option* nonEmpty(CLI::Option* option);
 // "WxH" with positive integers.
 glm::ivec2 parseSize(const std::string& flag, const std::string& text);
 // "A,B" with finite numbers: core/number_pair.h parseNumberPair.
+
+// CLI11's message for a parse error, in the words of vsil's own: "--zoom: 'abc' is not a value
+// it takes" for "Could not convert: --zoom = abc", "--zoom: given more than once" for "--zoom: At
+// Most 1 required but received 2"; other messages as CLI11 words them.
+std::string parseErrorText(const CLI::ParseError& error);
 
 }  // namespace vsil::cli

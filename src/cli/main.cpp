@@ -10,6 +10,7 @@
 #include <new>
 #include <string>
 
+#include "cli/cli_parse.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -45,7 +46,7 @@ int run(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << vsil::mpi::errorPrefix() << e.what() << " (see vsil --help)\n";
+    std::cerr << vsil::mpi::errorPrefix() << vsil::cli::parseErrorText(e) << " (see vsil --help)\n";
     return 2;
   } catch (const vsil::InputError& e) {
     std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";

@@ -41,7 +41,7 @@ NrrdHeader parseHeader(const std::string& path, std::uint64_t fileSize) {
   in.read(text.data(), std::streamsize(readSize));
   text.resize(std::size_t(in.gcount()));
 
-  if (!text.starts_with("NRRD000")) {
+  if (!text.starts_with("NRRD000") || text.size() < 8 || text[7] < '1' || text[7] > '5') {
     throwInputError(path, "is not a NRRD file (the first line must be NRRD0001 .. NRRD0005)");
   }
   NrrdHeader header;
@@ -73,9 +73,15 @@ NrrdHeader parseHeader(const std::string& path, std::uint64_t fileSize) {
     }
     // The format's rule: a field given twice is an error (which one would hold?).
     const std::string field = toLower(trim(line.substr(0, colon)));
-    if (!header.fields.emplace(field, trim(line.substr(colon + 2))).second) {
+    const std::string value(trim(line.substr(colon + 2)));
+    if (!header.fields.emplace(field, value).second) {
       throwInputError(path, "header line " + std::to_string(lineNumber) + ": field " +
                                 quote(field) + " is given twice");
+    }
+    // The file names of "data file: LIST" follow as lines of their own: said before they are
+    // read as malformed fields.
+    if ((field == "data file" || field == "datafile") && value.starts_with("LIST")) {
+      throwInputError(path, "data file " + quote(value) + ": multi-file data is not supported");
     }
   }
   return header;

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/options.h"
 
 namespace vsil::io {
 namespace {
@@ -112,7 +113,7 @@ glm::ivec3 parseDims(const std::string& where, const std::string& field, std::st
 void checkSpacing(const std::string& where, const std::string& field, glm::dvec3 spacing) {
   for (int axis = 0; axis < 3; ++axis) {
     if (!std::isfinite(spacing[axis]) || spacing[axis] <= 0.0) {
-      throwInputError(where, field + " " + std::to_string(spacing[axis]) + " along " + "xyz"[axis] +
+      throwInputError(where, field + " " + formatNumber(spacing[axis]) + " along " + "xyz"[axis] +
                                  " is not a positive, finite distance");
     }
   }

@@ -30,6 +30,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cli/cli_gl_options.h"
+#include "cli/cli_parse.h"
 #include "cli/cli_render_options.h"
 #include "cli/volume_summary.h"
 #include "core/error.h"
@@ -574,7 +575,7 @@ void parseKeywords(CLI::App& app, const py::kwargs& kwargs, const std::string& f
   try {
     app.parse(args);
   } catch (const CLI::ParseError& e) {
-    throw InputError(function + ": " + e.what());
+    throw InputError(function + ": " + cli::parseErrorText(e));
   }
 }
 

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "cli/cli_gl_options.h"
+#include "cli/cli_parse.h"
 #include "cli/cli_volume_options.h"
 #include "core/error.h"
 #include "core/illustration.h"
@@ -114,7 +115,7 @@ CheckedRender checkRenderCommandLine(const RenderCommandLine& line) {
   try {
     app.parse(arguments);
   } catch (const CLI::ParseError& e) {
-    throw InputError(e.what());
+    throw InputError(cli::parseErrorText(e));
   }
   checked.request = cli::toRenderRequest(checked.flags);
   checked.load = cli::toLoadOptions(checked.flags.volume);

@@ -21,6 +21,10 @@ write('double_beyond_float32.nrrd', (nrrd % ('double', '2 1 1', 'endian: little\
       struct.pack('<2d', 1e300, 0))
 write('wrong_magic.nrrd', (nrrd % ('uint8', '2 2 2', '', 'raw')).replace('NRRD0004', 'NRRX0004').encode() + bytes(8))
 # 1 MiB of zeros in ~1 KiB of gzip, for a 64-byte volume: must stop after 65 bytes of output.
+# A multi-file NRRD (its file names on the lines after "data file: LIST") and a version past 5.
+write('nrrd_list.nhdr', 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 2\nencoding: raw\n'
+      'data file: LIST\ns0.raw\ns1.raw\n')
+write('nrrd_version9.nrrd', (nrrd % ('uint8', '4 4 4', '', 'raw')).replace('NRRD0004', 'NRRD0009').encode() + bytes(64))
 write('gzip_bomb.nrrd', (nrrd % ('uint8', '4 4 4', '', 'gzip')).encode() + gzip.compress(bytes(1 << 20), 9, mtime=0))
 write('empty.nrrd', b'')
 # A header claiming 1024³ uint16 samples with 16 bytes of payload, and one whose data file does

@@ -113,7 +113,7 @@ TEST(InputErrors, BadNrrdHeaders) {
       {"type: uint16\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n", "'endian', required"},
       {"type: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: bzip2\n", "encoding 'bzip2'"},
       {"type: uint8\ndimension: 3\nsizes: 2 2 2\nspacings: 1 -1 1\nencoding: raw\n",
-       "spacings -1.000000 along y is not a positive"},
+       "spacings -1 along y is not a positive"},
       {"type: uint8\ndimension: 3\nsizes: 2 2 2\nspacings: 1 0 1\nencoding: raw\n",
        "is not a positive"},
       {"type: uint8\ndimension: 3\nsizes: 2 2 2\nspacings: 1 nan 1\nencoding: raw\n",
