@@ -906,6 +906,9 @@ RuleBase parseRulesText(std::string_view text, const std::string& source,
                                 " bytes, more than the " + std::to_string(limits::kMaxHeaderBytes) +
                                 " allowed");
   }
+  // A UTF-8 byte-order mark (what some Windows editors put first) is no rule text: skipped, as
+  // the JSON inputs skip it. Positions in messages count from after it.
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
   return Parser(text, source, baseDir).parse();
 }
 

@@ -20,6 +20,10 @@ Volume loadVolume(const std::string& spec, const LoadOptions& options) {
   };
   if (spec.starts_with("gen:")) {
     refuseSeries();
+    // The raw layout describes a headerless file; a generated volume would ignore it silently.
+    if (options.raw) {
+      throw InputError("--dims and --type describe a headerless raw file, not " + spec);
+    }
     return generateVolume(spec.substr(4), options.limits, options.region);
   }
   if (spec.empty()) throw InputError("no volume given (a file path or gen:NAME[:N])");

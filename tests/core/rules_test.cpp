@@ -169,6 +169,17 @@ TEST(Rules, OneLineBlocksCommentsAndNumberForms) {
   EXPECT_EQ(base.rules.size(), 1u);
 }
 
+// A UTF-8 byte-order mark before the text (a Windows editor's) is skipped.
+TEST(Rules, AByteOrderMarkIsSkipped) {
+  const std::string text =
+      "attribute a from gradient { x = triangle(0, 0.5, 1) }\n"
+      "style s { spheres = \"blue\" v = points((0, 0), (1, 1)) }\n"
+      "rule if a is x then s is v\n";
+  const RuleBase base = parseRulesText("\xEF\xBB\xBF" + text, "t.rules");
+  EXPECT_EQ(base.rules.size(), 1u);
+  EXPECT_EQ(base.attributes.at(0).name, parseRulesText(text, "t.rules").attributes.at(0).name);
+}
+
 TEST(Rules, SphereFilesResolveAgainstTheRuleFilesFolder) {
   const RuleBase base = parseRulesText(
       "style s { spheres = \"strips/Warm.PNG\"  v = triangle(0, 0.5, 1) }", "t.rules", "/data/x");
