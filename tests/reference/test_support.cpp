@@ -104,7 +104,7 @@ CommandResult runVsil(const std::string& arguments) {
 }
 
 InterruptedRun runVsilInterrupted(const std::vector<std::string>& arguments, double delay,
-                                  int signal) {
+                                  int signal, const std::function<bool()>& ready) {
   const std::string binary = vsilBinary().string();
   std::vector<std::string> args = {binary};
   args.insert(args.end(), arguments.begin(), arguments.end());
@@ -119,12 +119,22 @@ InterruptedRun runVsilInterrupted(const std::vector<std::string>& arguments, dou
   const auto start = std::chrono::steady_clock::now();
   EXPECT_EQ(posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ), 0);
   posix_spawn_file_actions_destroy(&actions);
-  if (delay >= 0) {
+  InterruptedRun run;
+  bool ended = false;
+  if (delay >= 0 && ready) {
+    while (!ready()) {
+      if (::waitpid(pid, &run.status, WNOHANG) == pid) {
+        ended = true;
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  }
+  if (delay >= 0 && !ended) {
     std::this_thread::sleep_for(std::chrono::duration<double>(delay));
     ::kill(pid, signal);
   }
-  InterruptedRun run;
-  EXPECT_EQ(::waitpid(pid, &run.status, 0), pid);
+  if (!ended) EXPECT_EQ(::waitpid(pid, &run.status, 0), pid);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the test suites: where the datasets and the built tool are, scratch folders.
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,8 +50,10 @@ struct InterruptedRun {
   double seconds = 0;
 };
 // Starts `vsil <arguments>` (stdout and stderr to /dev/null), sends it `signal` after `delay`
-// seconds (never, if negative) and waits for it: for the tests of interrupted runs.
+// seconds (never, if negative) and waits for it: for the tests of interrupted runs. With
+// `ready`, the delay counts from when ready() first holds (polled every 2 ms while the run
+// lasts), so that the signal lands at a point of the work, whatever the machine's load.
 InterruptedRun runVsilInterrupted(const std::vector<std::string>& arguments, double delay,
-                                  int signal);
+                                  int signal, const std::function<bool()>& ready = nullptr);
 
 }  // namespace vsil::test
