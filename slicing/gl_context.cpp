@@ -381,10 +381,8 @@ void checkContextOptions(const ContextOptions& options) {
     throw InputError(deviceChoice(options) + ": expected an EGL device number 0, 1, ...");
   }
   if (options.backend == Backend::Osmesa) {
-    throw InputError(deviceChoice(options) +
-                     " picks an EGL device: it goes with --gl egl or auto, "
-                     "not " +
-                     backendChoice(options));
+    const std::string others = "it goes with --gl egl or auto, not " + backendChoice(options);
+    throw InputError(deviceChoice(options) + " picks an EGL device: " + others);
   }
 }
 

@@ -171,8 +171,8 @@ function rangeOf(option) {
   return null;
 }
 
-// The flags that shape lines and fills: only techniques that draw lines take them (the CLI
-// refuses them for the others).
+// The flags that shape lines and fills: only techniques that draw lines use them (the others
+// ignore them, with a warning).
 const lineFlags = ['width', 'width-near', 'width-far', 'line-color', 'fill', 'fill-color'];
 
 // The shared flags the page shows as controls (the view itself is the drag and the wheel).
