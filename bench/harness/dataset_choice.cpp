@@ -5,8 +5,17 @@
 
 namespace vsil::bench {
 
+namespace {
+constexpr const char* kNotFound = "not found: ";
+constexpr const char* kUnreadable = "cannot be read: ";
+}  // namespace
+
 std::string notFound(const std::filesystem::path& path) {
-  return "not found: " + path.string() + " (use --datasets DIR)";
+  return kNotFound + path.string() + " (use --datasets DIR)";
+}
+
+bool isMissingFile(const std::string& missing) {
+  return missing.starts_with(kNotFound) || missing.starts_with(kUnreadable);
 }
 
 std::optional<Volume> readDatasetVolume(const std::filesystem::path& path, std::string& missing) {
@@ -17,7 +26,7 @@ std::optional<Volume> readDatasetVolume(const std::filesystem::path& path, std::
   try {
     return loadVolume(path.string());
   } catch (const InputError& e) {
-    missing = std::string("cannot be read: ") + e.what();
+    missing = kUnreadable + std::string(e.what());
     return std::nullopt;
   }
 }

@@ -24,6 +24,10 @@ struct DatasetChoice {
 // "not found: PATH (use --datasets DIR)"
 std::string notFound(const std::filesystem::path& path);
 
+// True for a reason notFound or readDatasetVolume gave: the dataset has a file that is not
+// there or not readable (not one that has no stored copy at all, as the nk3 table's Skull).
+bool isMissingFile(const std::string& missing);
+
 template <typename Dataset>
 std::vector<DatasetChoice<Dataset>> chooseDatasets(std::span<const Dataset> datasets,
                                                    const BenchOptions& options) {

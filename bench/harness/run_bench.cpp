@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/image_file.h"
 #include "core/options.h"
+#include "harness/dataset_choice.h"
 #include "harness/machine_info.h"
 #include "harness/plot.h"
 #include "harness/table_registry.h"
@@ -143,6 +144,22 @@ BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostrea
     report.failures.insert(report.failures.end(), table.failures.begin(), table.failures.end());
     for (const auto& row : table.rows) rows.push_back(row);
     tables.push_back(std::move(table));
+  }
+
+  // A dataset run by default may be missing (its rows say so); the file of one --only asks for
+  // may not: the run fails before any output file is written.
+  for (const auto& name : options.only) {
+    std::string missing;
+    bool measured = false;
+    for (const auto& row : rows) {
+      if (row.value("dataset", "") != name) continue;
+      if (!row.contains("missing")) {
+        measured = true;
+      } else if (missing.empty()) {
+        missing = row["missing"].get<std::string>();
+      }
+    }
+    if (!measured && isMissingFile(missing)) throw InputError("--only " + name + ": " + missing);
   }
 
   // All written, or none (a full disk for one leaves the others as they were).
