@@ -37,7 +37,7 @@ std::string toText(const Volume& volume, const Summary& s) {
       << "type      " << sampleTypeName(volume.type());
   if (!volume.fileType.empty()) {
     out << " (the file's " << volume.fileType << "; " << volume.inexactSamples
-        << " samples rounded)";
+        << (volume.inexactSamples == 1 ? " sample" : " samples") << " rounded)";
   }
   out << "\n";
   if (volume.rescale) {

@@ -107,12 +107,35 @@ StoredType parseType(const std::string& path, const std::string& name) {
       {"unsigned short int", StoredType::UInt16},
       {"uint16", StoredType::UInt16},
       {"uint16_t", StoredType::UInt16},
+      {"int", StoredType::Int32},
+      {"signed int", StoredType::Int32},
+      {"int32", StoredType::Int32},
+      {"int32_t", StoredType::Int32},
+      {"uint", StoredType::UInt32},
+      {"unsigned int", StoredType::UInt32},
+      {"uint32", StoredType::UInt32},
+      {"uint32_t", StoredType::UInt32},
+      {"longlong", StoredType::Int64},
+      {"long long", StoredType::Int64},
+      {"long long int", StoredType::Int64},
+      {"signed long long", StoredType::Int64},
+      {"signed long long int", StoredType::Int64},
+      {"int64", StoredType::Int64},
+      {"int64_t", StoredType::Int64},
+      {"ulonglong", StoredType::UInt64},
+      {"unsigned long long", StoredType::UInt64},
+      {"unsigned long long int", StoredType::UInt64},
+      {"uint64", StoredType::UInt64},
+      {"uint64_t", StoredType::UInt64},
       {"float", StoredType::Float32},
       {"double", StoredType::Float64},
   };
   if (auto it = aliases.find(toLower(name)); it != aliases.end()) return it->second;
-  throwInputError(path, "type " + quote(name) +
-                            " is not supported (uint8, int8, uint16, int16, float, double)");
+  throwInputError(
+      path,
+      "type " + quote(name) +
+          " is not supported (uint8, int8, uint16, int16, int32, uint32, int64, uint64, float, "
+          "double)");
 }
 
 // "(1,0,0) (0,2,0) (0,0,0.5)": the spacing along each axis is the length of its vector.

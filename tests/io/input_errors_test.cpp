@@ -109,7 +109,7 @@ TEST(InputErrors, BadNrrdHeaders) {
       {"type: uint8\ndimension: 3\nsizes: 2 x2 2\nencoding: raw\n", "sizes value 'x2' is not an"},
       {"type: uint8\ndimension: 3\nsizes: 2 2\nencoding: raw\n", "sizes needs 3 values, found 2"},
       {"type: uint8\ndimension: three\nsizes: 2 2 2\nencoding: raw\n", "dimension value 'three'"},
-      {"type: int32\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n", "type 'int32' is not supported"},
+      {"type: block\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n", "type 'block' is not supported"},
       {"type: uint16\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n", "'endian', required"},
       {"type: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: bzip2\n", "encoding 'bzip2'"},
       {"type: uint8\ndimension: 3\nsizes: 2 2 2\nspacings: 1 -1 1\nencoding: raw\n",

@@ -126,6 +126,57 @@ TEST(NrrdReader, Int8StaysInt8AndDoubleLoadsAsFloat32) {
   EXPECT_EQ(f64.inexactSamples, 1u);  // 0.1; the others are exact in float32
 }
 
+// The 32- and 64-bit integers (NRRD's int, uint, longlong, ulonglong and their aliases), raw
+// in either byte order, gzip and ascii, are kept as float32 as the other readers keep them:
+// exact up to 2^24, the samples float32 changes counted, the file's type reported.
+TEST(NrrdReader, WideIntegersConvertToFloat32CountingRoundedSamples) {
+  struct WideCase {
+    const char* type;
+    const char* fileType;
+    std::size_t size;
+    std::vector<std::int64_t> values;
+    std::vector<float> kept;
+    std::uint64_t inexact;
+  };
+  const WideCase cases[] = {
+      {"int",
+       "int32",
+       4,
+       {-5, 16777216, 16777217, 2147483647},
+       {-5, 16777216, 16777216, 0x1p31f},
+       2},
+      {"unsigned int", "uint32", 4, {0, 4294967295, 255, 16777215}, {0, 0x1p32f, 255, 16777215}, 1},
+      {"longlong", "int64", 8, {-1, -7, 16777217, 3}, {-1, -7, 16777216, 3}, 1},
+      {"uint64_t", "uint64", 8, {3, 9, 16777218, 0}, {3, 9, 16777218, 0}, 0},
+  };
+  for (const WideCase& c : cases) {
+    for (const char* encoding : {"raw", "gzip", "ascii"}) {
+      for (bool big : {false, true}) {
+        SCOPED_TRACE(std::string(c.type) + " " + encoding + (big ? " big-endian" : ""));
+        const Bytes data = test::encodeIntegers(c.values, c.size, big);
+        Bytes payload = data;
+        if (std::string(encoding) == "gzip") payload = test::deflateBytes(data, true);
+        if (std::string(encoding) == "ascii") {
+          std::string text;
+          for (std::int64_t v : c.values) {
+            text +=
+                (c.fileType[0] == 'u' ? std::to_string(std::uint64_t(v)) : std::to_string(v)) + " ";
+          }
+          payload = Bytes(text.begin(), text.end());
+        }
+        const Volume v =
+            loadAttached(std::string("type: ") + c.type + "\nendian: " + (big ? "big" : "little") +
+                             "\nencoding: " + encoding + "\n",
+                         payload);
+        EXPECT_EQ(v.type(), SampleType::Float32);
+        EXPECT_EQ(v.fileType, c.fileType);
+        EXPECT_EQ(test::floatsOf(v), c.kept);
+        EXPECT_EQ(v.inexactSamples, c.inexact);
+      }
+    }
+  }
+}
+
 TEST(NrrdReader, SpacingIsTheLengthOfEachSpaceDirection) {
   const Volume v = loadAttached(
       "type: uint8\nencoding: raw\nspace: right-anterior-superior\n"
