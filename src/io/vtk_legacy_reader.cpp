@@ -31,11 +31,17 @@ StoredType parseLegacyType(const std::string& path, std::string_view name) {
   if (lower == "char") return StoredType::Int8;
   if (lower == "unsigned_short") return StoredType::UInt16;
   if (lower == "short") return StoredType::Int16;
+  // The wider integers are kept as float32 (sample_codec.h). VTK's "long" and "unsigned_long"
+  // are as wide as the writer's C long (4 or 8 bytes), which the file does not say: refused.
+  if (lower == "int") return StoredType::Int32;
+  if (lower == "unsigned_int") return StoredType::UInt32;
+  if (lower == "vtktypeint64") return StoredType::Int64;
+  if (lower == "vtktypeuint64") return StoredType::UInt64;
   if (lower == "float") return StoredType::Float32;
   if (lower == "double") return StoredType::Float64;  // converted to float32 when finite
   throwInputError(path, "SCALARS type " + quote(name) +
-                            " is not supported (unsigned_char, char, unsigned_short, short, "
-                            "float, double)");
+                            " is not supported (unsigned_char, char, unsigned_short, short, int, "
+                            "unsigned_int, vtktypeint64, vtktypeuint64, float, double)");
 }
 
 // Walks the header line by line, keeping the byte offset of each line.

@@ -141,8 +141,8 @@ TEST(InputErrors, UnknownTypesInEveryFormat) {
   const std::string vtk = scratchFile("t.vtk",
                                       "# vtk DataFile Version 3.0\nt\nASCII\n"
                                       "DATASET STRUCTURED_POINTS\nDIMENSIONS 1 1 1\n"
-                                      "POINT_DATA 1\nSCALARS s int\n1\n");
-  expectInputError([&] { loadVolume(vtk); }, vtk + ": ", {"SCALARS type 'int' is not supported"});
+                                      "POINT_DATA 1\nSCALARS s long\n1\n");
+  expectInputError([&] { loadVolume(vtk); }, vtk + ": ", {"SCALARS type 'long' is not supported"});
 }
 
 TEST(InputErrors, NonFiniteFloatsNameTheFirstBadSample) {
