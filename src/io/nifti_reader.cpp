@@ -303,7 +303,13 @@ Volume readNifti(const std::string& path, const LoadOptions& options) {
     }
   }
 
-  const std::string dataPath = image->iname;
+  // nifticlib looks for a .hdr's image as .img (and a .hdr.gz's as .img.gz); an uncompressed
+  // .hdr beside a gzipped .img.gz is read too.
+  std::string dataPath = image->iname;
+  if (dataPath != path && fileTypeAt(dataPath, dataPath) == std::filesystem::file_type::not_found &&
+      fileTypeAt(dataPath + ".gz", dataPath + ".gz") != std::filesystem::file_type::not_found) {
+    dataPath += ".gz";
+  }
   const std::string dataLabel =
       dataPath == path ? "its data"
                        : "data file " + quote(std::filesystem::path(dataPath).filename().string());

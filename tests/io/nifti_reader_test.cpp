@@ -57,6 +57,20 @@ TEST(NiftiReader, EveryFixtureIsListed) {
   EXPECT_EQ(niftiFixtures().size(), 19u);  // 10 datatypes and 9 layouts
 }
 
+// A .hdr whose image was gzipped on its own (.img.gz beside it) reads as its .img would.
+TEST(NiftiReader, AHeaderBesideAGzippedImageReadsItsSamples) {
+  const fs::path dir = test::scratchDir();
+  fs::copy_file(kNiftiFixtures / "uint8_pair.hdr", dir / "pair.hdr");
+  const std::string image = test::readFileBytes(kNiftiFixtures / "uint8_pair.img");
+  test::writeFile(dir / "pair.img.gz",
+                  test::deflateBytes(test::Bytes(image.begin(), image.end()), true));
+  const Volume plain = loadVolume((kNiftiFixtures / "uint8_pair.hdr").string());
+  const Volume gzipped = loadVolume((dir / "pair.hdr").string());
+  EXPECT_EQ(gzipped.format, "NIfTI-1 (.hdr/.img, gzip)");
+  EXPECT_EQ(gzipped.dims, plain.dims);
+  EXPECT_EQ(test::floatsOf(gzipped), test::floatsOf(plain));
+}
+
 TEST(NiftiReader, RescaleIsRecordedAndAppliedInDouble) {
   const Volume ct = loadVolume((kNiftiFixtures / "uint16_rescaled.nii").string());
   ASSERT_TRUE(ct.rescale);
