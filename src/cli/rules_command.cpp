@@ -21,7 +21,7 @@ struct RulesFlags {
 
 void runRules(const RulesFlags& flags) {
   if (validateOnly()) return;
-  const RuleBase rules = loadRulesPreset(flags.input);
+  const RuleBase rules = loadRulesPreset(flags.input, "rules FILE");
   buildSphereAtlas(rules);  // the sphere files must read
   const CompiledRules compiled = compileRules(rules);
   for (const auto& warning : rules.warnings) std::cerr << "vsil: " << warning << "\n";

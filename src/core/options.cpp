@@ -79,7 +79,10 @@ std::optional<std::vector<double>> parseNumberList(std::string_view text, int co
 }
 
 bool isInlineSource(std::string_view text) {
-  return text.find('{') != std::string_view::npos;
+  const auto first = text.find_first_not_of(" \t\r\n");
+  const auto last = text.find_last_not_of(" \t\r\n");
+  const bool list = first != std::string_view::npos && text[first] == '[' && text[last] == ']';
+  return list || text.find('{') != std::string_view::npos;
 }
 
 std::string formatNumber(double number) {

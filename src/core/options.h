@@ -100,8 +100,9 @@ std::string formatNumber(double number);
 std::string joined(const std::vector<std::string>& items, const std::string& separator = ", ");
 // Whether a --tf, --style or --rules value is the content itself (a JSON list or object, rule
 // text) rather than a preset name or a file: it holds '{', which no preset name holds and every
-// transfer function, style and rule base does (a point, an object, an attribute block). The
-// Python package passes tf=[{...}], style={...} and rule text this way.
+// transfer function, style and rule base does (a point, an object, an attribute block), or it
+// is a JSON list ("[ ... ]", also the empty one, refused then for what it lacks). The Python
+// package passes tf=[{...}], style={...} and rule text this way.
 bool isInlineSource(std::string_view text);
 
 // Option values by name, as given (defaults are not stored here).

@@ -930,17 +930,20 @@ bool isRulesFile(std::string_view text) {
   return text.ends_with(".rules") || text.find('/') != std::string_view::npos;
 }
 
-RuleBase loadRulesPreset(const std::string& nameOrFile) {
+RuleBase loadRulesPreset(const std::string& nameOrFile, const std::string& where) {
   // Rule text itself (it holds an attribute block's '{'); a spheres PNG it names is read from
   // the working directory.
-  if (isInlineSource(nameOrFile)) return parseRulesText(nameOrFile, "--rules", {});
+  if (isInlineSource(nameOrFile)) return parseRulesText(nameOrFile, where, {});
   if (isRulesFile(nameOrFile)) return loadRules(nameOrFile);
   const auto names = rulePresetNames();
   if (std::find(names.begin(), names.end(), nameOrFile) == names.end()) {
     std::string known;
     for (const auto& name : names) known += (known.empty() ? "" : ", ") + name;
-    throwInputError("--rules", "unknown preset '" + nameOrFile + "' (presets: " + known +
-                                   "; or a .rules file)");
+    if (nameOrFile.find_first_not_of(" \t\r\n") == std::string::npos) {
+      throwInputError(where, "is empty: give a preset (" + known + ") or a .rules file");
+    }
+    throwInputError(where, "unknown preset '" + nameOrFile + "' (presets: " + known +
+                               "; or a .rules file)");
   }
   // Presets name only built-in sphere ramps: there is no folder beside them.
   return parseRulesText(embeddedRuleSource(nameOrFile + ".rules"), nameOrFile + ".rules", {});

@@ -197,9 +197,10 @@ RuleBase loadRules(const std::string& path);
 // default, example, fig6-cube, tooth-focus-context.
 std::vector<std::string> rulePresetNames();
 // A text ending in ".rules" or holding a '/' is a file; anything else names a preset (messages
-// then name "NAME.rules"); InputError "--rules: unknown preset ..." for other names.
+// then name "NAME.rules"); InputError "WHERE: unknown preset ..." for other names, `where`
+// naming what gave it (the --rules flag, or the rules command's FILE).
 bool isRulesFile(std::string_view text);
-RuleBase loadRulesPreset(const std::string& nameOrFile);
+RuleBase loadRulesPreset(const std::string& nameOrFile, const std::string& where = "--rules");
 
 // The paper's defuzzification (its equations 2-6): for a consequent (a style or the flatness)
 // with semantic values m_j, a rule i of degree a_i adds min(m_j(x), a_i) to the aggregated

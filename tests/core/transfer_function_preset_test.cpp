@@ -162,6 +162,15 @@ TEST(TransferFunctionPresets, TheOptionTakesTheJsonItself) {
   EXPECT_TRUE(isInlineSource(json));
   EXPECT_FALSE(isInlineSource("ct-bone"));
   EXPECT_FALSE(isInlineSource("dir/tf.json"));
+  // A list without an object in it is still the JSON, refused for what it lacks (it was once
+  // looked up as a preset named "[]").
+  EXPECT_TRUE(isInlineSource(" [ ] "));
+  try {
+    checkTransferFunctionOption("[]");
+    FAIL() << "an empty list was taken";
+  } catch (const InputError& error) {
+    EXPECT_STREQ(error.what(), "--tf: has no control points");
+  }
   const TransferFunction tf = transferFunctionOption(json, kEightBit);
   ASSERT_EQ(tf.points.size(), 2u);
   EXPECT_EQ(tf.points[1].value, 9.0);
