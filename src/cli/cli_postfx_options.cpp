@@ -77,11 +77,16 @@ void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options,
         options.fillColor = vsil::parseColor(text, "--fill-color");
       },
       "colour of --fill flat / shaded / tone");
-  for (const char* flag :
-       {"--width", "--width-near", "--width-far", "--line-color", "--fill", "--fill-color"}) {
+  for (const std::string& flag : lineFlags()) {
     command.get_option(flag)->each(
         [&lineFlagsGiven, flag](const std::string&) { lineFlagsGiven.push_back(flag); });
   }
+}
+
+const std::vector<std::string>& lineFlags() {
+  static const std::vector<std::string> flags = {"--width",      "--width-near", "--width-far",
+                                                 "--line-color", "--fill",       "--fill-color"};
+  return flags;
 }
 
 }  // namespace vsil::cli

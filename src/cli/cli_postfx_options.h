@@ -19,6 +19,10 @@ namespace vsil::cli {
 void addPostfxOptions(CLI::App& command, vsil::PostfxOptions& options,
                       std::vector<std::string>& lineFlagsGiven);
 
+// Those line flags, in declaration order: "--width", "--width-near", ..., "--fill-color". The
+// serve page's option table marks them (line_flag) and hides them for techniques without lines.
+const std::vector<std::string>& lineFlags();
+
 // Parses a fill mode name (none, flat, shaded, tone); InputError naming `flagName` otherwise.
 vsil::FillMode parseFillMode(const std::string& text, const std::string& flagName);
 

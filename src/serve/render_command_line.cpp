@@ -8,6 +8,7 @@
 
 #include "cli/cli_gl_options.h"
 #include "cli/cli_parse.h"
+#include "cli/cli_postfx_options.h"
 #include "cli/cli_volume_options.h"
 #include "core/error.h"
 #include "core/illustration.h"
@@ -283,11 +284,14 @@ nlohmann::json PageParameters::optionTable() const {
   nlohmann::json shared = nlohmann::json::array();
   for (const auto& [name, settable] : settable_) {
     if (settable.technique) continue;
+    const bool lineFlag =
+        std::ranges::find(cli::lineFlags(), "--" + name) != cli::lineFlags().end();
     shared.push_back({{"name", name},
                       {"key", keyOf(name)},
                       {"kind", settable.isSwitch ? "switch" : "text"},
                       {"help", settable.help},
-                      {"default", settable.defaultText}});
+                      {"default", settable.defaultText},
+                      {"line_flag", lineFlag}});
   }
   nlohmann::json presets = nlohmann::json::object();
   for (const auto& [name, names] : presetOnlyOptions()) presets[keyOf(name)] = names;

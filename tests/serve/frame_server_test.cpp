@@ -8,6 +8,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "cli/cli_postfx_options.h"
 #include "core/error.h"
 #include "core/transfer_function.h"
 #include "serve/frame_server.h"
@@ -85,10 +87,14 @@ TEST(FrameServer, ServesThePageAndTheOptionTableOfEveryTechnique) {
     }
   }
   bool widthNear = false, crop = false;
+  std::set<std::string> lineFlags;
   for (const auto& shared : table["shared"]) {
     widthNear |= shared["key"] == "width_near";
     crop |= shared["key"] == "crop";
+    if (shared["line_flag"] == true) lineFlags.insert("--" + shared["name"].get<std::string>());
   }
+  // The page hides these for techniques without lines: the CLI's own list of line flags.
+  EXPECT_EQ(lineFlags, std::set<std::string>(cli::lineFlags().begin(), cli::lineFlags().end()));
   EXPECT_TRUE(widthNear);
   EXPECT_FALSE(crop) << "volume flags are the server's";
 

@@ -171,9 +171,11 @@ function rangeOf(option) {
   return null;
 }
 
-// The flags that shape lines and fills: only techniques that draw lines use them (the others
-// ignore them, with a warning).
-const lineFlags = ['width', 'width-near', 'width-far', 'line-color', 'fill', 'fill-color'];
+// The flags that shape lines and fills (the option table marks them line_flag): only techniques
+// that draw lines use them (the others ignore them, with a warning).
+function lineFlags() {
+  return table.shared.filter((o) => o.line_flag);
+}
 
 // The shared flags the page shows as controls (the view itself is the drag and the wheel).
 const widthRange = [1, 16, 1];
@@ -191,7 +193,7 @@ function buildControls() {
   const shared = document.getElementById('shared-options');
   shared.replaceChildren(...table.shared
       .filter((o) => o.name in sharedControls)
-      .filter((o) => info.draws_lines || !lineFlags.includes(o.name))
+      .filter((o) => info.draws_lines || !o.line_flag)
       .map((o) => {
         const how = sharedControls[o.name];
         const choices = how && typeof how[0] === 'string' ? how : null;
@@ -214,9 +216,8 @@ function chooseTechnique(name) {
       values[option.key] = '';
     }
   }
-  if (!next.draws_lines) for (const name of lineFlags) {
-    const key = name.replaceAll('-', '_');
-    if (key in values) values[key] = '';
+  if (!next.draws_lines) for (const option of lineFlags()) {
+    if (option.key in values) values[option.key] = '';
   }
   buildControls();
   requestFrame();
