@@ -731,6 +731,20 @@ struct Slot {
   std::uint64_t uploadedTextureBytes = limits::kMaxTextureBytes;
 };
 
+// The turn of a slot's job. Its job is looked at once the turn is held: close() ends the main
+// slot's job in a turn of its own, which may come while this thread waits for the lock (a
+// Renderer closed from another thread); then this raises "closed" instead of using the ended job.
+class SlotTurn {
+ public:
+  explicit SlotTurn(Slot& slot) : turn_(nullptr) {
+    if (!slot.job) throw InputError("vsil.Renderer: this renderer is closed");
+    turn_.setJob(slot.job.get());
+  }
+
+ private:
+  GlTurn turn_;
+};
+
 class PythonRenderer {
  public:
   explicit PythonRenderer(const py::kwargs& kwargs) {
@@ -770,7 +784,7 @@ class PythonRenderer {
     std::shared_ptr<Slot> resident = residentSlot(volume.volume);
     Slot& slot = resident ? *resident : main_;
     {
-      GlTurn turn(slot.job.get());
+      SlotTurn turn(slot);
       uploadInBricks(slot, volume.volume, slot.uploadedTextureBytes);
     }
     release(resident);
@@ -820,7 +834,7 @@ class PythonRenderer {
     {
       // Upload (or load) and render in one turn: another thread's turn in between could
       // replace the volume this Renderer holds.
-      GlTurn turn(slot.job.get());
+      SlotTurn turn(slot);
       held = holdVolume(slot, request);
       output = slot.job->render(request.render, request.load.limits);
     }
@@ -863,7 +877,7 @@ class PythonRenderer {
     std::vector<RenderOutput> outputs;
     Held held;
     {
-      GlTurn turn(slot.job.get());
+      SlotTurn turn(slot);
       held = holdVolume(slot, request);
       std::optional<VideoFile> file;
       if (!videoPath.empty()) file.emplace(videoPath, request.render.settings.size, fps);

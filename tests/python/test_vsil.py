@@ -12,6 +12,7 @@ import os
 import pathlib
 import re
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -923,3 +924,43 @@ def test_every_technique_options_default_is_the_one_the_command_line_states(rend
         checked += 1
     assert checked >= 15
     assert signature["flatness"].default is None
+
+
+def test_closing_a_renderer_while_another_thread_uses_it_raises_there_not_crashes():
+    """close() from one thread while another renders, uploads or animates: the other thread gets
+    ValueError ("closed"), whichever of them takes the GL lock first (the job used to be looked
+    up before the wait and used after it: a segfault). Run in a child: a crash fails the test."""
+    script = r"""
+import random, sys, threading, time
+import vsil
+random.seed(7)
+volume = vsil.generate("spheres", 32)
+calls = {
+    "render": lambda r: r.render(volume, size=(48, 48)),
+    "upload": lambda r: r.upload(volume),
+    "animate": lambda r: r.animate(volume, frames=2, size=(32, 32)),
+}
+for name, call in calls.items():
+    for trial in range(25):
+        renderer = vsil.Renderer()
+        errors = []
+        def loop():
+            try:
+                while True:
+                    call(renderer)
+            except ValueError as error:
+                if "closed" not in str(error):
+                    errors.append(repr(error))
+        thread = threading.Thread(target=loop)
+        thread.start()
+        time.sleep(random.uniform(0, 0.03))
+        renderer.close()
+        thread.join()
+        if errors:
+            sys.exit(f"{name}: {errors[0]}")
+print("ok")
+"""
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                            timeout=600)
+    assert result.returncode == 0, (result.returncode, result.stderr[-2000:])
+    assert result.stdout.strip() == "ok"
