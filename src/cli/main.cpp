@@ -29,6 +29,7 @@ int run(int argc, char** argv) {
   CLI::App app{"vsil: silhouettes and illustrations of volume data, rendered offscreen"};
   vsil::cli::setUpApp(app);
   try {
+    vsil::mpi::requireSameCommand(argc, argv);
     app.parse(argc, argv);
     // A report lost on its way out (a full disk behind `> info.json`, a closed stdout) is no
     // success: stdout's buffer is flushed here, where a failure can still be told.
@@ -46,7 +47,12 @@ int run(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << vsil::mpi::errorPrefix() << vsil::cli::parseErrorText(e) << " (see vsil --help)\n";
+    // The arguments alone decide it, and every rank has the same (requireSameCommand): under
+    // mpirun rank 0 says it once and no rank aborts the others.
+    if (vsil::mpi::rank() == 0) {
+      std::cerr << "vsil: " << vsil::cli::parseErrorText(e) << " (see vsil --help)\n";
+    }
+    vsil::mpi::failAlike();
     return 2;
   } catch (const vsil::InputError& e) {
     std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
@@ -54,7 +60,7 @@ int run(int argc, char** argv) {
   } catch (const vsil::mpi::EveryRankError& e) {
     if (vsil::mpi::rank() == 0) std::cerr << "vsil: " << e.what() << "\n";
     vsil::mpi::failAlike();
-    return 1;
+    return e.status();
   } catch (const vsil::PartialFailure& e) {
     std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
     return kPartialFailureStatus;

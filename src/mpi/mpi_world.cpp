@@ -1,6 +1,8 @@
 #include "mpi/mpi_world.h"
 
 #include <cstdlib>
+#include <limits>
+#include <string>
 
 #include "core/error.h"
 
@@ -65,6 +67,26 @@ int size() {
   return value;
 }
 
+void requireSameCommand(int argc, char** argv) {
+  if (!active() || size() < 2) return;
+  std::string arguments;  // each argument ended by a NUL: "a b" and "a" "b" differ
+  for (int i = 1; i < argc; ++i) arguments.append(argv[i]).push_back('\0');
+  unsigned long long length = arguments.size();
+  MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+  std::string first = rank() == 0 ? arguments : std::string(std::size_t(length), '\0');
+  // A command line is far below INT_MAX bytes (the kernel's ARG_MAX).
+  if (length > 0) MPI_Bcast(first.data(), int(length), MPI_CHAR, 0, MPI_COMM_WORLD);
+  const int mine = first == arguments ? std::numeric_limits<int>::max() : rank();
+  int lowest = mine;
+  MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (lowest != std::numeric_limits<int>::max()) {
+    throw EveryRankError("mpirun: rank " + std::to_string(lowest) +
+                             " runs another command line than rank 0: every rank must run the "
+                             "same vsil command",
+                         2);
+  }
+}
+
 int finish(int exitCode) {
   if (!active()) return exitCode;
   if (exitCode != 0 && size() > 1 && !failingAlike) MPI_Abort(MPI_COMM_WORLD, exitCode);
@@ -78,6 +100,7 @@ bool active() {
   return false;
 }
 void initIfLaunched(int*, char***) {}
+void requireSameCommand(int, char**) {}
 int rank() {
   return 0;
 }

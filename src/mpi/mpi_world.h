@@ -11,9 +11,15 @@ namespace vsil::mpi {
 
 // An error every rank meets alike (a refusal decided from the flags alone, before reading):
 // main() prints it on rank 0 only, so that N ranks do not print N copies.
+// `status` is the exit status (1: unavailable, as UnavailableError; 2: the command's own fault).
 class EveryRankError : public UnavailableError {
  public:
-  using UnavailableError::UnavailableError;
+  explicit EveryRankError(const std::string& message, int status = 1)
+      : UnavailableError(message), status_(status) {}
+  int status() const { return status_; }
+
+ private:
+  int status_;
 };
 
 // Whether this build has MPI.
@@ -24,6 +30,12 @@ bool launched();
 // First thing in main(): MPI_Init_thread (MPI_THREAD_FUNNELED: only the main thread calls MPI)
 // when launched() and built(); nothing otherwise.
 void initIfLaunched(int* argc, char*** argv);
+// Every rank must run the same command: ranks that differ (`mpirun -n 1 vsil render a : -n 1 vsil
+// info b`, another volume or view on one rank) would wait for each other forever or gather
+// unlike pictures into one. Compares each rank's arguments (argv[1..]) with rank 0's, a
+// collective every rank of an active world calls first; throws EveryRankError (status 2) on
+// every rank when any differs. Nothing without MPI or with one rank.
+void requireSameCommand(int argc, char** argv);
 // Whether MPI is initialized and not yet finalized.
 bool active();
 // This process's rank in MPI_COMM_WORLD and the world's size: 0 and 1 when MPI is not active.

@@ -192,3 +192,31 @@ fi
 count=$(grep -c "need the volume in one texture" "$work/err" || true)
 [[ $count == 1 ]] || { cat "$work/err" >&2; fail "--halo-mode exact: the refusal printed $count times"; }
 echo "illustrate --halo-mode exact across ranks: one refusal line, no output"
+
+# Ranks that run different commands (MPMD's ':'): another technique, another command (which
+# never joined the render's collectives: a hang), another view. Refused on every rank at start
+# (exit 2, one line from rank 0), within the timeout, no output.
+mpmd_case() {  # $1: label; the rest: rank 1's arguments after "vsil"
+  local label=$1
+  shift
+  if timeout 120 "$mpiexec" --oversubscribe -np 1 "$vsil" render "$volume" --technique mip \
+    --size 64x64 --out "$work/many.png" : -np 1 "$vsil" "$@" >"$work/out" 2>"$work/err"; then
+    fail "$label: expected a refusal"
+  fi
+  [[ ! -e $work/many.png ]] || fail "$label: an output file was written"
+  count=$(grep -c "runs another command line than rank 0" "$work/err" || true)
+  [[ $count == 1 ]] || { cat "$work/err" >&2; fail "$label: the refusal printed $count times"; }
+}
+mpmd_case "another technique" render "$volume" --technique silhouette --size 64x64 \
+  --out "$work/many.png"
+mpmd_case "another command" info "$volume"
+mpmd_case "another view" render "$volume" --technique mip --size 64x64 --out "$work/many.png" \
+  --view 180,0
+# A refused flag is the same on every rank: said once.
+if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --bogus >"$work/out" \
+  2>"$work/err"; then
+  fail "--bogus -np 2: expected a refusal"
+fi
+count=$(grep -c "not expected: --bogus" "$work/err" || true)
+[[ $count == 1 ]] || { cat "$work/err" >&2; fail "--bogus: the refusal printed $count times"; }
+echo "ranks with different command lines, a refused flag: one line from rank 0, no output"
