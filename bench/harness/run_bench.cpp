@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "core/json_input.h"
 #include "core/options.h"
 #include "harness/dataset_choice.h"
 #include "harness/machine_info.h"
@@ -179,7 +180,7 @@ BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostrea
                                     {"failures", table.failures}});
     }
     document["rows"] = rows;
-    outputs.add(options.json, document.dump(2) + "\n");
+    outputs.add(options.json, jsonText(document, 2) + "\n");
   }
   if (!options.markdown.empty()) {
     outputs.add(options.markdown, markdownReport(machine, tables));

@@ -24,6 +24,7 @@
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "core/json_input.h"
 #include "core/limits.h"
 #include "core/number_pair.h"
 #include "core/progress_line.h"
@@ -205,7 +206,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
                               {"write", writeMs},
                               {"total", millisecondsSince(start)}};
     document["fps"] = fps;
-    writeFileAtomically(outDir / "frames.json", document.dump(1) + "\n");
+    writeFileAtomically(outDir / "frames.json", jsonText(document, 1) + "\n");
   }
   // A video into standard output (--video /dev/stdout | ffplay -) comes there alone.
   std::ostream& report = reportStream({video ? flags.video : ""});

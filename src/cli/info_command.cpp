@@ -18,6 +18,7 @@
 #include "cli/commands.h"
 #include "cli/volume_summary.h"
 #include "core/error.h"
+#include "core/json_input.h"
 #include "core/transfer_function.h"
 #include "io/volume_loader.h"
 
@@ -150,7 +151,7 @@ void runInfo(const InfoOptions& options) {
     nlohmann::ordered_json json =
         volume ? summaryJson(*volume, *summary) : nlohmann::ordered_json::object();
     if (gl) json["gl"] = toJson(*gl);
-    std::cout << json.dump(2) << "\n";
+    std::cout << jsonText(json, 2) << "\n";
   } else {
     std::cout << (gl ? toText(*gl) : "") << (gl && volume ? "\n" : "")
               << (volume ? toText(*volume, *summary) : "");

@@ -16,6 +16,7 @@
 #include "core/depth_image.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "core/json_input.h"
 #include "core/options.h"
 #include "postfx/line_width.h"
 
@@ -76,7 +77,7 @@ void run(const MeasureWidthArgs& args) {
       outputs.add(args.plot, encodePng(args.plot, plotWidthAgainstDepth(samples, depth, bins)));
     }
   }
-  if (!args.json.empty()) outputs.add(args.json, report.dump(2) + "\n");
+  if (!args.json.empty()) outputs.add(args.json, jsonText(report, 2) + "\n");
   outputs.commit();
   reportStream({args.json, args.plot}) << text.str();
 }

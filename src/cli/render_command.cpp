@@ -17,6 +17,7 @@
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "core/json_input.h"
 #include "job/render_job.h"
 #include "mpi/mpi_world.h"
 #ifdef VSIL_HAVE_MPI
@@ -189,7 +190,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
                       {"write", write},
                       {"total", total}});
     if (acrossRanks) meta["mpi"] = mpiMeta;
-    batch.add(outputs.metaOut, meta.dump(2) + "\n");
+    batch.add(outputs.metaOut, jsonText(meta, 2) + "\n");
   }
   batch.commit();
   if (!namesStandardOutput(outputs.out)) {

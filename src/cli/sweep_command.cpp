@@ -379,7 +379,7 @@ std::string csvText(const std::vector<Json>& rows) {
         if (seen.insert(name).second) columns.push_back(name);
         cells[row][name] = value.is_null()     ? ""
                            : value.is_string() ? value.get<std::string>()
-                                               : value.dump();
+                                               : jsonText(value);
       };
   for (std::size_t i = 0; i < rows.size(); ++i) flatten(rows[i], "", i);
   const auto quoted = [](const std::string& text) {
@@ -437,7 +437,7 @@ void run(const SweepFlags& flags) {
   vsil::ProgressLine progress(std::cerr, isatty(STDERR_FILENO) == 1);
   const auto loopStart = Clock::now();
   mpi::runTaskFarm(
-      count, [&](int task) { return runner.run(task).dump(); },
+      count, [&](int task) { return jsonText(runner.run(task)); },
       [&](int task, const std::string& result, int) {
         rows[std::size_t(task)] = Json::parse(result);
         ++done;
@@ -466,7 +466,7 @@ void run(const SweepFlags& flags) {
   document["failed"] = failed;
   document["seconds"] = seconds;
   document["rows"] = rows;
-  if (!flags.json.empty()) batch.add(flags.json, document.dump(1) + "\n");
+  if (!flags.json.empty()) batch.add(flags.json, jsonText(document, 1) + "\n");
   if (!flags.csv.empty()) batch.add(flags.csv, csvText(rows));
   batch.commit();
   std::ostream& report = reportStream({flags.json, flags.csv});

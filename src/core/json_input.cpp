@@ -76,6 +76,10 @@ nlohmann::json readJsonFile(const std::string& path) {
   return parseJsonText(io::readWholeFile(path, limits::kMaxHeaderBytes), path);
 }
 
+std::string jsonText(const nlohmann::json& value, int indent) {
+  return value.dump(indent, ' ', /*ensure_ascii=*/false, nlohmann::json::error_handler_t::replace);
+}
+
 namespace {
 
 // Appends `value` as compact JSON until `text` holds more than `budget` characters: a message

@@ -35,6 +35,7 @@
 #include "cli/volume_summary.h"
 #include "core/error.h"
 #include "core/image_file.h"
+#include "core/json_input.h"
 #include "core/limits.h"
 #include "core/number_pair.h"
 #include "core/version.h"
@@ -54,9 +55,29 @@ namespace py = pybind11;
 namespace vsil::python {
 namespace {
 
+// Bytes as Python text, as Python decodes file names (os.fsdecode): UTF-8, and a byte that is
+// not (a Linux file name may hold one) as a lone surrogate, so that messages and warnings
+// naming such a file reach Python instead of failing to decode.
+py::str fsText(const std::string& bytes) {
+  PyObject* text = PyUnicode_DecodeFSDefaultAndSize(bytes.data(), py::ssize_t(bytes.size()));
+  if (!text) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(text);
+}
+
+// The bytes a str stands for, as os.fsencode gives them: UTF-8, with the bytes of a file name
+// that is not UTF-8 (Python holds them as lone surrogates) back as they were.
+std::string fsBytes(const py::handle& text) {
+  return py::module_::import("os").attr("fsencode")(text).cast<std::string>();
+}
+
+// A UserWarning at the caller's line (PyErr_WarnEx's stack level 1).
+void warnUser(const std::string& message) {
+  py::module_::import("warnings").attr("warn")(fsText(message), py::handle(PyExc_UserWarning), 1);
+}
+
 template <typename Json>
 py::object jsonToPython(const Json& json) {
-  return py::module_::import("json").attr("loads")(json.dump());
+  return py::module_::import("json").attr("loads")(jsonText(json));
 }
 
 // ---- volumes ----
@@ -165,7 +186,7 @@ py::array samplesArray(const py::array& array) {
   for (std::size_t i = 0; i < why.size(); ++i) message += (i ? "; " : "") + why[i];
   message += ": one copy of " + std::to_string(array.size() * target->itemsize()) +
              " bytes (the Volume reads the copy, not the array)";
-  if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+  warnUser(message);
   return py::module_::import("numpy").attr("ascontiguousarray")(array, *target);
 }
 
@@ -487,7 +508,7 @@ bool isDictOrDicts(const py::handle& value) {
 // size, "8x7x6" for dims). Anything else is a TypeError naming the keyword.
 std::string valueText(const Keyword& keyword, const py::handle& value,
                       const std::string& function) {
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::str>(value)) return fsBytes(value);
   if (keyword.key == "crop" && isSliceOrSlices(value)) return cropText(value, function);
   if (isColourKeyword(keyword) && isSequence(value)) return colourText(keyword, value, function);
   if (keyword.key == "param" && py::isinstance<py::dict>(value)) {
@@ -497,7 +518,7 @@ std::string valueText(const Keyword& keyword, const py::handle& value,
     return py::str(py::module_::import("json").attr("dumps")(value));
   }
   if (py::hasattr(value, "__fspath__")) {
-    return py::module_::import("os").attr("fspath")(value).cast<std::string>();
+    return fsBytes(py::module_::import("os").attr("fspath")(value));
   }
   if (isNumber(value)) return py::str(value);
   if (keyword.kind != "number" && keyword.kind != "integer" &&
@@ -638,7 +659,11 @@ auto loadOrNotFound(Load&& load, const std::string& spec) {
   }
 }
 
-PyVolume load(const std::string& spec, const py::kwargs& kwargs) {
+PyVolume load(const py::object& path, const py::kwargs& kwargs) {
+  if (!py::isinstance<py::str>(path)) {
+    throw PythonTypeError("vsil.load: expected a path or a gen: spec, not " + typeNameOf(path));
+  }
+  const std::string spec = fsBytes(path);
   const LoadOptions options = loadOptionsFromKeywords(kwargs, "vsil.load");
   Volume loaded;
   {
@@ -646,7 +671,7 @@ PyVolume load(const std::string& spec, const py::kwargs& kwargs) {
     loaded = loadOrNotFound([&] { return loadVolume(spec, options); }, spec);
   }
   for (const std::string& warning : loaded.warnings) {
-    if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) != 0) throw py::error_already_set();
+    warnUser(warning);
   }
   return {std::make_shared<Volume>(std::move(loaded))};
 }
@@ -670,7 +695,7 @@ py::object info(const py::object& input, const py::kwargs& kwargs) {
     throw PythonTypeError("vsil.info: expected a vsil.Volume, a path or a gen: spec, not " +
                           typeNameOf(input));
   }
-  const std::string spec = input.cast<std::string>();
+  const std::string spec = fsBytes(input);
   const LoadOptions options = cli::summaryLoadOptions(loadOptionsFromKeywords(kwargs, "vsil.info"));
   Volume loaded;
   nlohmann::ordered_json json;
@@ -680,7 +705,7 @@ py::object info(const py::object& input, const py::kwargs& kwargs) {
     json = cli::summaryJson(loaded, cli::summarize(loaded));
   }
   for (const std::string& warning : loaded.warnings) {
-    if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 1) != 0) throw py::error_already_set();
+    warnUser(warning);
   }
   return jsonToPython(json);
 }
@@ -943,7 +968,7 @@ class PythonRenderer {
                             typeNameOf(input));
     }
     if (isPath) {
-      request.spec = input.cast<std::string>();
+      request.spec = fsBytes(input);
     } else {
       request.volume = input.cast<const PyVolume&>().volume;
     }
@@ -1007,8 +1032,7 @@ class PythonRenderer {
                       : py::none();
     frame.metadata = jsonToPython(meta);
     frame.warnings = output.warnings;
-    const py::object warn = py::module_::import("warnings").attr("warn");
-    for (const std::string& warning : output.warnings) warn("vsil: " + warning);
+    for (const std::string& warning : output.warnings) warnUser("vsil: " + warning);
     return frame;
   }
 
@@ -1199,17 +1223,17 @@ PYBIND11_MODULE(_vsil, m) {
     try {
       if (error) std::rethrow_exception(error);
     } catch (const PythonTypeError& e) {
-      PyErr_SetString(PyExc_TypeError, e.what());
+      PyErr_SetObject(PyExc_TypeError, fsText(e.what()).ptr());
     } catch (const VolumeNotFound& e) {
       // FileNotFoundError(errno, strerror, filename): e.filename is the path, str(e) holds the
       // CLI's one-line message.
-      const py::object error =
-          py::reinterpret_borrow<py::object>(PyExc_FileNotFoundError)(ENOENT, e.what(), e.path);
+      const py::object error = py::reinterpret_borrow<py::object>(PyExc_FileNotFoundError)(
+          ENOENT, fsText(e.what()), fsText(e.path));
       PyErr_SetObject(PyExc_FileNotFoundError, error.ptr());
     } catch (const InputError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      PyErr_SetObject(PyExc_ValueError, fsText(e.what()).ptr());
     } catch (const UnavailableError& e) {
-      PyErr_SetString(PyExc_RuntimeError, e.what());
+      PyErr_SetObject(PyExc_RuntimeError, fsText(e.what()).ptr());
     }
   });
 
@@ -1260,7 +1284,7 @@ PYBIND11_MODULE(_vsil, m) {
   m.def(
       "generate",
       [](const std::string& name, int size) {
-        return load("gen:" + name + ":" + std::to_string(size), py::kwargs());
+        return load(py::str("gen:" + name + ":" + std::to_string(size)), py::kwargs());
       },
       py::arg("name"), py::arg("size") = 128, "A procedural volume, as INPUT gen:NAME:SIZE");
 
@@ -1277,7 +1301,13 @@ PYBIND11_MODULE(_vsil, m) {
                     "what `vsil render --meta-out` writes, less parameters.out; timings_ms and "
                     "cpu_ms hold this call's read, upload (0: the texture was resident) and the "
                     "frame's stages")
-      .def_readonly("warnings", &Frame::warnings)
+      .def_property_readonly("warnings",
+                             [](const Frame& frame) {
+                               py::list texts;
+                               for (const auto& warning : frame.warnings)
+                                 texts.append(fsText(warning));
+                               return texts;
+                             })
       .def("__repr__",
            [](const Frame& frame) {
              const py::object technique = frame.metadata["parameters"]["technique"];

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/image_file.h"
+#include "core/json_input.h"
 #include "serve/frame_queue.h"
 
 namespace vsil::serve {
@@ -163,7 +164,7 @@ struct FrameServer::Impl {
     http.Get("/", file("index.html", "text/html; charset=utf-8"));
     http.Get("/serve.js", file("serve.js", "text/javascript; charset=utf-8"));
     http.Get("/api/options", [this](const httplib::Request&, httplib::Response& response) {
-      response.set_content(page.optionTable().dump(), "application/json");
+      response.set_content(jsonText(page.optionTable()), "application/json");
     });
     http.Get("/api/state", [this](const httplib::Request&, httplib::Response& response) {
       nlohmann::json state = volumeFacts;
@@ -171,7 +172,7 @@ struct FrameServer::Impl {
       state["values"] = page.baseValues();
       state["command"] = options.command.shellText(kCommandOut);
       state["technique"] = base.flags.technique;
-      response.set_content(state.dump(), "application/json");
+      response.set_content(jsonText(state), "application/json");
     });
     http.Get("/frame", [this](const httplib::Request& request, httplib::Response& response) {
       frame(request, response);

@@ -38,6 +38,29 @@ TEST(InfoCommand, JsonAgreesWithTheDatasetChecksum) {
 }
 
 // The iso value `info` reports is the one a render without --iso uses (Otsu's threshold).
+// A file name that is not UTF-8 (Linux names are bytes): the JSON vsil writes about it, info's
+// and --meta-out's, holds U+FFFD for the byte (JSON must be UTF-8); it once failed with
+// nlohmann's "invalid UTF-8 byte" after the render, exit 1.
+TEST(InfoCommand, ANameThatIsNotUtf8IsWrittenWithAReplacementCharacter) {
+  const auto dir = test::scratchDir();
+  const std::string name = "bad\xffname.nrrd";
+  std::ofstream(dir / name, std::ios::binary)
+      << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n"
+      << std::string(8, '\x40');
+  const std::string path = (dir / name).string();
+  const auto info = test::runVsil("info --json '" + path + "'");
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  EXPECT_EQ(nlohmann::json::parse(info.out)["source"].get<std::string>(),
+            (dir / "bad\xef\xbf\xbdname.nrrd").string());
+  const auto meta = dir / "meta.json";
+  const auto render = test::runVsil("render '" + path + "' --size 16x16 --out '" +
+                                    (dir / "x.png").string() + "' --meta-out '" + meta.string() +
+                                    "'");
+  ASSERT_EQ(render.exitCode, 0) << render.err;
+  const auto document = nlohmann::json::parse(test::readFileBytes(meta));
+  EXPECT_NE(document.dump().find("bad\xef\xbf\xbdname.nrrd"), std::string::npos);
+}
+
 TEST(InfoCommand, DefaultIsoIsWhatARenderUses) {
   VSIL_REQUIRE_DATASETS();
   const auto path = test::datasetPath("bucky_32x32x32_uint8.nhdr").string();

@@ -964,3 +964,29 @@ print("ok")
                             timeout=600)
     assert result.returncode == 0, (result.returncode, result.stderr[-2000:])
     assert result.stdout.strip() == "ok"
+
+
+def test_a_file_name_that_is_not_utf8_loads_renders_and_is_named_in_errors(tmp_path):
+    """Linux file names are bytes; Python holds one that is not UTF-8 with lone surrogates
+    (os.fsdecode). load, info and render take such a name, an error names it in a ValueError,
+    and the metadata (JSON) writes U+FFFD for the byte. They once raised pybind11's multi-line
+    cast errors."""
+    folder = os.fsencode(tmp_path)
+    name = os.fsdecode(folder + b"/bad\xffname.nrrd")
+    with open(name, "wb") as file:
+        file.write(b"NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n"
+                   + bytes([64] * 8))
+    assert vsil.load(name).dims == (2, 2, 2)
+    assert vsil.info(name)["source"].endswith("bad\ufffdname.nrrd")
+    with vsil.Renderer() as renderer:
+        frame = renderer.render(pathlib.Path(name), size=(16, 16))
+    assert "bad\ufffdname.nrrd" in str(frame.metadata)
+    cut = os.fsdecode(folder + b"/cut\xfe.nrrd")
+    with open(cut, "wb") as file:
+        file.write(b"NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n@@")
+    with pytest.raises(ValueError) as error:
+        vsil.load(cut)
+    assert str(error.value).startswith(cut + ": ")
+    with pytest.raises(FileNotFoundError) as missing:
+        vsil.load(os.fsdecode(folder + b"/none\xfd.nrrd"))
+    assert missing.value.filename == os.fsdecode(folder + b"/none\xfd.nrrd")
