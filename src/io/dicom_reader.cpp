@@ -736,11 +736,15 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
   // GDCM reads a Pixel Spacing it cannot parse (nan, abc) or one of 0 as 1, and a Rescale
   // Slope of nan or inf as none: the values as written are checked here instead.
   const gdcm::DataSet& firstSet = first.GetFile().GetDataSet();
+  // An element's value as written, up to a NUL and trimmed ("" where the slice has none).
+  const auto writtenText = [](const gdcm::DataSet& set, const gdcm::Tag& tag) {
+    std::string text = textOf(set, tag);
+    text.erase(std::find(text.begin(), text.end(), '\0'), text.end());
+    return std::string(trim(text));
+  };
   const auto checkWritten = [&](const gdcm::Tag& tag, const std::string& name, std::size_t count,
                                 const std::string& needed, auto valid) {
-    std::string text = textOf(firstSet, tag);
-    text.erase(std::find(text.begin(), text.end(), '\0'), text.end());
-    text = std::string(trim(text));
+    const std::string text = writtenText(firstSet, tag);
     if (text.empty()) return;
     const std::vector<double> values = parseNumbers(text.c_str(), count);
     if (values.empty() || !std::all_of(values.begin(), values.end(), valid)) {
@@ -750,6 +754,7 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
   };
   checkWritten(kPixelSpacing, "Pixel Spacing (0028,0030)", 2, "not two positive distances",
                [](double v) { return v > 0; });
+  const std::string firstPixelSpacing = writtenText(firstSet, kPixelSpacing);
   checkWritten(kRescaleSlope, "Rescale Slope (0028,1053)", 1, "not a finite number other than 0",
                [](double v) { return v != 0; });
   checkWritten(kRescaleIntercept, "Rescale Intercept (0028,1052)", 1, "not a finite number",
@@ -861,6 +866,23 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
       throwInputError(path, where +
                                 " differs from the first slice in size, pixel format or "
                                 "Rescale Slope/Intercept");
+    }
+    // GDCM reads a Pixel Spacing it cannot parse, or of 0, as 1: each slice's as written must
+    // be the first slice's (checked above), or the volume's x and y spacing would be a guess.
+    if (const std::string text = writtenText(reader.GetFile().GetDataSet(), kPixelSpacing);
+        text != firstPixelSpacing) {
+      const std::vector<double> values = parseNumbers(text.c_str(), 2);
+      const std::vector<double> expected = parseNumbers(firstPixelSpacing.c_str(), 2);
+      const auto close = [](double a, double b) {
+        return std::abs(a - b) <= 1e-6 * std::max(std::abs(a), std::abs(b));
+      };
+      if (values.size() != 2 || expected.size() != 2 || !close(values[0], expected[0]) ||
+          !close(values[1], expected[1])) {
+        throwInputError(path, where + " has Pixel Spacing (0028,0030) " +
+                                  quote(text.substr(0, 40)) + " where the first slice has " +
+                                  quote(firstPixelSpacing.substr(0, 40)) +
+                                  ": the slices of one volume share their spacing");
+      }
     }
     decode(image, where, sliceBytes);
     sink.put(std::uint64_t(z) * sliceSamples,

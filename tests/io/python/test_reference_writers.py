@@ -150,6 +150,26 @@ def test_a_dicom_series_written_by_pydicom_reads_in_position_order(tmp_path):
     np.testing.assert_allclose(placement[:3, 3], (5.0, -7.0, 40.0), atol=1e-9)
 
 
+@pytest.mark.parametrize("written", ["nan\\nan", "0\\0", "0.4\\0.3"])
+def test_a_slice_whose_pixel_spacing_differs_from_the_first_is_refused(tmp_path, written):
+    """GDCM reads a Pixel Spacing it cannot parse, or of 0, as 1, and only the first slice's
+    was checked: a later slice's odd or other spacing loaded as the first's, silently."""
+    import pydicom
+    rng = np.random.default_rng(3)
+    stored = rng.integers(0, 100, size=(4, 5, 7), dtype=np.int16)
+    write_dicom_series(tmp_path / "series", stored, 1.5, 1.0, 0.0, (1, 0, 0, 0, 1, 0), rng)
+    # The third slice along the normal, whatever its shuffled name.
+    files = sorted((tmp_path / "series").iterdir(),
+                   key=lambda f: pydicom.dcmread(f).ImagePositionPatient[2])
+    ds = pydicom.dcmread(files[2])
+    ds["PixelSpacing"].value = written  # as a writer put it, not parsed by pydicom
+    ds.save_as(files[2])
+    with pytest.raises(ValueError) as error:
+        vsil.load(str(tmp_path / "series"))
+    assert f"slice '{files[2].name}' has Pixel Spacing (0028,0030) '{written}'" in str(error.value)
+    assert "where the first slice has '0.8\\0.6'" in str(error.value)
+
+
 def write_enhanced_ct(path, stored, spacing, orientation, order, rescale, per_frame_rescale):
     """One Enhanced CT file: frames written in `order` (not by position), positions in the
     Per-frame Functional Groups, orientation and pixel spacing shared; the rescale shared or
