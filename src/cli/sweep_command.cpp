@@ -409,10 +409,11 @@ void run(const SweepFlags& flags) {
   if (flags.json.empty() && flags.csv.empty()) {
     throw InputError("sweep: nothing to write (give --json FILE and/or --csv FILE)");
   }
+  // The sweep file is read first: an output naming it is refused before any task runs.
+  const SweepPlan plan = readSweepPlan(flags.file);
   OutputBatch batch;
   batch.claim("--json", flags.json);
   batch.claim("--csv", flags.csv);
-  const SweepPlan plan = readSweepPlan(flags.file);
   if (!flags.outDir.empty()) {
     const std::string where = "--out-dir " + flags.outDir;
     const fs::file_type type = io::fileTypeAt(flags.outDir, where);

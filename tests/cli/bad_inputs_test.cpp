@@ -202,11 +202,14 @@ TEST(BadInputs, AnOutputNamingAnInputIsRefused) {
   std::ofstream(plan) << R"({"render": {"input": "gen:sphere:16", "size": "16x16"},
                              "axes": {"width": [1, 2]}})";
   const auto planBytes = test::readFileBytes(plan);
-  const test::CommandResult swept = test::runVsil("sweep " + plan + " --json " + plan);
+  // Refused before any task runs: no task image in --out-dir (they were all rendered first).
+  const test::CommandResult swept = test::runVsil("sweep " + plan + " --json " + plan +
+                                                  " --out-dir " + (dir / "tasks").string());
   EXPECT_EQ(swept.exitCode, 2);
   EXPECT_TRUE(swept.err.ends_with("a file this command reads; give the output its own file\n"))
       << swept.err;
   EXPECT_EQ(test::readFileBytes(plan), planBytes);
+  EXPECT_FALSE(fs::exists(dir / "tasks"));
 }
 
 // Two outputs naming one file through a symlink or a hard link: refused before any work.
