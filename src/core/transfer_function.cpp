@@ -25,7 +25,9 @@ glm::dvec4 TransferFunction::at(double value) const {
   if (above == points.end()) return rgbaOf(points.back());
   const TransferPoint& low = *(above - 1);
   const TransferPoint& high = *above;
-  const double t = (value - low.value) / (high.value - low.value);  // high > low here
+  // high > low here. Halved first: points near ±1.8e308 lie further apart than a double holds,
+  // and the full span would overflow to infinity (t = 0 everywhere between them).
+  const double t = (0.5 * value - 0.5 * low.value) / (0.5 * high.value - 0.5 * low.value);
   return rgbaOf(low) * (1.0 - t) + rgbaOf(high) * t;
 }
 

@@ -42,6 +42,15 @@ TEST(TransferFunction, InterpolatesLinearlyAndHoldsBeyondTheEnds) {
   const auto table = tf.table(ValueRange{10.0f, 20.0f}, 3);
   ASSERT_EQ(table.size(), 3u);
   EXPECT_FLOAT_EQ(table[1].a, 0.25f);
+
+  // Points near the ends of the doubles: their span overflows a double, the halves do not (the
+  // span overflowed to infinity once, and every value between them took the first point's).
+  const TransferFunction wide = parseTransferFunctionText(
+      R"([{"value": -1e308, "color": "#000000", "opacity": 0},
+          {"value": 1e308, "color": "#ffffff", "opacity": 1}])",
+      "tf.json");
+  EXPECT_DOUBLE_EQ(wide.at(0.0).a, 0.5);
+  EXPECT_DOUBLE_EQ(wide.at(5e307).r, 0.75);
 }
 
 TEST(TransferFunction, BadFilesNameTheFileAndThePoint) {
