@@ -687,6 +687,8 @@ py::object info(const py::object& input, const py::kwargs& kwargs) {
     nlohmann::ordered_json json;
     {
       py::gil_scoped_release release;
+      // Its array may have changed since it was wrapped: NaN is refused here as render does.
+      requireFiniteSamples(*volume);
       json = cli::summaryJson(*volume, cli::summarize(*volume));
     }
     return jsonToPython(json);

@@ -249,6 +249,8 @@ def test_a_non_finite_sample_is_refused_as_the_cli_refuses_it(tmp_path, renderer
     finite[2, 1, 3] = bad
     with pytest.raises(ValueError, match=f"sample 69 {what}"):
         renderer.upload(volume)
+    with pytest.raises(ValueError, match=f"sample 69 {what}"):
+        vsil.info(volume)  # once statistics of None
     assert renderer.render(volume, technique="mip", size=(8, 8)).image.shape == (8, 8, 4)
     raw = tmp_path / "bad.raw"
     samples.tofile(raw)
