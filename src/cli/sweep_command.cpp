@@ -420,7 +420,8 @@ void run(const SweepFlags& flags) {
     if (type != fs::file_type::not_found && type != fs::file_type::directory) {
       throwInputError(where, "is not a folder");
     }
-    batch.claim("--out-dir", flags.outDir);  // a folder of images where a result file goes
+    // A folder of images where a result file goes.
+    batch.claim("--out-dir", flags.outDir, OutputKind::Folder);
   }
   if (validateOnly()) return;
   if (!flags.outDir.empty() && mpi::rank() == 0) {

@@ -44,6 +44,15 @@ std::string inputNamedBy(const std::filesystem::path& target) {
   return "";
 }
 
+// A file output that names a folder ("out/", or an existing folder, through links) would be
+// written and then fail its rename: refused before any work.
+void refuseFolderTarget(const std::string& output, const std::filesystem::path& target) {
+  std::error_code error;
+  if (target.string().ends_with('/') || std::filesystem::is_directory(target, error)) {
+    throw InputError(output + ": is a folder; give the output a file name");
+  }
+}
+
 void refuseInputTarget(const std::string& output, const std::filesystem::path& target) {
   const std::string input = inputNamedBy(target);
   if (input.empty()) return;
@@ -183,6 +192,7 @@ void noteInputFile(const std::filesystem::path& path) {
 AtomicOutputFile::AtomicOutputFile(const std::filesystem::path& target) : target_(target) {
   namespace fs = std::filesystem;
   if (target.empty()) throw InputError("output path is empty");
+  refuseFolderTarget(target.string(), target);
   refuseInputTarget(target.string(), target);
   // A link is followed: the file it names is replaced and the link stays (a rename over the
   // link would replace the link itself).
@@ -295,8 +305,10 @@ std::filesystem::path resolvedOutput(const std::filesystem::path& path) {
 
 }  // namespace
 
-void OutputBatch::claim(const std::string& flag, const std::filesystem::path& path) {
+void OutputBatch::claim(const std::string& flag, const std::filesystem::path& path,
+                        OutputKind kind) {
   if (path.empty()) return;
+  if (kind == OutputKind::File) refuseFolderTarget(flag + " " + path.string(), path);
   refuseInputTarget(flag + " " + path.string(), path);
   Claim claim{flag, path, resolvedOutput(path)};
   for (const Claim& other : claims_) {

@@ -83,12 +83,16 @@ class AtomicOutputFile {
 //   ...
 //   outputs.add(out, pngBytes); outputs.add(meta, json);
 //   outputs.commit();
+enum class OutputKind { File, Folder };
+
 class OutputBatch {
  public:
   // Refuses (InputError) an output naming the same file as one claimed before, or as a file the
   // command read so far (noteInputFile): the same path spelled otherwise (./o.png, dir/../o.png),
-  // or a symlink or hard link to it. Empty paths (an output not asked for) are ignored.
-  void claim(const std::string& flag, const std::filesystem::path& path);
+  // or a symlink or hard link to it; and a File output that names a folder (an existing one, or a
+  // path ending in '/'). Empty paths (an output not asked for) are ignored.
+  void claim(const std::string& flag, const std::filesystem::path& path,
+             OutputKind kind = OutputKind::File);
   // Writes `bytes` to a temporary for `path` (not yet the target).
   void add(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
   void add(const std::filesystem::path& path, std::string_view text);
