@@ -281,6 +281,12 @@ struct Child {
   if (WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) {  // the out-of-memory killer, or a user
     throw std::runtime_error(path + ": the DICOM reader's process was killed (out of memory?)");
   }
+  // Signals that come from outside (a user, a job manager), not from reading a bad file.
+  if (WIFSIGNALED(status) &&
+      (WTERMSIG(status) == SIGTERM || WTERMSIG(status) == SIGINT || WTERMSIG(status) == SIGHUP)) {
+    throw std::runtime_error(path + ": the DICOM reader's process was stopped from outside (SIG" +
+                             std::string(sigabbrev_np(WTERMSIG(status))) + ")");
+  }
   if (WIFSIGNALED(status)) {
     const char* name = sigabbrev_np(WTERMSIG(status));
     throwInputError(path,
