@@ -1,5 +1,6 @@
 #include "cli/cli_parse.h"
 
+#include <charconv>
 #include <cstdlib>
 #include <limits>
 
@@ -26,6 +27,24 @@ CLI::Option* nonEmpty(CLI::Option* option) {
   return option->each([flag](const std::string& value) {
     if (value.empty()) throwInputError(flag, "is empty: give a value, or leave the flag out");
   });
+}
+
+void refuseWholeNumbersBeyondRange(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    const std::string type = option->get_type_name();
+    if (type != "INT" && type != "UINT") continue;
+    const std::string flag = option->get_name();
+    option->each([flag](const std::string& text) {
+      long long value = 0;
+      const char* end = text.data() + text.size();
+      const auto result =
+          std::from_chars(text.data() + (text.starts_with('+') ? 1 : 0), end, value);
+      if (result.ec == std::errc::result_out_of_range && result.ptr == end) {
+        throwInputError(flag + " " + text, "is beyond every whole number the flag takes");
+      }
+    });
+  }
+  for (CLI::App* command : app.get_subcommands({})) refuseWholeNumbersBeyondRange(*command);
 }
 
 glm::ivec2 parseSize(const std::string& flag, const std::string& text) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "cli/cli_parse.h"
 #include "core/version.h"
 
 namespace vsil::cli {
@@ -23,6 +24,7 @@ void setUpApp(CLI::App& app) {
   std::stable_sort(commands.begin(), commands.end(),
                    [](const auto& a, const auto& b) { return a.order < b.order; });
   for (const auto& command : commands) command.setup(app);
+  refuseWholeNumbersBeyondRange(app);
 }
 
 namespace {
