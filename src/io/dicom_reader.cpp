@@ -72,6 +72,40 @@ std::string trimmed(const char* value) {
   return value ? std::string(trim(std::string_view(value))) : std::string();
 }
 
+// A free-text value (a Series Description) as UTF-8: as it is where it is UTF-8 (ASCII, or
+// Specific Character Set ISO_IR 192); otherwise read as Latin-1 (ISO_IR 100, the most common
+// other one), each byte its own character, so that "Sch\xe4del" is not printed as an invalid
+// byte.
+std::string textAsUtf8(const std::string& bytes) {
+  std::size_t i = 0;
+  bool utf8 = true;
+  while (utf8 && i < bytes.size()) {
+    const auto c = static_cast<unsigned char>(bytes[i]);
+    const std::size_t length = c < 0x80         ? 1
+                               : (c >> 5) == 6  ? 2
+                               : (c >> 4) == 14 ? 3
+                               : (c >> 3) == 30 ? 4
+                                                : 0;
+    utf8 = length > 0 && i + length <= bytes.size();
+    for (std::size_t k = 1; utf8 && k < length; ++k) {
+      utf8 = (static_cast<unsigned char>(bytes[i + k]) >> 6) == 2;
+    }
+    i += length;
+  }
+  if (utf8) return bytes;
+  std::string text;
+  for (const char byte : bytes) {
+    const auto c = static_cast<unsigned char>(byte);
+    if (c < 0x80) {
+      text += byte;
+    } else {
+      text += char(0xc0 | (c >> 6));
+      text += char(0x80 | (c & 0x3f));
+    }
+  }
+  return text;
+}
+
 // "a\b\c" -> numbers; empty when the value is missing or not `count` finite numbers.
 std::vector<double> parseNumbers(const char* value, std::size_t count) {
   std::vector<double> numbers;
@@ -602,7 +636,8 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
   }
   auto describe = [&](const Series& s) {
     const char* first = s.files.front().c_str();
-    const std::string description = trimmed(scanner.GetValue(first, kSeriesDescription));
+    const std::string description =
+        textAsUtf8(trimmed(scanner.GetValue(first, kSeriesDescription)));
     return s.uid + " (" + std::to_string(s.files.size()) + " slices" +
            (description.empty() ? "" : ", " + quote(description)) + ")";
   };

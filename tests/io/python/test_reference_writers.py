@@ -235,3 +235,23 @@ def test_an_enhanced_ct_file_written_by_pydicom_reads_in_position_order(tmp_path
     np.testing.assert_allclose(placement[:3, 3], (5.0, -7.0, 40.0), atol=1e-9)
     normal = np.cross(np.array(orientation[:3]), np.array(orientation[3:]))
     np.testing.assert_allclose(placement[:3, 2], 1.25 * normal, atol=1e-9)
+
+
+def test_a_latin1_series_description_is_shown_as_its_characters(tmp_path):
+    """A folder of two series names the others by their description; one written in Latin-1
+    (Specific Character Set ISO_IR 100) reads as its characters, not as invalid UTF-8 bytes."""
+    rng = np.random.default_rng(5)
+    import pydicom
+    for name, count, description in (("a", 3, "Sch\xe4del"), ("b", 2, "Kn\xf6chel")):
+        write_dicom_series(tmp_path / name, rng.integers(0, 9, size=(count, 4, 4), dtype=np.int16),
+                           1.0, 1.0, 0.0, (1, 0, 0, 0, 1, 0), rng)
+        for path in (tmp_path / name).iterdir():
+            ds = pydicom.dcmread(path)
+            ds.SpecificCharacterSet = "ISO_IR 100"
+            ds.SeriesDescription = description
+            ds.save_as(path)
+            path.rename(tmp_path / (name + path.name))
+    with pytest.warns(UserWarning) as warned:
+        vsil.load(str(tmp_path))
+    text = " ".join(str(w.message) for w in warned)
+    assert "'Sch\xe4del'" in text and "'Kn\xf6chel'" in text, text
