@@ -802,7 +802,15 @@ class PythonRenderer {
   bool closed() const { return !main_.job; }
 
   // What `--meta-out` writes under "gl": backend, platform, renderer, version, ...
-  py::object glInfo() const { return jsonToPython(gl::contextInfoJson(job().context().info())); }
+  // Read in a turn: close() from another thread ends the job in a turn of its own.
+  py::object glInfo() {
+    nlohmann::ordered_json info;
+    {
+      SlotTurn turn(main_);
+      info = gl::contextInfoJson(main_.job->context().info());
+    }
+    return jsonToPython(info);
+  }
 
   // Uploads `volume` now (render does it when the volume changes; call this after changing a
   // volume's samples in place), in bricks of the last render's max_texture_mib; into its own
@@ -1341,7 +1349,7 @@ PYBIND11_MODULE(_vsil, m) {
            "Ends the GL context and frees the textures now (also at the end of a with block)")
       .def_property_readonly("closed", &PythonRenderer::closed)
       .def("__repr__",
-           [](const PythonRenderer& renderer) {
+           [](PythonRenderer& renderer) {
              if (renderer.closed()) return std::string("<vsil.Renderer closed>");
              const py::dict gl = renderer.glInfo();
              return "<vsil.Renderer " + std::string(py::str(gl["backend"])) + ", " +

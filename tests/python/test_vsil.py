@@ -929,9 +929,9 @@ def test_every_technique_options_default_is_the_one_the_command_line_states(rend
 
 
 def test_closing_a_renderer_while_another_thread_uses_it_raises_there_not_crashes():
-    """close() from one thread while another renders, uploads or animates: the other thread gets
-    ValueError ("closed"), whichever of them takes the GL lock first (the job used to be looked
-    up before the wait and used after it: a segfault). Run in a child: a crash fails the test."""
+    """close() from one thread while another renders, uploads, animates or reads .gl: the other
+    gets ValueError ("closed"), whichever of them takes the GL lock first (the job used to be
+    looked up before the wait and used after it: a segfault). Run in a child: a crash fails."""
     script = r"""
 import random, sys, threading, time
 import vsil
@@ -941,6 +941,7 @@ calls = {
     "render": lambda r: r.render(volume, size=(48, 48)),
     "upload": lambda r: r.upload(volume),
     "animate": lambda r: r.animate(volume, frames=2, size=(32, 32)),
+    "gl": lambda r: r.gl,
 }
 for name, call in calls.items():
     for trial in range(25):
