@@ -78,11 +78,40 @@ inline Bytes encodeIntegers(const std::vector<std::int64_t>& values, std::size_t
   return out;
 }
 
+// A file of 32- or 64-bit integers and what a reader keeps of it (float32, the samples rounded
+// counted, the file's type named): `type` as the format spells it, `fileType` as vsil names it.
+struct WideIntegerCase {
+  const char* type;
+  const char* fileType;              // int32, uint32, int64, uint64
+  std::size_t size;                  // bytes per sample
+  std::vector<std::int64_t> values;  // unsigned ones as their bits
+  std::vector<float> kept;
+  std::uint64_t inexact;
+
+  bool isUnsigned() const { return fileType[0] == 'u'; }
+  // The values as ASCII payloads write them, whitespace after each.
+  std::string text(const char* separator) const {
+    std::string out;
+    for (std::int64_t v : values) {
+      out += (isUnsigned() ? std::to_string(std::uint64_t(v)) : std::to_string(v)) + separator;
+    }
+    return out;
+  }
+};
+
 // A volume's samples as floats (Volume::value), to compare with the values a test wrote.
 inline std::vector<float> floatsOf(const Volume& volume) {
   std::vector<float> values(volume.sampleCount());
   for (std::size_t i = 0; i < values.size(); ++i) values[i] = volume.value(i);
   return values;
+}
+
+// What a reader must keep of a WideIntegerCase's file.
+inline void expectWideIntegersKept(const Volume& volume, const WideIntegerCase& c) {
+  EXPECT_EQ(volume.type(), SampleType::Float32);
+  EXPECT_EQ(volume.fileType, c.fileType);
+  EXPECT_EQ(floatsOf(volume), c.kept);
+  EXPECT_EQ(volume.inexactSamples, c.inexact);
 }
 
 // Deflate with a zlib (windowBits 15) or gzip (15 + 16) wrapper.

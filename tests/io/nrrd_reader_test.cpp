@@ -130,15 +130,7 @@ TEST(NrrdReader, Int8StaysInt8AndDoubleLoadsAsFloat32) {
 // in either byte order, gzip and ascii, are kept as float32 as the other readers keep them:
 // exact up to 2^24, the samples float32 changes counted, the file's type reported.
 TEST(NrrdReader, WideIntegersConvertToFloat32CountingRoundedSamples) {
-  struct WideCase {
-    const char* type;
-    const char* fileType;
-    std::size_t size;
-    std::vector<std::int64_t> values;
-    std::vector<float> kept;
-    std::uint64_t inexact;
-  };
-  const WideCase cases[] = {
+  const test::WideIntegerCase cases[] = {
       {"int",
        "int32",
        4,
@@ -149,7 +141,7 @@ TEST(NrrdReader, WideIntegersConvertToFloat32CountingRoundedSamples) {
       {"longlong", "int64", 8, {-1, -7, 16777217, 3}, {-1, -7, 16777216, 3}, 1},
       {"uint64_t", "uint64", 8, {3, 9, 16777218, 0}, {3, 9, 16777218, 0}, 0},
   };
-  for (const WideCase& c : cases) {
+  for (const test::WideIntegerCase& c : cases) {
     for (const char* encoding : {"raw", "gzip", "ascii"}) {
       for (bool big : {false, true}) {
         SCOPED_TRACE(std::string(c.type) + " " + encoding + (big ? " big-endian" : ""));
@@ -157,21 +149,14 @@ TEST(NrrdReader, WideIntegersConvertToFloat32CountingRoundedSamples) {
         Bytes payload = data;
         if (std::string(encoding) == "gzip") payload = test::deflateBytes(data, true);
         if (std::string(encoding) == "ascii") {
-          std::string text;
-          for (std::int64_t v : c.values) {
-            text +=
-                (c.fileType[0] == 'u' ? std::to_string(std::uint64_t(v)) : std::to_string(v)) + " ";
-          }
+          const std::string text = c.text(" ");
           payload = Bytes(text.begin(), text.end());
         }
         const Volume v =
             loadAttached(std::string("type: ") + c.type + "\nendian: " + (big ? "big" : "little") +
                              "\nencoding: " + encoding + "\n",
                          payload);
-        EXPECT_EQ(v.type(), SampleType::Float32);
-        EXPECT_EQ(v.fileType, c.fileType);
-        EXPECT_EQ(test::floatsOf(v), c.kept);
-        EXPECT_EQ(v.inexactSamples, c.inexact);
+        test::expectWideIntegersKept(v, c);
       }
     }
   }

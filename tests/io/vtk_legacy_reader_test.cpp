@@ -76,21 +76,13 @@ INSTANTIATE_TEST_SUITE_P(Legacy, LegacyRoundTrip, ::testing::ValuesIn(legacyCase
 // int, unsigned_int, vtktypeint64 and vtktypeuint64 (BINARY, big-endian, and ASCII) are kept as
 // float32, as the other readers keep the wide integers: exact up to 2^24, rounded ones counted.
 TEST(LegacyReader, WideIntegersConvertToFloat32CountingRoundedSamples) {
-  struct WideCase {
-    const char* type;
-    const char* fileType;
-    std::size_t size;
-    std::vector<std::int64_t> values;
-    std::vector<float> kept;
-    std::uint64_t inexact;
-  };
-  const WideCase cases[] = {
+  const test::WideIntegerCase cases[] = {
       {"int", "int32", 4, {-5, 16777217}, {-5, 16777216}, 1},
       {"unsigned_int", "uint32", 4, {4294967295, 7}, {0x1p32f, 7}, 1},
       {"vtktypeint64", "int64", 8, {-9, 16777216}, {-9, 16777216}, 0},
       {"vtktypeuint64", "uint64", 8, {16777219, 2}, {16777220, 2}, 1},
   };
-  for (const WideCase& c : cases) {
+  for (const test::WideIntegerCase& c : cases) {
     for (bool binary : {true, false}) {
       SCOPED_TRACE(std::string(c.type) + (binary ? " binary" : " ascii"));
       std::string text = std::string("# vtk DataFile Version 3.0\nwide\n") +
@@ -100,18 +92,12 @@ TEST(LegacyReader, WideIntegersConvertToFloat32CountingRoundedSamples) {
       if (binary) {
         text += test::asText(test::encodeIntegers(c.values, c.size, /*bigEndian=*/true)) + "\n";
       } else {
-        for (std::int64_t v : c.values) {
-          text +=
-              (c.fileType[0] == 'u' ? std::to_string(std::uint64_t(v)) : std::to_string(v)) + "\n";
-        }
+        text += c.text("\n");
       }
       const auto path = test::scratchDir() / "wide.vtk";
       test::writeFile(path, text);
       const Volume v = loadVolume(path.string());
-      EXPECT_EQ(v.type(), SampleType::Float32);
-      EXPECT_EQ(v.fileType, c.fileType);
-      EXPECT_EQ(test::floatsOf(v), c.kept);
-      EXPECT_EQ(v.inexactSamples, c.inexact);
+      test::expectWideIntegersKept(v, c);
     }
   }
 }
