@@ -12,6 +12,8 @@
 #include "core/clock.h"
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/options.h"
+#include "core/transfer_function.h"
 #include "slicing/empty_space.h"
 #include "slicing/frame_uniforms.h"
 #include "slicing/gl_context.h"
@@ -51,18 +53,30 @@ void validate(const RenderSettings& settings) {
   if (technique.checkValues) technique.checkValues(settings.options);
 }
 
-// Whether a frame with `given` options takes an iso value from the volume.
 // Whether a frame needs the volume's histogram (derivedDefaults): a technique with an iso
-// option needs it only when the iso is left out; the others (the MIP family's default window,
+// option needs it only when every value it derives from the histogram is given: each iso
+// option, and where the technique shows a window (lmip: its threshold is an iso option, its
+// window is not) the window itself or a transfer function in its place; a --tf preset scales
+// by the histogram whatever else is given. The others (the MIP family's default window,
 // illustrate's and semantic's classification above Otsu's threshold) always do.
 bool needsHistogram(const TechniqueInfo& info, const OptionValues& given) {
-  bool hasIso = false, leavesIsoUnset = false;
+  const auto givenText = [&](const std::string& name) -> const std::string* {
+    const auto it = given.find(name);
+    return it == given.end() ? nullptr : std::get_if<std::string>(&it->second);
+  };
+  bool hasIso = false;
   for (const OptionSpec& spec : info.options) {
-    if (spec.derived != OptionSpec::Derived::VolumeIso) continue;
-    hasIso = true;
-    leavesIsoUnset = leavesIsoUnset || !given.contains(spec.name);
+    if (spec.derived == OptionSpec::Derived::VolumeIso) {
+      hasIso = true;
+      if (!given.contains(spec.name)) return true;
+    }
+    if (spec.name == "window" && !given.contains("window") && !given.contains("tf")) return true;
+    if (spec.name == "tf") {
+      const std::string* tf = givenText("tf");
+      if (tf && !tf->empty() && !isInlineSource(*tf) && !isTransferFunctionFile(*tf)) return true;
+    }
   }
-  return !hasIso || leavesIsoUnset;
+  return !hasIso;
 }
 
 }  // namespace

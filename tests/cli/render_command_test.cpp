@@ -129,6 +129,32 @@ TEST(RenderCommand, MetadataTimesEveryStageAndSkipsTheHistogramWhenIsoIsGiven) {
   }
 }
 
+// lmip's threshold is an iso option but its window is not: giving the threshold (here its own
+// default, the window's low end) must not skip the histogram the window and a --tf preset's
+// scale come from. It did: the window became the placeholder 0.5,1, a white picture.
+TEST(RenderCommand, LmipThresholdKeepsTheHistogramsWindowAndPresetScale) {
+  const auto dir = test::scratchDir();
+  for (const std::string tf : {"", " --tf ct-bone"}) {
+    std::string images[2];
+    for (int given = 0; given < 2; ++given) {
+      const auto out = dir / ("lmip" + std::to_string(given) + ".png");
+      const auto meta = dir / "meta.json";
+      // gen:blobs:64's default window starts at its Otsu threshold: read it from a first run.
+      std::string threshold;
+      if (given) {
+        const auto first = nlohmann::json::parse(test::readFileBytes(meta));
+        threshold = " --lmip-threshold " + first["parameters"]["lmip_threshold"].dump();
+      }
+      const auto result =
+          test::runVsil("render gen:blobs:64 --size 48x48 --technique lmip" + tf + threshold +
+                        " --out " + out.string() + " --meta-out " + meta.string());
+      ASSERT_EQ(result.exitCode, 0) << result.err;
+      images[given] = test::readFileBytes(out);
+    }
+    EXPECT_EQ(images[0], images[1]) << "lmip" << tf;
+  }
+}
+
 TEST(RenderCommand, WarnsWhenTheIsoValueLiesOutsideTheData) {
   const auto dir = test::scratchDir();
   const auto out = (dir / "empty.png").string();
