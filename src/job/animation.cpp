@@ -138,14 +138,21 @@ AnimationPlan::AnimationPlan(RenderRequest base, AnimationSpec spec, const Volum
       }
     }
     sweeps_.push_back({sweep, *target});
-    // Each end alone over the base, so that an error names this sweep.
-    for (const double t : {0.0, 1.0}) {
+    // Each end alone over the base, so that an error names this sweep. A number's checks are
+    // ranges, which hold between ends that pass; a vector's need not (a plane's normal passes
+    // through 0 between 1,0,0 and -1,0,0): every frame of it is checked, before any renders.
+    const int checked = target->components == 1 ? 2 : frames();
+    for (int i = 0; i < checked; ++i) {
+      const int frame = target->components == 1 ? i * (frames() - 1) : i;
       RenderRequest request = base_;
-      target->apply(request, valueAt(sweeps_.back(), t));
+      target->apply(request, valueAt(sweeps_.back(), t(frame)));
       try {
         RenderJob::checkRequest(request, limits);
       } catch (const InputError& e) {
-        throwInputError(where, std::string(t == 0 ? "first" : "last") + " frame: " + e.what());
+        throwInputError(where, (frame == 0              ? std::string("first frame")
+                                : frame == frames() - 1 ? std::string("last frame")
+                                                        : "frame " + std::to_string(frame + 1)) +
+                                   ": " + e.what());
       }
     }
   }
