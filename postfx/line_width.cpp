@@ -228,6 +228,15 @@ cv::Mat3b plotWidthAgainstDepth(const std::vector<LineWidthSample>& samples, con
   return plot;
 }
 
+std::string emptyDepthBinsWarning(const std::vector<LineWidthSample>& samples,
+                                  const std::vector<DepthBin>& bins, const std::string& where) {
+  int binned = 0;
+  for (const DepthBin& bin : bins) binned += bin.count;
+  if (samples.empty() || binned > 0) return "";
+  return where + ": none of the " + std::to_string(samples.size()) +
+         " line samples has a depth within 2 px: every depth bin is empty";
+}
+
 nlohmann::json widthStatisticsJson(const WidthStatistics& stats) {
   return {{"count", stats.count},
           {"mean", stats.mean},
@@ -245,11 +254,15 @@ nlohmann::json widthStatisticsJson(const WidthStatistics& stats) {
 nlohmann::json depthBinsJson(const std::vector<DepthBin>& bins) {
   nlohmann::json rows = nlohmann::json::array();
   for (const DepthBin& bin : bins) {
+    // An empty bin has no width: null, not a width of 0.
+    const auto width = [&](double w) {
+      return bin.count > 0 ? nlohmann::json(w) : nlohmann::json();
+    };
     rows.push_back({{"depth_from", bin.depthFrom},
                     {"depth_to", bin.depthTo},
                     {"count", bin.count},
-                    {"mean_width", bin.meanWidth},
-                    {"median_width", bin.medianWidth}});
+                    {"mean_width", width(bin.meanWidth)},
+                    {"median_width", width(bin.medianWidth)}});
   }
   return rows;
 }

@@ -77,9 +77,14 @@ WidthStatistics summarizeWidths(std::vector<double> widths, double binWidth = 1.
 std::vector<DepthBin> widthAgainstDepth(const std::vector<LineWidthSample>& samples,
                                         const cv::Mat1f& depth, int binCount = 10);
 
+// What to warn when there are samples but none has a depth (every bin empty: a depth image of
+// another render, or one holding no depth), naming `where`; "" otherwise.
+std::string emptyDepthBinsWarning(const std::vector<LineWidthSample>& samples,
+                                  const std::vector<DepthBin>& bins, const std::string& where);
+
 // The report's parts as `vsil measure-width --json` writes them and vsil.measure_width returns
 // them: {"count", "mean", ..., "histogram"} and [{"depth_from", "depth_to", "count",
-// "mean_width", "median_width"}, ...].
+// "mean_width", "median_width"}, ...], the widths null in a bin without samples.
 nlohmann::json widthStatisticsJson(const WidthStatistics& stats);
 nlohmann::json depthBinsJson(const std::vector<DepthBin>& bins);
 

@@ -67,6 +67,10 @@ void run(const MeasureWidthArgs& args) {
       throwInputError(args.depth, "is not the size of " + args.image);
     }
     const auto bins = widthAgainstDepth(samples, depth, args.bins);
+    if (const std::string warning = emptyDepthBinsWarning(samples, bins, "--depth " + args.depth);
+        !warning.empty()) {
+      std::cerr << "vsil: warning: " << warning << "\n";
+    }
     text << "depth from   to  count  mean  median\n";
     for (const auto& bin : bins) {
       text << std::setw(10) << bin.depthFrom << std::setw(5) << bin.depthTo << std::setw(7)

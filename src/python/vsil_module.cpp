@@ -1128,19 +1128,43 @@ cv::Mat1b maskFromArray(const py::array& lines, const std::string& function) {
                      std::to_string(lines.shape(1)) + " mask; each side must be 1 .. " +
                      std::to_string(limits::kMaxImageSide) + " pixels");
   }
-  const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast> mask(lines);
+  // Non-zero is a line, whatever the dtype (a cast to uint8 read 0.5 as 0); NaN is neither.
+  const py::module_ np = py::module_::import("numpy");
+  if (np.attr("issubdtype")(lines.dtype(), np.attr("inexact")).cast<bool>() &&
+      np.attr("isnan")(lines).attr("any")().cast<bool>()) {
+    throw InputError(function + ": the line mask holds NaN (non-zero = line, 0 = none)");
+  }
+  const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast> mask(
+      np.attr("not_equal")(lines, 0));
   cv::Mat1b result(int(mask.shape(0)), int(mask.shape(1)));
   std::memcpy(result.data, mask.data(), result.total());
   return result;
 }
 
+// Normalized depths as Frame.depth holds them: floats in [0, 1], NaN where a pixel has none.
+// Another dtype (a depth image's uint16 codes) or a value outside [0, 1] is refused: it would
+// land in the first or last bin.
 cv::Mat1f depthFromArray(const py::array& depth, cv::Size size, const std::string& function) {
+  const py::module_ np = py::module_::import("numpy");
+  if (!np.attr("issubdtype")(depth.dtype(), np.attr("floating")).cast<bool>()) {
+    throw PythonTypeError(function + ": depth must be floats in [0, 1] (NaN: none), not " +
+                          std::string(py::str(depth.dtype())));
+  }
   const py::array_t<float, py::array::c_style | py::array::forcecast> values(depth);
   if (values.ndim() != 2 || values.shape(0) != size.height || values.shape(1) != size.width) {
     throw InputError(function + ": depth must be a 2-dimensional array of the image's shape");
   }
   cv::Mat1f result(size);
   std::memcpy(result.data, values.data(), result.total() * sizeof(float));
+  for (int y = 0; y < result.rows; ++y) {
+    for (int x = 0; x < result.cols; ++x) {
+      const float d = result(y, x);
+      if (!std::isnan(d) && !(d >= 0.0f && d <= 1.0f)) {
+        throw InputError(function + ": depth[" + std::to_string(y) + ", " + std::to_string(x) +
+                         "] is " + formatNumber(d) + ": depths are in [0, 1] (NaN: none)");
+      }
+    }
+  }
   return result;
 }
 
@@ -1205,7 +1229,12 @@ py::dict measureWidth(const py::array& image, std::optional<py::array> depth, in
   nlohmann::json report = {{"widths", widthStatisticsJson(summarizeWidths(widths, binWidth))}};
   if (depth) {
     const cv::Mat1f depths = depthFromArray(*depth, mask.size(), function);
-    report["by_depth"] = depthBinsJson(widthAgainstDepth(samples, depths, bins));
+    const auto byDepth = widthAgainstDepth(samples, depths, bins);
+    if (const std::string warning = emptyDepthBinsWarning(samples, byDepth, function + ": depth");
+        !warning.empty()) {
+      warnUser(warning);
+    }
+    report["by_depth"] = depthBinsJson(byDepth);
   }
   py::array_t<double> table({py::ssize_t(samples.size()), py::ssize_t(3)});
   auto rows = table.mutable_unchecked<2>();

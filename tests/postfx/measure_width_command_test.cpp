@@ -48,6 +48,29 @@ TEST(MeasureWidthCommand, ReportsWidthsAndWidthAgainstDepth) {
   EXPECT_FALSE(readImage(dir / "plot.png").empty());
 }
 
+// A depth image that gives no line pixel a depth (all 0: none) leaves every bin empty: the
+// report says so in a warning, and the empty bins' widths are null (they read 0 px).
+TEST(MeasureWidthCommand, ADepthImageWithoutDepthsWarnsAndLeavesWidthsNull) {
+  const auto dir = inputDir("no-depth");
+  cv::Mat1b image(40, 60, std::uint8_t(255));
+  image(cv::Rect(5, 10, 50, 4)).setTo(0);
+  writePng(dir / "lines.png", image);
+  writePng(dir / "depth.png", cv::Mat1w(image.size(), std::uint16_t(0)));
+  const auto result = test::runVsil("measure-width " + (dir / "lines.png").string() + " --depth " +
+                                    (dir / "depth.png").string() + " --json " +
+                                    (dir / "report.json").string());
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_NE(result.err.find("vsil: warning: --depth " + (dir / "depth.png").string() +
+                            ": none of the "),
+            std::string::npos)
+      << result.err;
+  std::ifstream in(dir / "report.json");
+  for (const auto& bin : nlohmann::json::parse(in)["by_depth"]) {
+    EXPECT_EQ(bin["count"], 0);
+    EXPECT_TRUE(bin["mean_width"].is_null());
+  }
+}
+
 TEST(MeasureWidthCommand, BadInputExitsTwoNamingTheProblem) {
   const auto dir = inputDir("bad");
   const auto missing = test::runVsil("measure-width " + (dir / "nope.png").string());

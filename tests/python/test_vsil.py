@@ -993,3 +993,31 @@ def test_a_file_name_that_is_not_utf8_loads_renders_and_is_named_in_errors(tmp_p
     with pytest.raises(FileNotFoundError) as missing:
         vsil.load(os.fsdecode(folder + b"/none\xfd.nrrd"))
     assert missing.value.filename == os.fsdecode(folder + b"/none\xfd.nrrd")
+
+
+def test_measure_width_reads_masks_as_non_zero_and_refuses_depths_outside_0_1():
+    """A mask is non-zero = line whatever its dtype (0.5 was cast to 0: no lines, no error); a
+    NaN mask, a depth of another dtype (a depth image's uint16 codes) or outside [0, 1] is
+    refused (each landed in the first or last bin); no sample with a depth warns; an empty bin's
+    widths are None."""
+    lines = np.zeros((40, 40), np.uint8)
+    lines[10:14, 5:35] = 1  # a band 4 px wide
+    counted = vsil.measure_width(lines)["widths"]["count"]
+    assert counted > 0
+    assert vsil.measure_width(lines * 0.5)["widths"]["count"] == counted
+    with pytest.raises(ValueError, match="NaN"):
+        vsil.measure_width(np.where(lines > 0, np.nan, 0.0))
+    depth = np.full(lines.shape, np.nan, np.float32)
+    depth[lines > 0] = 0.25
+    report = vsil.measure_width(lines, depth=depth, bins=4)
+    assert [b["count"] > 0 for b in report["by_depth"]] == [False, True, False, False]
+    assert report["by_depth"][0]["mean_width"] is None
+    for bad in (np.inf, -1.0, 2.0):
+        outside = depth.copy()
+        outside[12, 20] = bad
+        with pytest.raises(ValueError, match=r"depth\[12, 20\]"):
+            vsil.measure_width(lines, depth=outside)
+    with pytest.raises(TypeError, match="floats in"):
+        vsil.measure_width(lines, depth=(np.nan_to_num(depth) * 65534).astype(np.uint16))
+    with pytest.warns(UserWarning, match="has a depth"):
+        vsil.measure_width(lines, depth=np.full(lines.shape, np.nan, np.float32))
