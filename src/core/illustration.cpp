@@ -248,8 +248,9 @@ void parseParameterList(std::string_view text, const std::string& where,
 }
 
 glm::dvec3 Light::directionEye() const {
-  const double az = azimuthDeg * std::numbers::pi / 180.0;
-  const double el = elevationDeg * std::numbers::pi / 180.0;
+  // Whole turns first: 1.7e308 degrees times pi/180 overflowed to inf (a NaN direction).
+  const double az = std::fmod(azimuthDeg, 360.0) * std::numbers::pi / 180.0;
+  const double el = std::fmod(elevationDeg, 360.0) * std::numbers::pi / 180.0;
   return {std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)};
 }
 

@@ -106,6 +106,11 @@ TEST(IllustrationInput, LightsPointAsTheirAnglesSay) {
   EXPECT_NEAR(viewer.z, 1.0, 1e-12);
   const glm::dvec3 right = parseLight("90,0", "--light").directionEye();
   EXPECT_NEAR(right.x, 1.0, 1e-12);
+  // A huge azimuth is whole turns and a rest, as the view's is (its radians overflowed: NaN).
+  const glm::dvec3 far = parseLight("1.7e308,0", "--light").directionEye();
+  const glm::dvec3 rest = Light{std::fmod(1.7e308, 360.0), 0.0}.directionEye();
+  EXPECT_NEAR(far.x, rest.x, 1e-12);
+  EXPECT_NEAR(far.z, rest.z, 1e-12);
   EXPECT_NE(inputError([] { parseLight("0,91", "--light"); }), "");
   EXPECT_NE(inputError([] { parseLight("0", "--light"); }), "");
   EXPECT_NE(inputError([] { parseLight("nan,0", "--light"); }), "");
