@@ -15,6 +15,7 @@
 #include "core/depth_image.h"
 #include "core/error.h"
 #include "core/limits.h"
+#include "core/number_pair.h"
 #include "core/options.h"
 #include "core/version.h"
 #include "postfx/broaden.h"
@@ -179,9 +180,10 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
                       bytes, limits.maxBytes);
 }
 
-// An iso value outside the data's range finds no surface: the frame is empty, which is what
-// was asked, but rarely what was meant. `uploadedRange`: the range found when the samples were
-// uploaded, still theirs when the volume owns them.
+// An iso value outside the data's range finds no surface, and a window that starts above it
+// shows no maximum: the frame is empty, which is what was asked, but rarely what was meant.
+// `uploadedRange`: the range found when the samples were uploaded, still theirs when the volume
+// owns them.
 std::vector<std::string> warnings(const RenderRequest& request, const Volume& volume,
                                   ValueRange uploadedRange) {
   std::vector<std::string> found;
@@ -195,17 +197,33 @@ std::vector<std::string> warnings(const RenderRequest& request, const Volume& vo
                     "' draws no lines or filled pixels; ignored (the line flags go with " +
                     drawers + ")");
   }
-  const auto given = request.settings.options.find("iso");
-  if (given == request.settings.options.end()) return found;
-  const double iso = std::get<double>(given->second);
+  const auto& options = request.settings.options;
+  const auto iso = options.find("iso");
+  const auto window = options.find("window");
+  const std::string* windowText =
+      window == options.end() ? nullptr : std::get_if<std::string>(&window->second);
+  if (iso == options.end() && !(windowText && !windowText->empty())) return found;
   // Borrowed samples as they are now: Python may change an array in place after its upload.
   const ValueRange range = volume.borrowsSamples() ? valueRange(volume) : uploadedRange;
-  if (iso > range.max || iso < range.min) {
-    std::ostringstream line;
-    line << "--iso " << iso << " is outside the data's range " << range.min << " .. " << range.max
-         << " of " << volume.source << ": " << (iso > range.max ? "no" : "every")
-         << " sample reaches it";
-    found.push_back(line.str());
+  std::ostringstream line;
+  if (iso != options.end()) {
+    const double value = std::get<double>(iso->second);
+    if (value > range.max || value < range.min) {
+      line << "--iso " << value << " is outside the data's range " << range.min << " .. "
+           << range.max << " of " << volume.source << ": " << (value > range.max ? "no" : "every")
+           << " sample reaches it";
+      found.push_back(line.str());
+    }
+  }
+  // The MIP family shows a pixel whose maximum exceeds the window's low end.
+  if (windowText && !windowText->empty()) {
+    const double low = parseNumberPair("--window", *windowText).x;
+    if (low >= range.max) {
+      line.str("");
+      line << "--window " << *windowText << " starts at or above the data's largest value "
+           << range.max << " of " << volume.source << ": no pixel shows anything";
+      found.push_back(line.str());
+    }
   }
   return found;
 }

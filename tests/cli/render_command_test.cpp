@@ -155,7 +155,7 @@ TEST(RenderCommand, LmipThresholdKeepsTheHistogramsWindowAndPresetScale) {
   }
 }
 
-TEST(RenderCommand, WarnsWhenTheIsoValueLiesOutsideTheData) {
+TEST(RenderCommand, WarnsWhenTheIsoValueOrTheWindowLiesOutsideTheData) {
   const auto dir = test::scratchDir();
   const auto out = (dir / "empty.png").string();
   const auto result = test::runVsil("render gen:sphere:16 --size 32x32 --iso 1000 --out " + out);
@@ -166,6 +166,19 @@ TEST(RenderCommand, WarnsWhenTheIsoValueLiesOutsideTheData) {
             "gen:sphere:16: no sample reaches it\n");
   const auto inside = test::runVsil("render gen:sphere:16 --size 32x32 --iso 0.5 --out " + out);
   EXPECT_EQ(inside.err, "") << "no warning inside the range";
+  // The MIP family's window starting above every value: a blank frame, said so.
+  for (const char* technique : {"mip", "demip", "lmip"}) {
+    const auto above = test::runVsil("render gen:sphere:16 --size 32x32 --technique " +
+                                     std::string(technique) + " --window 300,400 --out " + out);
+    EXPECT_EQ(above.exitCode, 0) << above.err;
+    EXPECT_EQ(above.err,
+              "vsil: warning: --window 300,400 starts at or above the data's largest value "
+              "0.891747 of gen:sphere:16: no pixel shows anything\n")
+        << technique;
+  }
+  const auto window = test::runVsil(
+      "render gen:sphere:16 --size 32x32 --technique mip --window 0.1,2 --out " + out);
+  EXPECT_EQ(window.err, "") << "no warning for a window that starts inside the range";
 }
 
 // The line flags shape nothing of a technique that draws no lines: the frame is made and says
