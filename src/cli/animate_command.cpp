@@ -27,6 +27,7 @@
 #include "core/json_input.h"
 #include "core/limits.h"
 #include "core/number_pair.h"
+#include "core/options.h"
 #include "core/progress_line.h"
 #include "core/version.h"
 #include "io/file_access.h"
@@ -76,6 +77,9 @@ void checkOutputs(const AnimateFlags& flags, glm::ivec2 size) {
         throwInputError(where, "folder " + parent.string() + " does not exist");
       }
     }
+  }
+  if (flags.video.empty() && !VideoFile::validFps(flags.fps)) {
+    throwInputError("--fps " + formatNumber(flags.fps), "must be in [0.01, 1000]");
   }
   if (!flags.video.empty()) VideoFile::checkTarget("--video", flags.video, size, flags.fps);
 }

@@ -907,6 +907,8 @@ class PythonRenderer {
     if (!video.is_none()) {
       videoPath = valueText(textKeyword("video"), video, function);
       VideoFile::checkTarget("--video", videoPath, request.render.settings.size, fps);
+    } else if (!VideoFile::validFps(fps)) {
+      throw InputError(function + ": fps " + formatNumber(fps) + " must be in [0.01, 1000]");
     }
     std::shared_ptr<Slot> resident = request.volume ? residentSlot(request.volume) : nullptr;
     Slot& slot = resident ? *resident : main_;

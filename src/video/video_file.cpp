@@ -72,11 +72,13 @@ void VideoFile::checkTarget(const std::string& flag, const std::filesystem::path
     throwInputError(where, "video needs an even width and height (--size " +
                                std::to_string(size.x) + "x" + std::to_string(size.y) + ")");
   }
+  if (!validFps(fps)) throwInputError(where, "--fps must be in [0.01, 1000]");
+}
+
+bool VideoFile::validFps(double fps) {
   // Below 0.01 FFmpeg has no time base for it (0.001: "The encoder timebase is not set", and
   // OpenCV's error blamed a missing back end).
-  if (!(fps >= 0.01 && fps <= 1000)) {
-    throwInputError(where, "--fps must be in [0.01, 1000]");
-  }
+  return fps >= 0.01 && fps <= 1000;
 }
 
 VideoFile::VideoFile(const std::filesystem::path& target, glm::ivec2 size, double fps)

@@ -23,6 +23,9 @@ class VideoFile {
  public:
   // The checks that create nothing: a known extension, an existing folder, an even size and a
   // frame rate in (0, 1000]. Throws InputError naming `flag` and the path.
+  // Whether a video can take `fps` frames per second: [0.01, 1000]. A value no video could
+  // take is refused also where no video is written.
+  static bool validFps(double fps);
   static void checkTarget(const std::string& flag, const std::filesystem::path& target,
                           glm::ivec2 size, double fps);
 
