@@ -40,6 +40,7 @@ void run(const MeasureWidthArgs& args) {
   const std::size_t maxBytes = maxMemoryBytes(args.maxMemoryMiB);
   OutputBatch outputs;  // both written, or neither
   outputs.claim("--plot", args.plot);
+  if (!args.plot.empty()) requirePngName("--plot", args.plot);
   outputs.claim("--json", args.json);
   if (validateOnly()) return;
   const cv::Mat image = readImage(args.image);

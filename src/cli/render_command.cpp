@@ -43,6 +43,10 @@ void checkOutputs(const RenderFlags& flags, const RenderOutputs& outputs, Output
   batch.claim("--state-out", outputs.stateOut);
   batch.claim("--depth-out", outputs.depthOut);
   batch.claim("--meta-out", outputs.metaOut);
+  // After the claims, which say first that a name is a folder, an input or another output's.
+  requirePngName("--out", outputs.out);
+  requirePngName("--state-out", outputs.stateOut);
+  requirePngName("--depth-out", outputs.depthOut);
   const TechniqueInfo& technique = findTechnique(flags.technique);
   if (!outputs.stateOut.empty() && !technique.outputs.state) {
     throw InputError("--state-out: technique '" + technique.name + "' makes no state image");

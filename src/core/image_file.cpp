@@ -103,6 +103,14 @@ std::vector<std::uint8_t> encodePng(const cv::Mat& image) {
   return bytes;
 }
 
+void requirePngName(const std::string& flag, const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (!extension.empty() && extension != ".png") {
+    throwInputError(flag + " " + path.string(), "vsil writes PNG images; name the file .png");
+  }
+}
+
 std::vector<std::uint8_t> encodePng(const std::filesystem::path& path, const cv::Mat& image) {
   if (image.empty()) throwInputError(path.string(), "refusing to write an empty image");
   try {

@@ -3,6 +3,7 @@
 // libraries into every process start, are not linked). Writing is atomic (core/atomic_file.h).
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -17,6 +18,11 @@ std::vector<std::uint8_t> encodePng(const std::filesystem::path& path, const cv:
 // The same bytes with no file behind them (`vsil serve` sends them: the page's PNG is the
 // file's); std::runtime_error when they cannot be made.
 std::vector<std::uint8_t> encodePng(const cv::Mat& image);
+
+// Refuses (InputError "<flag> <path>: vsil writes PNG images; name the file .png") an image
+// output whose name says another format (o.jpg, d.tiff): it would hold PNG bytes all the same.
+// A name without an extension (/dev/stdout) is taken.
+void requirePngName(const std::string& flag, const std::filesystem::path& path);
 
 // Reads a PNG image of at most limits::kMaxImageSide pixels a side as readPng. Throws InputError
 // naming the path when it is missing, not a PNG image, too large or not decodable.
