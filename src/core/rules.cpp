@@ -942,8 +942,8 @@ RuleBase loadRulesPreset(const std::string& nameOrFile, const std::string& where
     if (nameOrFile.find_first_not_of(" \t\r\n") == std::string::npos) {
       throwInputError(where, "is empty: give a preset (" + known + ") or a .rules file");
     }
-    throwInputError(where, "unknown preset '" + nameOrFile + "' (presets: " + known +
-                               "; or a .rules file)");
+    throwInputError(
+        where, "unknown preset '" + nameOrFile + "' (presets: " + known + "; or a .rules file)");
   }
   // Presets name only built-in sphere ramps: there is no folder beside them.
   return parseRulesText(embeddedRuleSource(nameOrFile + ".rules"), nameOrFile + ".rules", {});

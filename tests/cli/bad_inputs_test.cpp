@@ -203,8 +203,8 @@ TEST(BadInputs, AnOutputNamingAnInputIsRefused) {
                              "axes": {"width": [1, 2]}})";
   const auto planBytes = test::readFileBytes(plan);
   // Refused before any task runs: no task image in --out-dir (they were all rendered first).
-  const test::CommandResult swept = test::runVsil("sweep " + plan + " --json " + plan +
-                                                  " --out-dir " + (dir / "tasks").string());
+  const test::CommandResult swept =
+      test::runVsil("sweep " + plan + " --json " + plan + " --out-dir " + (dir / "tasks").string());
   EXPECT_EQ(swept.exitCode, 2);
   EXPECT_TRUE(swept.err.ends_with("a file this command reads; give the output its own file\n"))
       << swept.err;

@@ -53,9 +53,9 @@ TEST(InfoCommand, ANameThatIsNotUtf8IsWrittenWithAReplacementCharacter) {
   EXPECT_EQ(nlohmann::json::parse(info.out)["source"].get<std::string>(),
             (dir / "bad\xef\xbf\xbdname.nrrd").string());
   const auto meta = dir / "meta.json";
-  const auto render = test::runVsil("render '" + path + "' --size 16x16 --out '" +
-                                    (dir / "x.png").string() + "' --meta-out '" + meta.string() +
-                                    "'");
+  const auto render =
+      test::runVsil("render '" + path + "' --size 16x16 --out '" + (dir / "x.png").string() +
+                    "' --meta-out '" + meta.string() + "'");
   ASSERT_EQ(render.exitCode, 0) << render.err;
   const auto document = nlohmann::json::parse(test::readFileBytes(meta));
   EXPECT_NE(document.dump().find("bad\xef\xbf\xbdname.nrrd"), std::string::npos);

@@ -56,13 +56,13 @@ TEST(MeasureWidthCommand, ADepthImageWithoutDepthsWarnsAndLeavesWidthsNull) {
   image(cv::Rect(5, 10, 50, 4)).setTo(0);
   writePng(dir / "lines.png", image);
   writePng(dir / "depth.png", cv::Mat1w(image.size(), std::uint16_t(0)));
-  const auto result = test::runVsil("measure-width " + (dir / "lines.png").string() + " --depth " +
-                                    (dir / "depth.png").string() + " --json " +
-                                    (dir / "report.json").string());
+  const auto result =
+      test::runVsil("measure-width " + (dir / "lines.png").string() + " --depth " +
+                    (dir / "depth.png").string() + " --json " + (dir / "report.json").string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
-  EXPECT_NE(result.err.find("vsil: warning: --depth " + (dir / "depth.png").string() +
-                            ": none of the "),
-            std::string::npos)
+  EXPECT_NE(
+      result.err.find("vsil: warning: --depth " + (dir / "depth.png").string() + ": none of the "),
+      std::string::npos)
       << result.err;
   std::ifstream in(dir / "report.json");
   for (const auto& bin : nlohmann::json::parse(in)["by_depth"]) {
