@@ -1426,5 +1426,6 @@ PYBIND11_MODULE(_vsil, m) {
   m.def("measure_width", &measureWidth, py::arg("lines"), py::kw_only(),
         py::arg("depth") = py::none(), py::arg("bins") = 10, py::arg("bin_width") = 1.0,
         "Line widths of a mask (non-zero = line) on its medial axis: the statistics "
-        "`vsil measure-width --json` writes, by_depth with `depth`, and samples (x, y, width)");
+        "`vsil measure-width --json` writes, by_depth with `depth` (floats in [0, 1], NaN: none; "
+        "an empty bin's widths are None), and samples (x, y, width)");
 }

@@ -1021,3 +1021,14 @@ def test_measure_width_reads_masks_as_non_zero_and_refuses_depths_outside_0_1():
         vsil.measure_width(lines, depth=(np.nan_to_num(depth) * 65534).astype(np.uint16))
     with pytest.warns(UserWarning, match="has a depth"):
         vsil.measure_width(lines, depth=np.full(lines.shape, np.nan, np.float32))
+
+
+@pytest.mark.parametrize("call", [lambda: vsil.measure_width(None),
+                                  lambda: vsil.measure_width(np.ones((4, 4)), bins=2.5),
+                                  lambda: vsil.broaden(np.ones((4, 4), np.uint8), width="3")])
+def test_arguments_of_the_wrong_type_are_one_line_naming_the_function(call):
+    """pybind11's own message spans several lines (signatures, a blank line, what was given)."""
+    with pytest.raises(TypeError) as error:
+        call()
+    text = str(error.value)
+    assert "\n" not in text and re.match(r"vsil\.(measure_width|broaden): takes \(lines", text), text

@@ -11,11 +11,12 @@ The keywords of Renderer, Renderer.render and load are the flags of `vsil render
 their signatures, help and the stub (__init__.pyi) are made from the CLI's option tables
 (vsil._vsil._keywords), so they list what the command line takes, with its defaults.
 """
+import functools
 import inspect
 import os
 
 from . import _vsil
-from ._vsil import Frame, Volume, __version__, broaden, measure_width
+from ._vsil import Frame, Volume, __version__
 
 __all__ = ["Frame", "Renderer", "Volume", "__version__", "broaden", "generate", "info", "load",
            "measure_width"]
@@ -156,3 +157,26 @@ _signed(info, [inspect.Parameter("volume", inspect.Parameter.POSITIONAL_OR_KEYWO
 def generate(name, size=128):
     """A procedural volume, as INPUT gen:NAME:SIZE."""
     return _vsil.generate(name, size)
+
+
+def _one_line_type_errors(function, name):
+    """pybind11's TypeError for arguments of the wrong types spans several lines (the supported
+    signatures, a blank line, what it was given): one line naming the function instead."""
+    @functools.wraps(function)
+    def call(*args, **kwargs):
+        try:
+            return function(*args, **kwargs)
+        except TypeError as error:
+            text = str(error)
+            lines = [line.strip() for line in text.splitlines() if line.strip()]
+            if not lines or "incompatible function arguments" not in lines[0]:
+                raise
+            takes = lines[1].split(". ", 1)[-1].rsplit(" -> ", 1)[0] if len(lines) > 1 else "?"
+            got = " ".join(text.partition("Invoked with: ")[2].split()) or "?"
+            raise TypeError(f"vsil.{name}: takes {takes}, not {got[:200]}") from None
+    return call
+
+
+broaden = _one_line_type_errors(_vsil.broaden, "broaden")
+measure_width = _one_line_type_errors(_vsil.measure_width, "measure_width")
+
