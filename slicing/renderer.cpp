@@ -60,10 +60,6 @@ void validate(const RenderSettings& settings) {
 // by the histogram whatever else is given. The others (the MIP family's default window,
 // illustrate's and semantic's classification above Otsu's threshold) always do.
 bool needsHistogram(const TechniqueInfo& info, const OptionValues& given) {
-  const auto givenText = [&](const std::string& name) -> const std::string* {
-    const auto it = given.find(name);
-    return it == given.end() ? nullptr : std::get_if<std::string>(&it->second);
-  };
   bool hasIso = false;
   for (const OptionSpec& spec : info.options) {
     if (spec.derived == OptionSpec::Derived::VolumeIso) {
@@ -72,7 +68,7 @@ bool needsHistogram(const TechniqueInfo& info, const OptionValues& given) {
     }
     if (spec.name == "window" && !given.contains("window") && !given.contains("tf")) return true;
     if (spec.name == "tf") {
-      const std::string* tf = givenText("tf");
+      const std::string* tf = givenText(given, "tf");
       if (tf && !tf->empty() && !isInlineSource(*tf) && !isTransferFunctionFile(*tf)) return true;
     }
   }

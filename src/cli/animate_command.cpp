@@ -79,7 +79,8 @@ void checkOutputs(const AnimateFlags& flags, glm::ivec2 size) {
     }
   }
   if (flags.video.empty() && !VideoFile::validFps(flags.fps)) {
-    throwInputError("--fps " + formatNumber(flags.fps), "must be in [0.01, 1000]");
+    throwInputError("--fps " + formatNumber(flags.fps),
+                    std::string("must be in ") + VideoFile::kFpsRange);
   }
   if (!flags.video.empty()) VideoFile::checkTarget("--video", flags.video, size, flags.fps);
 }

@@ -78,6 +78,11 @@ std::optional<std::vector<double>> parseNumberList(std::string_view text, int co
   return numbers;
 }
 
+const std::string* givenText(const OptionValues& given, std::string_view name) {
+  const auto it = given.find(name);
+  return it == given.end() ? nullptr : std::get_if<std::string>(&it->second);
+}
+
 bool isInlineSource(std::string_view text) {
   const auto first = text.find_first_not_of(" \t\r\n");
   const auto last = text.find_last_not_of(" \t\r\n");

@@ -108,6 +108,9 @@ bool isInlineSource(std::string_view text);
 // Option values by name, as given (defaults are not stored here).
 using OptionValues = std::map<std::string, OptionValue, std::less<>>;
 
+// The text an option was given, or null where it was not given or is not text.
+const std::string* givenText(const OptionValues& given, std::string_view name);
+
 // Throws InputError for a value whose name `specs` do not declare ("--ra-exponent: not an option
 // of technique 'silhouette' (its options: --iso, --pipeline)") or whose value does not check.
 void checkOptions(const std::vector<OptionSpec>& specs, const OptionValues& values,

@@ -199,9 +199,7 @@ std::vector<std::string> warnings(const RenderRequest& request, const Volume& vo
   }
   const auto& options = request.settings.options;
   const auto iso = options.find("iso");
-  const auto window = options.find("window");
-  const std::string* windowText =
-      window == options.end() ? nullptr : std::get_if<std::string>(&window->second);
+  const std::string* windowText = givenText(options, "window");
   if (iso == options.end() && !(windowText && !windowText->empty())) return found;
   // Borrowed samples as they are now: Python may change an array in place after its upload.
   const ValueRange range = volume.borrowsSamples() ? valueRange(volume) : uploadedRange;

@@ -759,13 +759,18 @@ struct Slot {
   std::uint64_t uploadedTextureBytes = limits::kMaxTextureBytes;
 };
 
+// What every call on a closed Renderer raises (ValueError).
+[[noreturn]] void throwClosed() {
+  throw InputError("vsil.Renderer: this renderer is closed");
+}
+
 // The turn of a slot's job. Its job is looked at once the turn is held: close() ends the main
 // slot's job in a turn of its own, which may come while this thread waits for the lock (a
 // Renderer closed from another thread); then this raises "closed" instead of using the ended job.
 class SlotTurn {
  public:
   explicit SlotTurn(Slot& slot) : turn_(nullptr) {
-    if (!slot.job) throw InputError("vsil.Renderer: this renderer is closed");
+    if (!slot.job) throwClosed();
     turn_.setJob(slot.job.get());
   }
 
@@ -908,7 +913,8 @@ class PythonRenderer {
       videoPath = valueText(textKeyword("video"), video, function);
       VideoFile::checkTarget("--video", videoPath, request.render.settings.size, fps);
     } else if (!VideoFile::validFps(fps)) {
-      throw InputError(function + ": fps " + formatNumber(fps) + " must be in [0.01, 1000]");
+      throw InputError(function + ": fps " + formatNumber(fps) + " must be in " +
+                       VideoFile::kFpsRange);
     }
     std::shared_ptr<Slot> resident = request.volume ? residentSlot(request.volume) : nullptr;
     Slot& slot = resident ? *resident : main_;
@@ -1083,7 +1089,7 @@ class PythonRenderer {
   }
 
   RenderJob& job() const {
-    if (!main_.job) throw InputError("vsil.Renderer: this renderer is closed");
+    if (!main_.job) throwClosed();
     return *main_.job;
   }
 

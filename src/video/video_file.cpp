@@ -72,7 +72,7 @@ void VideoFile::checkTarget(const std::string& flag, const std::filesystem::path
     throwInputError(where, "video needs an even width and height (--size " +
                                std::to_string(size.x) + "x" + std::to_string(size.y) + ")");
   }
-  if (!validFps(fps)) throwInputError(where, "--fps must be in [0.01, 1000]");
+  if (!validFps(fps)) throwInputError(where, std::string("--fps must be in ") + kFpsRange);
 }
 
 bool VideoFile::validFps(double fps) {

@@ -26,6 +26,7 @@ class VideoFile {
   // Whether a video can take `fps` frames per second: [0.01, 1000]. A value no video could
   // take is refused also where no video is written.
   static bool validFps(double fps);
+  static constexpr const char* kFpsRange = "[0.01, 1000]";  // for messages
   static void checkTarget(const std::string& flag, const std::filesystem::path& target,
                           glm::ivec2 size, double fps);
 

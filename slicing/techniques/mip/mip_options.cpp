@@ -9,16 +9,6 @@
 
 namespace vsil {
 
-namespace {
-
-// Options given as text, when given.
-const std::string* givenText(const OptionValues& given, const std::string& name) {
-  const auto it = given.find(name);
-  return it == given.end() ? nullptr : std::get_if<std::string>(&it->second);
-}
-
-}  // namespace
-
 OptionSpec windowOption() {
   OptionSpec spec = OptionSpec::text(
       "window", "LO,HI in data units mapped to black..white; values at or below LO show nothing");
