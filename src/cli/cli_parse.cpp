@@ -1,5 +1,6 @@
 #include "cli/cli_parse.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdlib>
 #include <limits>
@@ -29,22 +30,35 @@ CLI::Option* nonEmpty(CLI::Option* option) {
   });
 }
 
-void refuseWholeNumbersBeyondRange(CLI::App& app) {
+void readNumbersAsDecimal(CLI::App& app) {
   for (CLI::Option* option : app.get_options()) {
     const std::string type = option->get_type_name();
-    if (type != "INT" && type != "UINT") continue;
+    const bool whole = type == "INT" || type == "UINT";
+    if (!whole && type != "FLOAT") continue;
     const std::string flag = option->get_name();
-    option->each([flag](const std::string& text) {
+    option->transform([flag, whole](std::string text) {
+      const std::size_t digits = text.starts_with('+') || text.starts_with('-') ? 1 : 0;
+      const std::string_view number = std::string_view(text).substr(digits);
+      if (number.starts_with("0x") || number.starts_with("0X")) {
+        throwInputError(flag + " " + text, "is hexadecimal; write the number in decimal");
+      }
+      if (!whole) return text;
+      const bool decimal = !number.empty() && std::all_of(number.begin(), number.end(), [](char c) {
+        return c >= '0' && c <= '9';
+      });
+      if (!decimal) return text;  // CLI11 refuses it, naming the flag
+      const std::size_t firstDigit = std::min(number.find_first_not_of('0'), number.size() - 1);
+      const std::string_view significant = number.substr(firstDigit);
       long long value = 0;
-      const char* end = text.data() + text.size();
       const auto result =
-          std::from_chars(text.data() + (text.starts_with('+') ? 1 : 0), end, value);
-      if (result.ec == std::errc::result_out_of_range && result.ptr == end) {
+          std::from_chars(significant.data(), significant.data() + significant.size(), value);
+      if (result.ec == std::errc::result_out_of_range) {
         throwInputError(flag + " " + text, "is beyond every whole number the flag takes");
       }
+      return text.substr(0, digits) + std::string(significant);
     });
   }
-  for (CLI::App* command : app.get_subcommands({})) refuseWholeNumbersBeyondRange(*command);
+  for (CLI::App* command : app.get_subcommands({})) readNumbersAsDecimal(*command);
 }
 
 glm::ivec2 parseSize(const std::string& flag, const std::string& text) {

@@ -16,11 +16,13 @@ namespace vsil::cli {
 // "<flag>: is empty: give a value, or leave the flag out", never the flag read as left out.
 CLI::Option* nonEmpty(CLI::Option* option);
 
-// CLI11 reads a whole number beyond long long as the largest one (99999999999999999999 became
-// 9223372036854775807, and messages quoted that): every whole-number option of `app` and its
-// subcommands refuses such a value as written, InputError "<flag> <text>: is beyond every whole
-// number the flag takes". Call once the options are added.
-void refuseWholeNumbersBeyondRange(CLI::App& app);
+// Numbers as people write them, in decimal, for every number option of `app` and its
+// subcommands (call once the options are added). CLI11 reads C's other notations: 0x10 as 16
+// (whole numbers and decimals alike), and 010 as the octal 8 (--frames 010 made 8 frames); a
+// whole number beyond long long it reads as the largest one (messages quoted
+// 9223372036854775807). Here leading zeros are read as decimal (010 is 10), and a hexadecimal
+// number or a whole number beyond range is refused as written: InputError "<flag> <text>: ...".
+void readNumbersAsDecimal(CLI::App& app);
 
 // "WxH" with positive integers.
 glm::ivec2 parseSize(const std::string& flag, const std::string& text);

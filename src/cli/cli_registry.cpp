@@ -24,7 +24,7 @@ void setUpApp(CLI::App& app) {
   std::stable_sort(commands.begin(), commands.end(),
                    [](const auto& a, const auto& b) { return a.order < b.order; });
   for (const auto& command : commands) command.setup(app);
-  refuseWholeNumbersBeyondRange(app);
+  readNumbersAsDecimal(app);
 }
 
 namespace {

@@ -580,7 +580,7 @@ void appendFlag(std::vector<std::string>& args, const Keyword& keyword, const py
 // Parses `kwargs` with `app`'s options; a keyword with no flag of that name is a TypeError
 // naming it, as Python's own for an unexpected keyword argument.
 void parseKeywords(CLI::App& app, const py::kwargs& kwargs, const std::string& function) {
-  cli::refuseWholeNumbersBeyondRange(app);
+  cli::readNumbersAsDecimal(app);
   std::vector<std::string> args;
   for (const auto& [key, value] : kwargs) {
     const std::string name = key.cast<std::string>();
