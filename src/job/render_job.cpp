@@ -185,8 +185,16 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
 // `uploadedRange`: the range found when the samples were uploaded, still theirs when the volume
 // owns them.
 std::vector<std::string> warnings(const RenderRequest& request, const Volume& volume,
-                                  ValueRange uploadedRange) {
+                                  ValueRange uploadedRange, int slices) {
   std::vector<std::string> found;
+  // A --sampling lowered so far that a few slices remain shows cross-sections, not the volume.
+  constexpr int kFewSlices = 16;
+  const double sampling = request.settings.samplesPerVoxel;
+  if (sampling < RenderSettings{}.samplesPerVoxel && slices < kFewSlices) {
+    found.push_back("--sampling " + formatNumber(sampling) + " leaves " + std::to_string(slices) +
+                    (slices == 1 ? " slice" : " slices") + " through " + volume.source +
+                    ": the picture shows cross-sections, not the volume");
+  }
   const TechniqueInfo& technique = findTechnique(request.settings.technique);
   if (!technique.outputs.state && !request.lineFlagsGiven.empty()) {
     std::string drawers;
@@ -361,7 +369,7 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
   const ValueRange range = impl_->renderer->valueRange();
   output.metadata = metadata(request, impl_->input, volume, range, output.result,
                              impl_->context.info(), output.postfx);
-  output.warnings = warnings(request, volume, range);
+  output.warnings = warnings(request, volume, range, output.result.sliceCount);
   return output;
 }
 

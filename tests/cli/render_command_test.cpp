@@ -181,6 +181,24 @@ TEST(RenderCommand, WarnsWhenTheIsoValueOrTheWindowLiesOutsideTheData) {
   EXPECT_EQ(window.err, "") << "no warning for a window that starts inside the range";
 }
 
+// A --sampling lowered until a few slices remain shows cross-sections: the frame is made and
+// says so; the default sampling on a small volume, or a lower one that leaves enough, does not.
+TEST(RenderCommand, WarnsWhenTheSamplingLeavesFewSlices) {
+  const auto dir = test::scratchDir();
+  const auto out = (dir / "few.png").string();
+  const auto few =
+      test::runVsil("render gen:sphere:64 --size 32x32 --sampling 0.05 --out " + out);
+  EXPECT_EQ(few.exitCode, 0) << few.err;
+  EXPECT_EQ(few.err,
+            "vsil: warning: --sampling 0.05 leaves 5 slices through gen:sphere:64: the picture "
+            "shows cross-sections, not the volume\n");
+  for (const std::string args : {"gen:sphere:64 --sampling 0.25", "gen:sphere:8"}) {
+    const auto enough = test::runVsil("render " + args + " --size 32x32 --out " + out);
+    EXPECT_EQ(enough.exitCode, 0) << enough.err;
+    EXPECT_EQ(enough.err, "") << args;
+  }
+}
+
 // The line flags shape nothing of a technique that draws no lines: the frame is made and says
 // which it ignored; the silhouette takes them without a word.
 TEST(RenderCommand, WarnsThatATechniqueWithoutLinesIgnoresTheLineFlags) {
