@@ -95,14 +95,14 @@ OptionSpec transferFunctionOption() {
 OptionSpec colorOption() {
   return OptionSpec::text("color", "the sample colour without a transfer function (default ivory)")
       .validatedBy([](const OptionValue& value) {
-        if (!textOf(value).empty()) parseColor(textOf(value), "--color");
+        if (!textOf(value).empty()) parseOpaqueColor(textOf(value), "--color", kSampleColorAlpha);
       });
 }
 
 OptionSpec sketchColorOption() {
   return OptionSpec::text("sketch-color", "the colour of sketch lines (default black)")
       .validatedBy([](const OptionValue& value) {
-        if (!textOf(value).empty()) parseColor(textOf(value), "--sketch-color");
+        if (!textOf(value).empty()) parseOpaqueColor(textOf(value), "--sketch-color", kSketchColorAlpha);
       });
 }
 
@@ -125,10 +125,10 @@ IllustrationStyle styleFromOptions(const std::vector<OptionSpec>& declared,
     style.transferFunction = transferFunctionOption(options.text("tf"), options.derived());
   }
   if (given("color") && !options.text("color").empty()) {
-    style.color = parseColor(options.text("color"), "--color");
+    style.color = parseOpaqueColor(options.text("color"), "--color", kSampleColorAlpha);
   }
   if (given("sketch-color") && !options.text("sketch-color").empty()) {
-    style.sketchColor = parseColor(options.text("sketch-color"), "--sketch-color");
+    style.sketchColor = parseOpaqueColor(options.text("sketch-color"), "--sketch-color", kSketchColorAlpha);
   }
   if (given("light") && !options.list("light").empty()) {
     std::vector<Light> lights;

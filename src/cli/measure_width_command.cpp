@@ -35,7 +35,8 @@ struct MeasureWidthArgs {
 };
 
 void run(const MeasureWidthArgs& args) {
-  const Rgba color = parseColor(args.lineColor, "--line-color");
+  const Rgba color = parseOpaqueColor(args.lineColor, "--line-color",
+                                      "lines are found by their red, green and blue alone");
   checkHistogramBinWidth("--bin-width", args.binWidth);
   const std::size_t maxBytes = maxMemoryBytes(args.maxMemoryMiB);
   OutputBatch outputs;  // both written, or neither

@@ -71,4 +71,14 @@ Rgba parseColor(const std::string& text, const std::string& flagName) {
   throwBadColor(text, flagName);
 }
 
+Rgba parseOpaqueColor(const std::string& text, const std::string& flagName,
+                      const std::string& why) {
+  const Rgba color = parseColor(text, flagName);
+  if (color.a != 255) {
+    throwInputError(flagName, "'" + text + "' has an alpha below ff, and " + why +
+                                  ": give #rgb, #rrggbb or a name");
+  }
+  return color;
+}
+
 }  // namespace vsil

@@ -176,7 +176,9 @@ EffectSet parseEffects(std::string_view text, const std::string& where) {
       throwInputError(where, "unknown effect " + quotedText(name) + " (known: " +
                                  joined({std::begin(kEffectNames), std::end(kEffectNames)}) + ")");
     }
-    effects.add(Effect(found - std::begin(kEffectNames)));
+    const auto effect = Effect(found - std::begin(kEffectNames));
+    if (effects.has(effect)) throwInputError(where, "effect " + quotedText(name) + " is named twice");
+    effects.add(effect);
   }
   return effects;
 }
@@ -270,8 +272,11 @@ Light parseLight(std::string_view text, const std::string& where) {
 
 namespace {
 
-Rgba styleColor(const nlohmann::json& value, const std::string& where) {
-  return parseColor(jsonString(value, where), where);
+// `opaqueWhy`: why the colour takes no alpha (parseOpaqueColor), or null where it may have one.
+Rgba styleColor(const nlohmann::json& value, const std::string& where,
+                const char* opaqueWhy = nullptr) {
+  const std::string text = jsonString(value, where);
+  return opaqueWhy ? parseOpaqueColor(text, where, opaqueWhy) : parseColor(text, where);
 }
 
 EffectSet styleEffects(const nlohmann::json& value, const std::string& where) {
@@ -282,7 +287,10 @@ EffectSet styleEffects(const nlohmann::json& value, const std::string& where) {
   EffectSet effects;
   for (std::size_t i = 0; i < value.size(); ++i) {
     const std::string at = where + " " + std::to_string(i + 1);
-    for (Effect e : parseEffects(jsonString(value[i], at), at).list()) effects.add(e);
+    for (Effect e : parseEffects(jsonString(value[i], at), at).list()) {
+      if (effects.has(e)) throwInputError(at, "effect " + quotedText(effectName(e)) + " is named twice");
+      effects.add(e);
+    }
   }
   return effects;
 }
@@ -359,9 +367,11 @@ IllustrationStyle parseStyle(const nlohmann::json& json, const std::string& sour
       style.transferFunction = parseTransferFunction(tf, where("transfer_function"));
     }
   }
-  if (json.contains("color")) style.color = styleColor(json["color"], where("color"));
+  if (json.contains("color")) {
+    style.color = styleColor(json["color"], where("color"), kSampleColorAlpha);
+  }
   if (json.contains("sketch_color")) {
-    style.sketchColor = styleColor(json["sketch_color"], where("sketch_color"));
+    style.sketchColor = styleColor(json["sketch_color"], where("sketch_color"), kSketchColorAlpha);
   }
   if (json.contains("background")) {
     style.background = styleColor(json["background"], where("background"));

@@ -78,7 +78,8 @@ TransferFunction parseTransferFunction(const nlohmann::json& json, const std::st
     }
     TransferPoint point;
     point.value = jsonNumber(item["value"], where + ": value");
-    const Rgba color = parseColor(jsonString(item["color"], where + ": color"), where + ": color");
+    const Rgba color = parseOpaqueColor(jsonString(item["color"], where + ": color"),
+                                        where + ": color", "a point's opacity is its own key");
     point.color = glm::dvec3(color.r, color.g, color.b) / 255.0;
     point.opacity = jsonNumber(item["opacity"], where + ": opacity");
     if (!(point.opacity >= 0.0 && point.opacity <= 1.0)) {

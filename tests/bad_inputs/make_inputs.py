@@ -74,6 +74,10 @@ write('tf_duplicate_key.json', '[{"value": 0, "color": "red", "opacity": 0.5, "o
 write('style_unknown_key.json', '{"effects": ["tone"], "shininess": 3}\n')
 write('style_bad_effect.json', '{"effects": ["tone", "glow"]}\n')
 write('style_bad_parameter.json', '{"parameters": {"k_gc": "high"}}\n')
+# Colours with an alpha where nothing reads it (a sample's, a sketch line's, a point's).
+write('style_color_alpha.json', '{"color": "#ff000080"}\n')
+write('tf_color_alpha.json', '[{"value": 0, "color": "transparent", "opacity": 0},\n'
+                             ' {"value": 1, "color": "white", "opacity": 1}]\n')
 
 # Rule bases (technique semantic): a malformed shape, sphere files missing or not images.
 write('rules_bad_shape.rules', 'attribute density from data {\n  high = trapezoid(0.2, 0.5, 1)\n}\n')
