@@ -398,6 +398,32 @@ bool isSequence(const py::handle& value) {
   return py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value);
 }
 
+// vsil.Volume(array, spacing, name): arguments of the wrong type raise one TypeError line
+// naming what each takes (pybind11's own spans several lines and lists the signature).
+PyVolume makeVolume(const py::object& array, const py::object& spacing, const py::object& name) {
+  const std::string function = "vsil.Volume";
+  // Nested lists convert as numpy would convert them.
+  if (!py::isinstance<py::array>(array) && !isSequence(array)) {
+    throw PythonTypeError(function + ": array takes a numpy array (z, y, x), not " +
+                          typeNameOf(array));
+  }
+  const bool numbers =
+      (isSequence(spacing) || py::isinstance<py::array>(spacing)) && py::len(spacing) == 3 &&
+      std::all_of(spacing.begin(), spacing.end(), [](const py::handle& item) { return isNumber(item); });
+  if (!numbers) {
+    const std::string given = py::repr(spacing);
+    throw PythonTypeError(function + ": spacing takes three numbers (x, y, z), not " +
+                          typeNameOf(spacing) + " " +
+                          (given.size() > 60 ? given.substr(0, 60) + "..." : given));
+  }
+  if (!py::isinstance<py::str>(name)) {
+    throw PythonTypeError(function + ": name takes a str, not " + typeNameOf(name));
+  }
+  std::vector<double> values;
+  for (const py::handle item : spacing) values.push_back(py::float_(py::reinterpret_borrow<py::object>(item)));
+  return wrapArray(py::array::ensure(array), values, name.cast<std::string>());
+}
+
 // The colour flags (--background, --line-color, --fill-color, --color, --sketch-color).
 bool isColourKeyword(const Keyword& keyword) {
   return keyword.key == "background" || keyword.key.ends_with("color");
@@ -1286,8 +1312,8 @@ PYBIND11_MODULE(_vsil, m) {
   });
 
   py::class_<PyVolume>(m, "Volume", "A scalar volume; .data is a numpy view (z, y, x)")
-      .def(py::init(&wrapArray), py::arg("array"),
-           py::arg("spacing") = std::vector<double>{1.0, 1.0, 1.0}, py::arg("name") = "array",
+      .def(py::init(&makeVolume), py::arg("array"),
+           py::arg("spacing") = py::make_tuple(1.0, 1.0, 1.0), py::arg("name") = "array",
            "Wraps a C-contiguous (z, y, x) array of uint8, int8, uint16, int16 or float32 "
            "without copying; other real or boolean dtypes, other strides and big-endian "
            "arrays are copied once (a UserWarning says why); spacing is (x, y, z)")

@@ -1036,3 +1036,28 @@ def test_arguments_of_the_wrong_type_are_one_line_naming_the_function(call):
         call()
     text = str(error.value)
     assert "\n" not in text and re.match(r"vsil\.(measure_width|broaden): takes \(lines", text), text
+
+
+@pytest.mark.parametrize("arguments, says", [
+    (dict(array=None), "array takes a numpy array (z, y, x), not NoneType"),
+    (dict(spacing="1,1,1"), "spacing takes three numbers (x, y, z), not str '1,1,1'"),
+    (dict(spacing=(True, 1, 1)), "spacing takes three numbers (x, y, z), not tuple (True, 1, 1)"),
+    (dict(spacing=(1, 1)), "spacing takes three numbers (x, y, z), not tuple (1, 1)"),
+    (dict(name=None), "name takes a str, not NoneType")])
+def test_volume_arguments_of_the_wrong_type_are_one_line(arguments, says):
+    """vsil.Volume's constructor said pybind11's several lines (the signature, what it was
+    given); a bool is not a number of the spacing."""
+    given = dict(array=np.zeros((2, 2, 2), np.uint8))
+    given.update(arguments)
+    with pytest.raises(TypeError) as error:
+        vsil.Volume(**given)
+    assert str(error.value) == "vsil.Volume: " + says
+
+
+def test_volume_takes_the_spacing_as_any_three_numbers():
+    """A list, a numpy array or numpy scalars serve as the spacing, as before."""
+    array = np.zeros((2, 2, 2), np.uint8)
+    for spacing in ([1, 2, 3], np.array([1.0, 2.0, 3.0]), (np.float32(1), np.int64(2), 3.0)):
+        assert vsil.Volume(array, spacing=spacing).spacing == (1.0, 2.0, 3.0)
+    with pytest.warns(UserWarning, match="converted to float32"):
+        assert vsil.Volume([[[1, 2], [3, 4]]]).dims == (2, 2, 1)
