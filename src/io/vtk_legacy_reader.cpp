@@ -129,8 +129,17 @@ LegacyHeader parseHeader(const std::string& path, std::string_view text) {
         throwInputError(path, "SCALARS has " + std::string(tokens[3]) +
                                   " components; only scalar (1-component) data is read");
       }
-      // LOOKUP_TABLE is optional in practice; when present it is the last header line.
-      if (cursor.rest().starts_with("LOOKUP_TABLE")) nextLine("the LOOKUP_TABLE line end");
+      // LOOKUP_TABLE is optional in practice; when present it is the last header line. VTK
+      // reads it as a keyword in any case after any whitespace, blank lines included (a binary
+      // payload was once read from the line itself, every sample shifted). Without it the
+      // payload starts on the next line, whatever its bytes.
+      const std::string_view rest = cursor.rest();
+      const std::size_t keywordAt = rest.find_first_not_of(" \t\r\n");
+      if (keywordAt != std::string_view::npos &&
+          toLower(rest.substr(keywordAt, 12)) == "lookup_table") {
+        while (trim(nextLine("the LOOKUP_TABLE line end")).empty()) {
+        }
+      }
       header.dataOffset = cursor.offset();
       return header;
     } else if (keyword == "cell_data" || keyword == "field" || keyword == "vectors" ||

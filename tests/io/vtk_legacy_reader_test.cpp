@@ -73,6 +73,26 @@ INSTANTIATE_TEST_SUITE_P(Legacy, LegacyRoundTrip, ::testing::ValuesIn(legacyCase
                                   (info.param.lookupTable ? "_table" : "_notable");
                          });
 
+// VTK reads LOOKUP_TABLE as a keyword in any case after any whitespace, blank lines included;
+// such a line was once taken as the first samples of a BINARY payload (every voxel shifted).
+TEST(LegacyReader, ALookupTableLineInLowerCaseIndentedOrAfterABlankLineIsSkipped) {
+  const auto values = test::testValues(kLegacyDims, SampleType::UInt16);
+  const std::string payload =
+      test::asText(test::encodeSamples(values, SampleType::UInt16, /*bigEndian=*/true));
+  for (const char* table : {"lookup_table default\n", "  LOOKUP_TABLE default\n",
+                            "\nLOOKUP_TABLE default\n", "\r\n \n\tLookup_Table default\r\n"}) {
+    const auto path = test::scratchDir() / "table.vtk";
+    test::writeFile(path, std::string("# vtk DataFile Version 3.0\ntable\nBINARY\n"
+                                      "DATASET STRUCTURED_POINTS\nDIMENSIONS 5 4 3\n"
+                                      "POINT_DATA 60\nSCALARS density unsigned_short 1\n") +
+                              table + payload);
+    const Volume volume = loadVolume(path.string());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      ASSERT_EQ(volume.value(i), values[i]) << "sample " << i << " after " << table;
+    }
+  }
+}
+
 // int, unsigned_int, vtktypeint64 and vtktypeuint64 (BINARY, big-endian, and ASCII) are kept as
 // float32, as the other readers keep the wide integers: exact up to 2^24, rounded ones counted.
 TEST(LegacyReader, WideIntegersConvertToFloat32CountingRoundedSamples) {
