@@ -132,6 +132,18 @@ void setFlag(serve::RenderCommandLine& line, const std::string& key, const Json&
   line.flags.push_back(flag);
 }
 
+// "width_near" and "width-near" name one flag: two such keys in one object would set it twice
+// (the row's "swept" then reported a value that was not rendered).
+void checkOneKeyPerFlag(const Json& object, const std::string& where) {
+  std::map<std::string, std::string> keyOf;  // flag name -> the first key naming it
+  for (const auto& [key, value] : object.items()) {
+    const auto [it, added] = keyOf.emplace(flagName(key), key);
+    if (!added) {
+      throwInputError(where + ": " + key, "names the same flag as " + it->second + ": give one");
+    }
+  }
+}
+
 void checkFixedPerRank(const std::string& key, const std::string& where) {
   const std::string name = flagName(key);
   if (name == "gl" || name == "gl-device") {
@@ -142,7 +154,7 @@ void checkFixedPerRank(const std::string& key, const std::string& where) {
 }
 
 SweepPlan readSweepPlan(const std::string& path) {
-  const Json document = Json::parse(readJsonFile(path).dump());
+  const Json document = readOrderedJsonFile(path);
   if (!document.is_object()) throwInputError(path, "must be a JSON object");
   checkJsonKeys(nlohmann::json(document), {"render", "axes", "tasks", "measure_widths"}, path);
   SweepPlan plan;
@@ -151,6 +163,7 @@ SweepPlan readSweepPlan(const std::string& path) {
   if (document.contains("render")) {
     const Json& render = document["render"];
     if (!render.is_object()) throwInputError(path + ": render", "must be an object of flags");
+    checkOneKeyPerFlag(render, path + ": render");
     for (const auto& [key, value] : render.items()) {
       setFlag(base, key, value, path + ": render: " + key);
     }
@@ -166,6 +179,7 @@ SweepPlan readSweepPlan(const std::string& path) {
   if (document.contains("axes")) {
     const Json& given = document["axes"];
     if (!given.is_object()) throwInputError(path + ": axes", "must be an object of arrays");
+    checkOneKeyPerFlag(given, path + ": axes");
     for (const auto& [key, values] : given.items()) {
       const std::string where = path + ": axes: " + key;
       checkFixedPerRank(key, where);
@@ -190,6 +204,7 @@ SweepPlan readSweepPlan(const std::string& path) {
     for (std::size_t i = 0; i < given.size(); ++i) {
       const std::string where = path + ": tasks[" + std::to_string(i) + "]";
       if (!given[i].is_object()) throwInputError(where, "must be an object of flags");
+      checkOneKeyPerFlag(given[i], where);
       serve::RenderCommandLine probe = base;
       for (const auto& [key, value] : given[i].items()) {
         checkFixedPerRank(key, where + ": " + key);

@@ -34,7 +34,11 @@ std::string conciseReason(const std::string& what) {
 
 }  // namespace
 
-nlohmann::json parseJsonText(std::string_view text, const std::string& source) {
+namespace {
+
+// parseJsonText for either JSON type (nlohmann::ordered_json keeps the file's key order).
+template <typename Json>
+Json parseGuarded(std::string_view text, const std::string& source) {
   // The parser itself keeps its nesting on the heap, but every later walk of the value
   // (dump, comparison, the readers) recurses: a file of 100000 '[' would overflow the stack
   // there. The callback sees each container open with the count of those enclosing it.
@@ -45,35 +49,46 @@ nlohmann::json parseJsonText(std::string_view text, const std::string& source) {
     std::string key;
   };
   std::vector<std::set<std::string>> objectKeys;  // of each object being parsed
-  const auto guard = [&objectKeys](int depth, nlohmann::json::parse_event_t event,
-                                   nlohmann::json& parsed) {
-    using Event = nlohmann::json::parse_event_t;
+  const auto guard = [&objectKeys](int depth, typename Json::parse_event_t event,
+                                   Json& parsed) {
+    using Event = typename Json::parse_event_t;
     if ((event == Event::object_start || event == Event::array_start) &&
         depth >= limits::kMaxJsonDepth) {
       throw TooDeep{};
     }
     if (event == Event::object_start) objectKeys.emplace_back();
     if (event == Event::object_end) objectKeys.pop_back();
-    if (event == Event::key && !objectKeys.back().insert(parsed.get<std::string>()).second) {
-      throw DuplicateKey{parsed.get<std::string>()};
+    if (event == Event::key && !objectKeys.back().insert(parsed.template get<std::string>()).second) {
+      throw DuplicateKey{parsed.template get<std::string>()};
     }
     return true;
   };
   try {
-    return nlohmann::json::parse(text.begin(), text.end(), guard);
+    return Json::parse(text.begin(), text.end(), guard);
   } catch (const TooDeep&) {
     throwInputError(source, "not valid JSON (nested more than " +
                                 std::to_string(limits::kMaxJsonDepth) + " levels deep)");
   } catch (const DuplicateKey& e) {
     throwInputError(source, "the key " + io::quote(e.key) +
                                 " is given twice in one object (which one counts?)");
-  } catch (const nlohmann::json::exception& e) {
+  } catch (const typename Json::exception& e) {
     throwInputError(source, "not valid JSON (" + conciseReason(e.what()) + ")");
   }
 }
 
+}  // namespace
+
+nlohmann::json parseJsonText(std::string_view text, const std::string& source) {
+  return parseGuarded<nlohmann::json>(text, source);
+}
+
 nlohmann::json readJsonFile(const std::string& path) {
   return parseJsonText(io::readWholeFile(path, limits::kMaxHeaderBytes), path);
+}
+
+nlohmann::ordered_json readOrderedJsonFile(const std::string& path) {
+  return parseGuarded<nlohmann::ordered_json>(io::readWholeFile(path, limits::kMaxHeaderBytes),
+                                              path);
 }
 
 std::string jsonText(const nlohmann::json& value, int indent) {

@@ -16,6 +16,8 @@ nlohmann::json parseJsonText(std::string_view text, const std::string& source);
 
 // Reads the whole file (at most limits::kMaxHeaderBytes) and parses it.
 nlohmann::json readJsonFile(const std::string& path);
+// The same, keeping the file's order of keys (where the order means something: sweep axes).
+nlohmann::ordered_json readOrderedJsonFile(const std::string& path);
 
 // The text of JSON vsil writes (--json, --meta-out, info --json, the serve API, ...), indented
 // as nlohmann's dump(indent). Bytes that are not UTF-8, which a Linux file name may hold and

@@ -56,6 +56,25 @@ rc=$?
   fail "a malformed sweep file does not get one line naming it: $(cat "$dir/err")"
 [[ ! -e $dir/bad-out.json ]] || fail "a malformed sweep file left a result file"
 
+# The axes in the file's order, the last fastest (they were taken in alphabetical order); two
+# spellings of one flag are refused (they made two axes, and "swept" named a value not rendered).
+echo '{"render": {"input": "gen:sphere:16", "size": "16x16"},
+       "axes": {"zoom": [1, 2], "view": ["0,0", "90,0"]}}' >"$dir/order.json"
+"$vsil" sweep "$dir/order.json" --json "$dir/order-out.json" --quiet 2>"$dir/err" ||
+  fail "the ordered sweep failed: $(cat "$dir/err")"
+/usr/bin/python3 - "$dir/order-out.json" <<'PY' || exit 1
+import json, sys
+rows = sorted(json.load(open(sys.argv[1]))["rows"], key=lambda r: r["task"])
+swept = [(r["swept"]["zoom"], r["swept"]["view"]) for r in rows]
+assert swept == [(1, "0,0"), (1, "90,0"), (2, "0,0"), (2, "90,0")], swept
+PY
+echo '{"axes": {"width_near": [1, 2], "width-near": [3, 4]}}' >"$dir/twice.json"
+"$vsil" sweep "$dir/twice.json" --json "$dir/twice-out.json" 2>"$dir/err"
+rc=$?
+[[ $rc == 2 ]] || fail "two spellings of one flag exited $rc, not 2"
+grep -qx "vsil: $dir/twice.json: axes: width-near: names the same flag as width_near: give one" \
+  "$dir/err" || fail "two spellings of one flag: $(cat "$dir/err")"
+
 # An --out-dir naming a result file (either spelling) is refused before any render, as two
 # outputs naming one file are (it rendered every task, then failed with "Is a directory").
 (cd "$dir" && "$vsil" sweep sweep.json --json r.json --out-dir ./r.json 2>err)
