@@ -941,6 +941,9 @@ class PythonRenderer {
     } else if (!VideoFile::validFps(fps)) {
       throw InputError(function + ": fps " + formatNumber(fps) + " must be in " +
                        VideoFile::kFpsRange);
+    } else if (!keepFrames) {
+      throw InputError(function + ": keep_frames=False without video= keeps nothing of the " +
+                       "frames: give video=, or keep the frames");
     }
     std::shared_ptr<Slot> resident = request.volume ? residentSlot(request.volume) : nullptr;
     Slot& slot = resident ? *resident : main_;
@@ -1136,6 +1139,9 @@ class PythonRenderer {
   // During a turn (no GIL: the samples are read as raw memory).
   void uploadInBricks(Slot& slot, const std::shared_ptr<Volume>& volume,
                       std::uint64_t maxTextureBytes) {
+    // Until the samples are in the textures: a refused upload (a NaN written in place) must not
+    // leave the next render on the previous samples as if they were these.
+    slot.uploaded.reset();
     requireFiniteSamples(*volume);
     slot.job->setVolume(Volume::sharing(volume), volume->source, maxTextureBytes);
     slot.uploaded = volume;

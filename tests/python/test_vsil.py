@@ -822,6 +822,22 @@ def test_metadata_is_what_meta_out_writes(tmp_path, renderer, technique):
 
 # ---- several volumes resident on one Renderer ----
 
+def test_a_refused_upload_leaves_no_render_on_the_previous_samples(renderer):
+    """upload() of samples turned NaN in place is refused; the render after it refuses them too
+    (it rendered the texture of the previous upload without a word)."""
+    array = np.zeros((16, 16, 16), np.float32)
+    array[4:12, 4:12, 4:12] = 1
+    volume = vsil.Volume(array)
+    renderer.render(volume, size=(16, 16))
+    array[8, 8, 8] = np.nan
+    for call in (lambda: renderer.upload(volume), lambda: renderer.render(volume, size=(16, 16))):
+        with pytest.raises(ValueError, match="NaN"):
+            call()
+    array[8, 8, 8] = 1
+    renderer.upload(volume)
+    renderer.render(volume, size=(16, 16))
+
+
 def test_resident_volumes_switch_without_upload():
     first, second = vsil.generate("spheres", 32), vsil.Volume(_ball())
     with vsil.Renderer() as renderer:
@@ -880,7 +896,12 @@ def test_animate_moves_the_view_and_checks_its_input(tmp_path, renderer):
     # Each frame the render of its view: the middle one at (45, 15).
     for frame, view in zip(frames, [(0, 0), (45, 15), (90, 30)]):
         assert np.array_equal(frame.image, renderer.render(volume, view=view, size=(32, 32)).image)
-    assert renderer.animate(volume, frames=2, size=(32, 32), keep_frames=False) == []
+    # Keeping neither the frames nor a video would render for nothing.
+    with pytest.raises(ValueError, match="keep_frames=False without video="):
+        renderer.animate(volume, frames=2, size=(32, 32), keep_frames=False)
+    assert renderer.animate(volume, frames=2, size=(32, 32), keep_frames=False,
+                            video=tmp_path / "kept.avi") == []
+    assert (tmp_path / "kept.avi").stat().st_size > 0
     with pytest.raises(ValueError, match="--video"):
         renderer.animate(volume, frames=2, size=(33, 32), video=tmp_path / "odd.avi")
     assert not (tmp_path / "odd.avi").exists()
