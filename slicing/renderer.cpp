@@ -69,7 +69,7 @@ bool needsHistogram(const TechniqueInfo& info, const OptionValues& given) {
     if (spec.name == "window" && !given.contains("window") && !given.contains("tf")) return true;
     if (spec.name == "tf") {
       const std::string* tf = givenText(given, "tf");
-      if (tf && !tf->empty() && !isInlineSource(*tf) && !isTransferFunctionFile(*tf)) return true;
+      if (tf && !tf->empty() && isTransferFunctionPreset(*tf)) return true;
     }
   }
   return !hasIso;

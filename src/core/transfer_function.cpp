@@ -157,20 +157,24 @@ TransferFunction transferFunctionPreset(const std::string& name, const DerivedDe
   return tf;
 }
 
+bool isTransferFunctionPreset(std::string_view text) {
+  return !isInlineSource(text) && !isTransferFunctionFile(text);
+}
+
 TransferFunction transferFunctionOption(const std::string& nameOrFile,
                                         const DerivedDefaults& volume) {
+  if (isTransferFunctionPreset(nameOrFile)) return transferFunctionPreset(nameOrFile, volume);
   if (isInlineSource(nameOrFile)) return parseTransferFunctionText(nameOrFile, "--tf");
-  if (isTransferFunctionFile(nameOrFile)) return loadTransferFunction(nameOrFile);
-  return transferFunctionPreset(nameOrFile, volume);
+  return loadTransferFunction(nameOrFile);
 }
 
 void checkTransferFunctionOption(const std::string& nameOrFile) {
-  if (isInlineSource(nameOrFile)) {
-    parseTransferFunctionText(nameOrFile, "--tf");
-  } else if (isTransferFunctionFile(nameOrFile)) {
-    loadTransferFunction(nameOrFile);  // InputError naming the file
-  } else {
+  if (isTransferFunctionPreset(nameOrFile)) {
     checkPresetName(nameOrFile);
+  } else if (isInlineSource(nameOrFile)) {
+    parseTransferFunctionText(nameOrFile, "--tf");
+  } else {
+    loadTransferFunction(nameOrFile);  // InputError naming the file
   }
 }
 

@@ -75,6 +75,8 @@ bool inHounsfieldUnits(const DerivedDefaults& volume);
 std::vector<std::string> transferFunctionPresetNames();  // sorted
 // Whether `text` names a file (ends in .json or holds a '/') rather than a preset.
 bool isTransferFunctionFile(std::string_view text);
+// Whether a --tf value names a preset: neither inline JSON nor a file.
+bool isTransferFunctionPreset(std::string_view text);
 // A preset's data values for `volume`; InputError "--tf: unknown preset 'x' (presets: ...; or a
 // .json file)" for a name that is none.
 TransferFunction transferFunctionPreset(const std::string& name, const DerivedDefaults& volume);
