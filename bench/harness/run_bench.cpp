@@ -41,6 +41,32 @@ OutputBatch claimOutputs(const BenchOptions& options) {
   return outputs;
 }
 
+// Before any table runs (they take minutes): each dataset --only asks for is read once, so that
+// a file missing or unreadable fails the run here and not after the other datasets ran; the
+// files of the others are noted as inputs (noteInputFile), so that claimOutputs refuses an
+// output naming one. (Datasets run by default may be missing: their rows say so.)
+void checkDatasets(const BenchOptions& options) {
+  std::set<std::filesystem::path> seen;
+  for (const auto& name : options.tables) {
+    const TableDefinition& table = implementedTable(name);
+    if (!table.datasetFile) continue;
+    for (const auto& dataset : table.datasets) {
+      const std::optional<std::string> file = table.datasetFile(dataset);
+      if (!file) continue;
+      const std::filesystem::path path = options.datasetsDir / *file;
+      if (!seen.insert(path).second) continue;
+      const bool asked =
+          std::find(options.only.begin(), options.only.end(), dataset) != options.only.end();
+      std::string missing;
+      if (asked && !readDatasetVolume(path, missing) && isMissingFile(missing)) {
+        throw InputError("--only " + dataset + ": " + missing);
+      }
+      std::error_code error;
+      if (!asked && std::filesystem::is_regular_file(path, error)) noteInputFile(path);
+    }
+  }
+}
+
 std::string markdownReport(const MachineInfo& machine, const std::vector<TableResult>& tables) {
   std::string out = "# vsil bench\n\n";
   out += "- CPU: " + machine.cpuModel + ", " + std::to_string(machine.hardwareThreads) +
@@ -84,11 +110,14 @@ BenchOptions validateOptions(BenchOptions options) {
                        "' (known: " + joined({datasets.begin(), datasets.end()}, ", ") + ")");
     }
   }
+  std::vector<int> sizes;  // each once, in the order given (--sizes 16,16 ran it twice)
   for (int size : options.sizes) {
     if (size < 16 || size > 4096) {
       throw InputError("--sizes: " + std::to_string(size) + " is outside 16..4096");
     }
+    if (std::find(sizes.begin(), sizes.end(), size) == sizes.end()) sizes.push_back(size);
   }
+  options.sizes = sizes;
   if (options.frames < 1 || options.frames > 100000) {
     throw InputError("--frames: " + std::to_string(options.frames) + " is outside 1..100000");
   }
@@ -125,6 +154,8 @@ BenchOptions validateOptions(BenchOptions options) {
 
 BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostream& progressOut,
                      bool progressIsTerminal) {
+  checkDatasets(options);
+  claimOutputs(options);
   const MachineInfo machine = collectMachineInfo(options.gl);
   out << "vsil bench: " << joined(options.tables, ", ") << "\n"
       << formatMachineInfo(machine) << std::flush;
@@ -145,22 +176,6 @@ BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostrea
     report.failures.insert(report.failures.end(), table.failures.begin(), table.failures.end());
     for (const auto& row : table.rows) rows.push_back(row);
     tables.push_back(std::move(table));
-  }
-
-  // A dataset run by default may be missing (its rows say so); the file of one --only asks for
-  // may not: the run fails before any output file is written.
-  for (const auto& name : options.only) {
-    std::string missing;
-    bool measured = false;
-    for (const auto& row : rows) {
-      if (row.value("dataset", "") != name) continue;
-      if (!row.contains("missing")) {
-        measured = true;
-      } else if (missing.empty()) {
-        missing = row["missing"].get<std::string>();
-      }
-    }
-    if (!measured && isMissingFile(missing)) throw InputError("--only " + name + ": " + missing);
   }
 
   // All written, or none (a full disk for one leaves the others as they were).

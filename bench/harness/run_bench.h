@@ -21,9 +21,9 @@ struct BenchReport {
 
 // Prints the machine header and each table to `out`, progress to `progress` (rewritten in
 // place when `progressIsTerminal`), and writes the --json, --markdown and --plot files
-// atomically. Failed self-checks do not stop the run; they are returned. A dataset --only names
-// that no table could measure (its file missing or unreadable) throws InputError after the
-// tables are printed, before any file is written.
+// atomically. Failed self-checks do not stop the run; they are returned. Before any table runs,
+// a dataset --only names whose file is missing or unreadable, or an output naming a file the
+// run reads, throws InputError.
 BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostream& progress,
                      bool progressIsTerminal);
 

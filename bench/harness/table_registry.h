@@ -2,6 +2,8 @@
 // The benchmark tables `vsil bench --table NAME` knows. Adding a table is one entry in
 // table_registry.cpp: its name, a description, the datasets --only may name, and its run
 // function (left empty while the technique it measures does not exist yet).
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,9 @@ struct TableDefinition {
       missingTechnique;  // when run is empty: why, e.g. "the x technique does not exist yet"
   // Runs only when --table names it (minutes and gigabytes of disk: the large table).
   bool onlyWhenNamed = false;
+  // The file in the datasets folder a dataset of this table is read from; none for a name it
+  // does not read from a file (generated volumes, the paper's Skull, the scaling techniques).
+  std::function<std::optional<std::string>(const std::string& name)> datasetFile;
 };
 
 const std::vector<TableDefinition>& tableRegistry();

@@ -136,6 +136,13 @@ std::vector<CaseResult> measureWindow(Renderer& renderer, int window, const Benc
 
 }  // namespace
 
+std::optional<std::string> dv1DatasetFile(const std::string& name) {
+  for (const auto& d : kDatasets) {
+    if (d.name == name) return d.file;
+  }
+  return std::nullopt;
+}
+
 std::vector<std::string> dv1DatasetNames() {
   std::vector<std::string> names;
   for (const auto& d : kDatasets) names.push_back(d.name);

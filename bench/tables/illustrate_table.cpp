@@ -356,6 +356,13 @@ nlohmann::json missingRow(const Measured& m, int window, const IllustrateCase& c
 
 }  // namespace
 
+std::optional<std::string> illustrateDatasetFile(const std::string& name) {
+  for (const auto& d : kDatasets) {
+    if (d.name == name) return d.file;
+  }
+  return std::nullopt;
+}
+
 std::vector<std::string> illustrateDatasetNames() {
   std::vector<std::string> names;
   for (const auto& d : kDatasets) names.push_back(d.name);

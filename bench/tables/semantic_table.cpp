@@ -501,6 +501,13 @@ std::string formatSignedMs(double ms) {
 
 }  // namespace
 
+std::optional<std::string> semanticDatasetFile(const std::string& name) {
+  for (const auto& d : kDatasets) {
+    if (d.name == name) return d.file;
+  }
+  return std::nullopt;
+}
+
 std::vector<std::string> semanticDatasetNames() {
   std::vector<std::string> names;
   for (const auto& d : kDatasets) names.push_back(d.name);

@@ -5,6 +5,7 @@
 // table's DVR column) from the same run; and the frame after a membership-function change (no
 // program compiled) against the frame after a rule change (one program compiled), both on the
 // 16-rule base. Target (the issue): 16 rules ≤ 2× the plain composite's frame time.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,8 @@ namespace vsil::bench {
 // The dataset names --only accepts: bonsai (measured by default) and neghip (only when asked:
 // small, for quick runs).
 std::vector<std::string> semanticDatasetNames();
+// The file a dataset is read from (in the datasets folder), or none for an unknown name.
+std::optional<std::string> semanticDatasetFile(const std::string& name);
 
 TableResult runSemanticTable(const BenchOptions& options, Progress& progress);
 

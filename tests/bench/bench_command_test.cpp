@@ -217,6 +217,38 @@ TEST(BenchCommand, MissingDatasetFilesAreReportedAndFatalOnlyWhenAskedFor) {
             std::string::npos)
       << asked.err;
   EXPECT_FALSE(std::filesystem::exists(json));
+  EXPECT_EQ(asked.out, "") << "a failed bench prints no part of its report";
+}
+
+// Found before any frame: a dataset --only asks for whose file cannot be read (it was found
+// after the others ran), and an output naming a dataset's file (after the whole run). A failed
+// bench prints no table.
+TEST(BenchCommand, AnUnreadableDatasetOrAnOutputNamingOneFailsBeforeAnyFrame) {
+  VSIL_REQUIRE_DATASETS();
+  const auto dir = test::scratchDir();
+  const std::string header = "neghip_64x64x64_uint8.nhdr";
+  std::filesystem::copy_file(test::datasetPath(header), dir / header);  // without its .raw
+  for (const char* file : {"hydrogen_atom_128x128x128_uint8.nhdr",
+                           "hydrogen_atom_128x128x128_uint8.raw"}) {
+    std::filesystem::copy_file(test::datasetPath(file), dir / file);  // readable, run first
+  }
+  const auto unreadable = test::runVsil("bench --table nk3 --datasets " + dir.string() +
+                                        " --only hydrogen_atom,neghip --sizes 16 --frames 1 "
+                                        "--warmup 0");
+  EXPECT_EQ(unreadable.exitCode, 2) << unreadable.err;
+  EXPECT_NE(unreadable.err.find("--only neghip: cannot be read: "), std::string::npos)
+      << unreadable.err;
+  EXPECT_EQ(unreadable.err.find("[1/"), std::string::npos) << "a frame ran: " << unreadable.err;
+  EXPECT_EQ(unreadable.out, "");
+
+  const auto datasets = test::datasetPath(header).parent_path();
+  const auto named = test::runVsil("bench --table nk3 --datasets " + datasets.string() +
+                                   " --only neghip --sizes 16 --frames 1 --warmup 0 --json " +
+                                   (datasets / header).string());
+  EXPECT_EQ(named.exitCode, 2) << named.err;
+  EXPECT_NE(named.err.find("names a file this command reads"), std::string::npos) << named.err;
+  EXPECT_EQ(named.err.find("[1/"), std::string::npos) << "a frame ran: " << named.err;
+  EXPECT_EQ(named.out, "");
 }
 
 // The illustrate table on the smallest dataset: RA, the plain composite, each effect, all of
