@@ -169,9 +169,15 @@ Volume readMetaImage(const std::string& path, const LoadOptions& options) {
   } else if (const std::string* size = header.find("elementsize")) {
     spacing = parseSpacing(path, "ElementSize", *size);
   }
+  // Two names for the byte order: given both, they must agree (readers differ on which wins).
   const bool bigEndian = flag({{"binarydatabyteordermsb", "BinaryDataByteOrderMSB"},
                                {"elementbyteordermsb", "ElementByteOrderMSB"}},
                               false);
+  if (header.find("binarydatabyteordermsb") && header.find("elementbyteordermsb") &&
+      flag({{"elementbyteordermsb", "ElementByteOrderMSB"}}, false) != bigEndian) {
+    throwInputError(path, "BinaryDataByteOrderMSB and ElementByteOrderMSB disagree: which byte "
+                          "order do the samples have?");
+  }
   // MetaIO writers always write BinaryData; without it, binary is what such files hold.
   const bool binary = flag({{"binarydata", "BinaryData"}}, true);
   const bool compressed = flag({{"compresseddata", "CompressedData"}}, false);
@@ -191,9 +197,10 @@ Volume readMetaImage(const std::string& path, const LoadOptions& options) {
   const MetaPayload payload = locateMetaPayload(path, header, fileSize);
   const std::uint64_t expected = payloadBytes(dims, type);
   const std::string layout = " (" + describeLayout(dims, type) + ")";
+  // Named by the file's own extension (a .mhd may hold its data LOCAL, as a .mha does).
   auto format = [&](const char* encoding) {
-    return std::string("MetaImage (") +
-           (toLower(*header.find("elementdatafile")) == "local" ? ".mha" : ".mhd") + ", " +
+    const std::string extension = toLower(std::filesystem::path(path).extension().string());
+    return std::string("MetaImage (") + (extension == ".mhd" ? ".mhd" : ".mha") + ", " +
            encoding + ")";
   };
   // The payload's bytes: HeaderSize skipped, or (-1) the last `tail` bytes of the file.
@@ -273,7 +280,7 @@ Volume readMetaImage(const std::string& path, const LoadOptions& options) {
     const auto bytes = readFileBytes(payload.path, offset, available);
     parseTextSamples(path,
                      std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
-                     type, sink);
+                     type, sink, TextAfterSamples::WhitespaceOnly);
     return volume;
   }
   skipHeader(expected);

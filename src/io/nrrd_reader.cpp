@@ -217,6 +217,35 @@ Payload locatePayload(const std::string& path, const NrrdHeader& header, std::ui
   return payload;
 }
 
+// 'kinds' and 'space units' describe the axes: each of the three must be a spatial (domain)
+// axis, and one unit must serve all three, or the samples are not a scalar volume with one
+// spacing (an RGB image's colour axis was read as a third spatial axis).
+void checkAxisKinds(const std::string& path, const NrrdHeader& header) {
+  if (const std::string* kinds = header.find({"kinds"})) {
+    const auto names = splitWhitespace(*kinds);
+    if (names.size() != 3) {
+      throwInputError(path, "kinds " + quote(*kinds) + " names " + std::to_string(names.size()) +
+                                " axes, not the 3 of 'dimension'");
+    }
+    for (std::size_t axis = 0; axis < names.size(); ++axis) {
+      const std::string kind = toLower(names[axis]);
+      if (kind != "domain" && kind != "space" && kind != "time" && kind != "???" &&
+          kind != "none") {
+        throwInputError(path, "kinds: axis " + std::to_string(axis + 1) + " is " +
+                                  quote(names[axis]) +
+                                  ", not a spatial axis: vsil reads 3D scalar volumes");
+      }
+    }
+  }
+  if (const std::string* units = header.find({"space units"})) {
+    const auto names = splitWhitespace(*units);
+    if (std::adjacent_find(names.begin(), names.end(), std::not_equal_to<>()) != names.end()) {
+      throwInputError(path, "space units " + quote(*units) +
+                                " differ between axes: vsil takes one unit for the spacing");
+    }
+  }
+}
+
 }  // namespace
 
 Volume readNrrd(const std::string& path, const LoadOptions& options) {
@@ -234,6 +263,7 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
   }
   const StoredType type = parseType(path, required({"type"}));
   const glm::ivec3 dims = parseDims(path, "sizes", required({"sizes"}));
+  checkAxisKinds(path, header);
   planVolume(path, dims, keptSampleType(type), options.limits, options.region);
   const std::string encoding = toLower(required({"encoding"}));
 
@@ -351,7 +381,7 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
     SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
     const auto bytes = readFileBytes(payload.path, payload.offset, payload.size);
     const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    parseTextSamples(path, text, type, sink);
+    parseTextSamples(path, text, type, sink, TextAfterSamples::WhitespaceOnly);
     return volume;
   }
   throwInputError(path, "encoding " + quote(encoding) + " is not supported (raw, gzip, ascii)");

@@ -110,7 +110,7 @@ std::string describeLayout(glm::ivec3 dims, StoredType type) {
 }
 
 void parseTextSamples(const std::string& where, std::string_view text, StoredType type,
-                      SampleSink& sink) {
+                      SampleSink& sink, TextAfterSamples after) {
   const std::uint64_t count = sink.fileSamples();
   // Each value takes at least one character and one separator: a short text is refused before
   // any value is parsed.
@@ -170,6 +170,13 @@ void parseTextSamples(const std::string& where, std::string_view text, StoredTyp
                                  storedTypeName(type) + " value");
     }
     sink.putValue(i, value);
+  }
+  if (after == TextAfterSamples::WhitespaceOnly) {
+    while (p < end && isSpace(*p)) ++p;
+    if (p != end) {
+      throwInputError(where, "holds more than the " + std::to_string(count) +
+                                 " values its header's sizes give");
+    }
   }
   sink.finish();
 }

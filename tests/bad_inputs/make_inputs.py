@@ -74,6 +74,18 @@ write('tf_duplicate_key.json', '[{"value": 0, "color": "red", "opacity": 0.5, "o
 write('style_unknown_key.json', '{"effects": ["tone"], "shininess": 3}\n')
 write('style_bad_effect.json', '{"effects": ["tone", "glow"]}\n')
 write('style_bad_parameter.json', '{"parameters": {"k_gc": "high"}}\n')
+# Headers that misdescribe their axes or payload (round 6): a colour axis and a kinds count
+# unlike the dimension, units that differ between axes, more text values than the sizes give,
+# and MetaImage's two byte-order fields disagreeing.
+write('nrrd_kinds_rgb.nrrd', (nrrd % ('uint8', '3 4 4', 'kinds: RGB-color domain domain\n', 'raw')).encode() + bytes(48))
+write('nrrd_kinds_two.nrrd', (nrrd % ('uint8', '2 2 2', 'kinds: domain domain\n', 'raw')).encode() + bytes(8))
+write('nrrd_mixed_units.nrrd', (nrrd % ('uint8', '2 2 2', 'space dimension: 3\nspace units: "mm" "km" "mm"\n', 'raw')).encode() + bytes(8))
+write('nrrd_ascii_extra.nrrd', (nrrd % ('uint8', '2 2 2', '', 'ascii')) + ' '.join(['7'] * 9) + '\n')
+write('mha_ascii_extra.mha', 'ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\n'
+      'BinaryData = False\nElementDataFile = LOCAL\n' + ' '.join(['7'] * 9) + '\n')
+write('mha_byte_orders_disagree.mha', b'ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\n'
+      b'ElementType = MET_USHORT\nElementByteOrderMSB = False\nBinaryDataByteOrderMSB = True\n'
+      b'ElementDataFile = LOCAL\n' + bytes(16))
 # Colours with an alpha where nothing reads it (a sample's, a sketch line's, a point's).
 write('style_color_alpha.json', '{"color": "#ff000080"}\n')
 write('tf_color_alpha.json', '[{"value": 0, "color": "transparent", "opacity": 0},\n'
