@@ -205,6 +205,17 @@ std::vector<std::string> warnings(const RenderRequest& request, const Volume& vo
                     "' draws no lines or filled pixels; ignored (the line flags go with " +
                     drawers + ")");
   }
+  if (technique.outputs.state && request.postfx.fill == FillMode::None &&
+      std::find(request.lineFlagsGiven.begin(), request.lineFlagsGiven.end(), "--fill-color") !=
+          request.lineFlagsGiven.end()) {
+    found.push_back("--fill-color: there is no --fill; ignored");
+  }
+  if (technique.ignoredOptions) {
+    for (std::string& line :
+         technique.ignoredOptions(OptionReader(technique.options, request.settings.options))) {
+      found.push_back(std::move(line));
+    }
+  }
   const auto& options = request.settings.options;
   const auto iso = options.find("iso");
   const std::string* windowText = givenText(options, "window");

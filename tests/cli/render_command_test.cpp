@@ -181,6 +181,46 @@ TEST(RenderCommand, WarnsWhenTheIsoValueOrTheWindowLiesOutsideTheData) {
   EXPECT_EQ(window.err, "") << "no warning for a window that starts inside the range";
 }
 
+// Options that change nothing in the frame they are given for warn, naming why (a user tuning
+// k_os beside a preset transfer function saw nothing change); given where they act, no word.
+TEST(RenderCommand, WarnsAboutOptionsThatChangeNothing) {
+  const auto out = (test::scratchDir() / "ignored.png").string();
+  const std::pair<const char*, const char*> cases[] = {
+      {"--technique illustrate --tf ramp --param k_oe=3",
+       "--param k_oe: the transfer function gives the opacity (k_os, k_oe shape the power "
+       "opacity without one); ignored"},
+      {"--technique illustrate --tf ramp --color red",
+       "--color: the transfer function gives the samples' colour; ignored"},
+      {"--technique illustrate --effects tone --sketch-color red",
+       "--sketch-color: the sketch effect is off; ignored"},
+      {"--technique illustrate --effects tone --param k_ss=20",
+       "--param k_ss: the silhouette effect is off; ignored"},
+      {"--technique illustrate --effects tone --halo-mode exact",
+       "--halo-mode: the halo effect is off; ignored"},
+      {"--technique demip --sphere-map green-red",
+       "--sphere-map: the colour sphere is off (--sphere-weight 0, no --legend); ignored"},
+      {"--fill-color red", "--fill-color: there is no --fill; ignored"},
+  };
+  for (const auto& [args, warning] : cases) {
+    const auto result =
+        test::runVsil("render gen:sphere:16 --size 16x16 " + std::string(args) + " --out " + out);
+    EXPECT_EQ(result.exitCode, 0) << args << ": " << result.err;
+    EXPECT_EQ(result.err, "vsil: warning: " + std::string(warning) + "\n") << args;
+  }
+  for (const char* args :
+       {"--technique illustrate --param k_oe=3", "--technique illustrate --color red",
+        "--technique illustrate --effects sketch --sketch-color red",
+        "--technique illustrate --effects silhouette --param k_ss=20",
+        "--technique illustrate --effects halo --halo-mode exact",
+        "--technique demip --sphere-map green-red --sphere-weight 0.5",
+        "--technique demip --sphere-map green-red --legend", "--fill-color red --fill flat"}) {
+    const auto result =
+        test::runVsil("render gen:sphere:16 --size 16x16 " + std::string(args) + " --out " + out);
+    EXPECT_EQ(result.exitCode, 0) << args << ": " << result.err;
+    EXPECT_EQ(result.err, "") << args;
+  }
+}
+
 // A --sampling lowered until a few slices remain shows cross-sections: the frame is made and
 // says so; the default sampling on a small volume, or a lower one that leaves enough, does not.
 TEST(RenderCommand, WarnsWhenTheSamplingLeavesFewSlices) {

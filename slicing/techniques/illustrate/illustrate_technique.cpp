@@ -39,6 +39,40 @@ std::string upper(std::string text) {
   return text;
 }
 
+// What changes nothing in the frame (TechniqueInfo::ignoredOptions): a colour or the power
+// opacity's k_os, k_oe beside a transfer function (it gives both), an effect's parameters,
+// colour or mode with that effect off.
+std::vector<std::string> ignoredIllustrateOptions(const OptionReader& options) {
+  const Illustration illustration = illustrationFromOptions(illustrateOptions(), options);
+  const EffectSet& effects = illustration.effects;
+  const bool transferFunction = illustration.transferFunction.has_value();
+  std::vector<std::string> ignored;
+  if (transferFunction && options.given("color")) {
+    ignored.push_back("--color: the transfer function gives the samples' colour; ignored");
+  }
+  if (options.given("sketch-color") && !effects.has(Effect::Sketch)) {
+    ignored.push_back("--sketch-color: the sketch effect is off; ignored");
+  }
+  if (options.given("halo-mode") && !effects.has(Effect::Halo)) {
+    ignored.push_back("--halo-mode: the halo effect is off; ignored");
+  }
+  if (!options.given("param")) return ignored;
+  ParameterValues given;
+  for (const auto& text : options.list("param")) parseParameterList(text, "--param", {}, "", given);
+  for (const auto& [name, value] : given) {
+    const ParameterSpec& spec = *findParameter(name);
+    if (spec.effect && !effects.has(*spec.effect)) {
+      ignored.push_back("--param " + name + ": the " + effectName(*spec.effect) +
+                        " effect is off; ignored");
+    } else if (transferFunction && (name == "k_os" || name == "k_oe")) {
+      ignored.push_back("--param " + name +
+                        ": the transfer function gives the opacity (k_os, k_oe shape the power "
+                        "opacity without one); ignored");
+    }
+  }
+  return ignored;
+}
+
 // The rotation taking eye-space directions into world (= the gradients' physical) axes.
 glm::mat3 worldFromEye(const View& view) {
   return glm::mat3(glm::transpose(glm::dmat3(view.eyeFromWorld)));
@@ -62,6 +96,7 @@ TechniqueInfo illustrateTechniqueInfo() {
                (haloModeFromOptions(options) == HaloMode::Exact &&
                 illustrationFromOptions(illustrateOptions(), options).effects.has(Effect::Halo));
       }};
+  info.ignoredOptions = ignoredIllustrateOptions;
   info.samplesOffPlanes = true;      // aligned to the box entry (compositing.h)
   info.slabRunsFastPipeline = true;  // slabs relay the slice pass's colour and marks
   // The gradients (as semantic's), and with halos the halo field at an owned brick's texels,

@@ -24,8 +24,22 @@ TechniqueInfo mipTechniqueInfo() {
           /*needsOneTexture=*/{}};
 }
 
+// The colour sphere's options with its weight 0 and no legend drawing it change nothing (the
+// depth options still shape --depth-out's hits at depth weight 0).
+std::vector<std::string> ignoredDemipOptions(const OptionReader& options) {
+  std::vector<std::string> ignored;
+  if (options.number("sphere-weight") > 0 || options.enabled("legend")) return ignored;
+  for (const char* name : {"sphere-map", "sphere-rotate", "sphere-frame"}) {
+    if (options.given(name)) {
+      ignored.push_back("--" + std::string(name) +
+                        ": the colour sphere is off (--sphere-weight 0, no --legend); ignored");
+    }
+  }
+  return ignored;
+}
+
 TechniqueInfo demipTechniqueInfo() {
-  return {"demip",
+  TechniqueInfo info{"demip",
           "depth-enhanced MIP: the maximum shaded by the depth of the nearest sample "
           "of its material, tinted by a colour sphere (Díaz & Vázquez)",
           demipOptions(),
@@ -34,6 +48,8 @@ TechniqueInfo demipTechniqueInfo() {
           /*usesGradients=*/false,
           /*checkValues=*/checkDemipValues,
           /*needsOneTexture=*/{}};
+  info.ignoredOptions = ignoredDemipOptions;
+  return info;
 }
 
 ResolvedOptions resolveMipFamily(const OptionReader& options) {
