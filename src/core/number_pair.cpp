@@ -1,7 +1,8 @@
 #include "core/number_pair.h"
 
+#include <charconv>
 #include <cmath>
-#include <cstdlib>
+#include <string_view>
 
 #include "core/error.h"
 
@@ -9,11 +10,16 @@ namespace vsil {
 
 namespace {
 
+// A decimal number written whole, '+' allowed: from_chars, not strtod, which also took
+// hexadecimal (0x1e read as 30), leading blanks and the locale's decimal separator.
 bool parseDouble(const std::string& text, double& value) {
-  if (text.empty()) return false;
-  char* end = nullptr;
-  value = std::strtod(text.c_str(), &end);
-  return end == text.c_str() + text.size() && std::isfinite(value);
+  std::string_view number = text;
+  if (number.starts_with('+')) number.remove_prefix(1);
+  if (number.empty() || number.starts_with('+') || (text.starts_with('+') && number[0] == '-')) {
+    return false;
+  }
+  const auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
+  return ec == std::errc() && ptr == number.data() + number.size() && std::isfinite(value);
 }
 
 }  // namespace

@@ -111,6 +111,7 @@ CheckedRender checkRenderCommandLine(const RenderCommandLine& line) {
   CheckedRender checked;
   CLI::App app;
   cli::addRenderOptions(app, checked.flags);
+  cli::readNumbersAsDecimal(app);  // as the CLI reads them: the recorded command is the render
   std::vector<std::string> arguments = line.arguments();
   std::reverse(arguments.begin(), arguments.end());  // CLI11 takes them last first
   try {

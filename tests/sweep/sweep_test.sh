@@ -68,6 +68,19 @@ rows = sorted(json.load(open(sys.argv[1]))["rows"], key=lambda r: r["task"])
 swept = [(r["swept"]["zoom"], r["swept"]["view"]) for r in rows]
 assert swept == [(1, "0,0"), (1, "90,0"), (2, "0,0"), (2, "90,0")], swept
 PY
+# Numbers in a sweep file as the command line reads them: 010 is ten (CLI11 alone read the octal
+# 8 while the row recorded --stride 010), hexadecimal is refused in that task's row.
+echo '{"render": {"input": "gen:sphere:40", "size": "16x16"},
+       "axes": {"stride": ["010", "10", "0x8"]}}' >"$dir/decimal.json"
+"$vsil" sweep "$dir/decimal.json" --json "$dir/decimal-out.json" --quiet 2>"$dir/err"
+[[ $? == 3 ]] || fail "the decimal sweep did not fail its hexadecimal task: $(cat "$dir/err")"
+/usr/bin/python3 - "$dir/decimal-out.json" <<'PY' || exit 1
+import json, sys
+rows = sorted(json.load(open(sys.argv[1]))["rows"], key=lambda r: r["task"])
+assert rows[0]["status"] == rows[1]["status"] == "ok", rows
+assert rows[0]["slices"] == rows[1]["slices"], (rows[0]["slices"], rows[1]["slices"])
+assert rows[2]["status"] != "ok" and "hexadecimal" in rows[2]["error"], rows[2]
+PY
 echo '{"axes": {"width_near": [1, 2], "width-near": [3, 4]}}' >"$dir/twice.json"
 "$vsil" sweep "$dir/twice.json" --json "$dir/twice-out.json" 2>"$dir/err"
 rc=$?
