@@ -238,7 +238,21 @@ void checkAxisKinds(const std::string& path, const NrrdHeader& header) {
     }
   }
   if (const std::string* units = header.find({"space units"})) {
-    const auto names = splitWhitespace(*units);
+    // Quoted strings, one per axis of the space, which may hold blanks ("milli meter").
+    std::vector<std::string_view> names;
+    std::string_view rest = trim(*units);
+    while (!rest.empty()) {
+      const std::size_t close = rest.size() > 1 ? rest.find('"', 1) : std::string_view::npos;
+      if (rest[0] != '"' || close == std::string_view::npos) {
+        throwInputError(path, "space units " + quote(*units) + " are not quoted strings");
+      }
+      names.push_back(rest.substr(1, close - 1));
+      rest = trim(rest.substr(close + 1));
+    }
+    if (names.size() != 3) {
+      throwInputError(path, "space units " + quote(*units) + " name " +
+                                std::to_string(names.size()) + " axes, not 3");
+    }
     if (std::adjacent_find(names.begin(), names.end(), std::not_equal_to<>()) != names.end()) {
       throwInputError(path, "space units " + quote(*units) +
                                 " differ between axes: vsil takes one unit for the spacing");

@@ -80,6 +80,7 @@ write('style_bad_parameter.json', '{"parameters": {"k_gc": "high"}}\n')
 write('nrrd_kinds_rgb.nrrd', (nrrd % ('uint8', '3 4 4', 'kinds: RGB-color domain domain\n', 'raw')).encode() + bytes(48))
 write('nrrd_kinds_two.nrrd', (nrrd % ('uint8', '2 2 2', 'kinds: domain domain\n', 'raw')).encode() + bytes(8))
 write('nrrd_mixed_units.nrrd', (nrrd % ('uint8', '2 2 2', 'space dimension: 3\nspace units: "mm" "km" "mm"\n', 'raw')).encode() + bytes(8))
+write('nrrd_two_units.nrrd', (nrrd % ('uint8', '2 2 2', 'space dimension: 3\nspace units: "mm" "mm"\n', 'raw')).encode() + bytes(8))
 write('nrrd_ascii_extra.nrrd', (nrrd % ('uint8', '2 2 2', '', 'ascii')) + ' '.join(['7'] * 9) + '\n')
 write('mha_ascii_extra.mha', 'ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\n'
       'BinaryData = False\nElementDataFile = LOCAL\n' + ' '.join(['7'] * 9) + '\n')

@@ -171,6 +171,16 @@ TEST(NrrdReader, SpacingIsTheLengthOfEachSpaceDirection) {
   EXPECT_EQ(v.spacing, glm::dvec3(0.5, 5.0, 2.0));
 }
 
+// What the format allows for the axes reads: spatial kinds, and one unit, quoted, for all three
+// (units may hold blanks).
+TEST(NrrdReader, SpatialKindsAndOneQuotedUnitRead) {
+  const Volume v = loadAttached(
+      "type: uint8\nencoding: raw\nkinds: domain space ???\nspace dimension: 3\n"
+      "space units: \"milli meter\" \"milli meter\"  \"milli meter\"\n",
+      {1, 2, 3, 4});
+  EXPECT_EQ(test::floatsOf(v), (std::vector<float>{1, 2, 3, 4}));
+}
+
 TEST(NrrdReader, AsciiEncodingAndByteSkip) {
   const Volume text = loadAttached("type: short\nencoding: ascii\n",
                                    test::Bytes{'1', ' ', '-', '2', '\n', '3', ' ', '4'});
