@@ -11,7 +11,6 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -129,7 +128,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
 
   const int frames = plan.frames();
   vsil::ProgressLine progress(std::cerr, isatty(STDERR_FILENO) == 1);
-  std::set<std::string> warned;
+  AnimationWarnings warnings;
   nlohmann::ordered_json frameList = nlohmann::ordered_json::array();
   nlohmann::json dataset, glInfo;
   std::string glRenderer;
@@ -139,11 +138,9 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
   for (int i = 0; i < frames; ++i) {
     const auto frameStart = Clock::now();
     RenderOutput output = job.render(plan.request(i), loadOptions.limits);
-    for (const auto& warning : output.warnings) {
-      if (warned.insert(warning).second) {
-        progress.finish();
-        std::cerr << "vsil: warning: " << warning << "\n";
-      }
+    for (const auto& warning : warnings.add(output.warnings)) {
+      progress.finish();
+      std::cerr << "vsil: warning: " << warning << "\n";
     }
     const auto writeStart = Clock::now();
     const std::string file = outDir.empty() ? "" : frameFileName(i, frames);
@@ -185,6 +182,9 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
     }
   }
   progress.finish();
+  for (const auto& warning : warnings.finish(frames)) {
+    std::cerr << "vsil: warning: " << warning << "\n";
+  }
   if (video) video->finish();
   const double framesMs = millisecondsSince(loopStart);
   const double fps = frames / (framesMs / 1000.0);

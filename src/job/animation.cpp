@@ -76,6 +76,8 @@ Sweep parseSweep(const std::string& text) {
     throwInputError(where, "expected NAME=A:B (e.g. iso=30:50)");
   }
   sweep.name = text.substr(0, equals);
+  // Python's spelling (sphere_weight) names the flag as the command line's does.
+  std::replace(sweep.name.begin(), sweep.name.end(), '_', '-');
   const auto from = parseNumberList(std::string_view(text).substr(equals + 1, colon - equals - 1));
   const auto to = parseNumberList(std::string_view(text).substr(colon + 1));
   if (!from || !to) {
@@ -227,6 +229,26 @@ nlohmann::json AnimationPlan::describe() const {
     description["view_to"] = {spec_.viewTo->x, spec_.viewTo->y};
   }
   return description;
+}
+
+std::vector<std::string> AnimationWarnings::add(const std::vector<std::string>& frameWarnings) {
+  std::vector<std::string> now;
+  for (const std::string& warning : frameWarnings) {
+    if (warning.ends_with("; ignored")) {
+      ++ignoredIn_[warning];
+    } else if (said_.insert(warning).second) {
+      now.push_back(warning);
+    }
+  }
+  return now;
+}
+
+std::vector<std::string> AnimationWarnings::finish(int frames) const {
+  std::vector<std::string> held;
+  for (const auto& [warning, count] : ignoredIn_) {
+    if (count == frames) held.push_back(warning);
+  }
+  return held;
 }
 
 }  // namespace vsil

@@ -20,7 +20,9 @@
 // rule on these values is an interval, which holds in between when it holds at the ends).
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -92,6 +94,21 @@ class AnimationPlan {
   RenderRequest base_;
   AnimationSpec spec_;
   std::vector<Resolved> sweeps_;
+};
+
+// The warnings of an animation's frames, each said once. A warning that an option is ignored
+// ("...; ignored") holds for the animation only where every frame had it: a sweep may turn on in
+// later frames what frame 0 ignores (the colour sphere's weight from 0).
+class AnimationWarnings {
+ public:
+  // The frame's warnings to say now, those not said before; "ignored" ones wait for finish().
+  std::vector<std::string> add(const std::vector<std::string>& frameWarnings);
+  // The "ignored" warnings that every one of `frames` frames had.
+  std::vector<std::string> finish(int frames) const;
+
+ private:
+  std::set<std::string> said_;
+  std::map<std::string, int> ignoredIn_;
 };
 
 }  // namespace vsil

@@ -949,6 +949,8 @@ class PythonRenderer {
     Slot& slot = resident ? *resident : main_;
     std::vector<RenderOutput> outputs;
     Held held;
+    AnimationWarnings warnings;
+    std::vector<std::string> said;
     {
       SlotTurn turn(slot);
       held = holdVolume(slot, request);
@@ -958,14 +960,18 @@ class PythonRenderer {
         RenderOutput output = slot.job->render(plan.request(i), request.load.limits);
         if (file) file->write(output.image);
         output.metadata["swept"] = plan.sweptValues(i);
+        for (std::string& warning : warnings.add(output.warnings)) said.push_back(warning);
         if (keepFrames) outputs.push_back(std::move(output));
       }
       if (file) file->finish();
     }
+    for (std::string& warning : warnings.finish(plan.frames())) said.push_back(warning);
     py::list result;
     for (std::size_t i = 0; i < outputs.size(); ++i) {
-      result.append(makeFrame(outputs[i], plan.request(int(i)), i == 0 ? held : Held{}));
+      result.append(makeFrame(outputs[i], plan.request(int(i)), i == 0 ? held : Held{},
+                              /*warn=*/false));
     }
+    for (const std::string& warning : said) warnUser("vsil: " + warning);
     release(resident);
     return result;
   }
@@ -1056,7 +1062,9 @@ class PythonRenderer {
   }
 
   // The Frame of an output, with the GIL: the metadata as --meta-out writes it.
-  static Frame makeFrame(RenderOutput& output, const RenderRequest& request, const Held& held) {
+  // `warn`: issue the frame's warnings as Python warnings (animate says its frames' once).
+  static Frame makeFrame(RenderOutput& output, const RenderRequest& request, const Held& held,
+                         bool warn = true) {
     nlohmann::json& meta = output.metadata;
     for (const auto& [key, value] : held.dataset.items()) meta["dataset"][key] = value;
     // The stages of this call before the frame's own (0 where the texture was resident).
@@ -1080,7 +1088,9 @@ class PythonRenderer {
                       : py::none();
     frame.metadata = jsonToPython(meta);
     frame.warnings = output.warnings;
-    for (const std::string& warning : output.warnings) warnUser("vsil: " + warning);
+    if (warn) {
+      for (const std::string& warning : output.warnings) warnUser("vsil: " + warning);
+    }
     return frame;
   }
 
@@ -1230,8 +1240,8 @@ py::array broaden(const py::array& lines, std::optional<double> width,
   const cv::Mat1b mask = maskFromArray(lines, function);
   cv::Mat1b result;
   if (width) {
-    if (widthNear || widthFar) {
-      throw InputError(function + ": give width, or width_near and width_far, not both");
+    if (widthNear || widthFar || depth) {
+      throw InputError(function + ": give width, or width_near, width_far and depth, not both");
     }
     checkWidth(*width, "width");
     checkBroadenMemory(mask.size(), *width);

@@ -94,6 +94,23 @@ TEST(AnimateCommand, WritesNumberedFramesAndTheirJson) {
 
 // Each frame is the render of its parameters: the same bytes as `vsil render` given them. One
 // job renders every frame (its GL state, programs and FFT plans reused), a process each time here.
+// An option ignored only in some frames (the sphere's rotation while the swept weight is 0) is
+// not called ignored; one every frame ignores is, once.
+TEST(AnimateCommand, WarnsOfAnOptionOnlyWhereEveryFrameIgnoresIt) {
+  const fs::path dir = test::scratchDir();
+  const std::string base =
+      "animate gen:spheres:32 --technique demip --size 16x16 --frames 3 --sphere-rotate 90,0 ";
+  const auto swept =
+      test::runVsil(base + "--sweep sphere-weight=0:1 --quiet --out-dir " + (dir / "a").string());
+  ASSERT_EQ(swept.exitCode, 0) << swept.err;
+  EXPECT_EQ(swept.err, "");
+  const auto still = test::runVsil(base + "--quiet --out-dir " + (dir / "b").string());
+  ASSERT_EQ(still.exitCode, 0) << still.err;
+  EXPECT_EQ(still.err,
+            "vsil: warning: --sphere-rotate: the colour sphere is off (--sphere-weight 0, no "
+            "--legend); ignored\n");
+}
+
 // Numbers are read in decimal: CLI11 alone read --frames 010 as the octal 8.
 TEST(AnimateCommand, AFrameCountWithLeadingZerosIsDecimal) {
   const fs::path dir = test::scratchDir() / "ten";

@@ -880,6 +880,35 @@ def test_animate_writes_the_video_vsil_animate_writes(tmp_path, renderer, contai
     assert len({f.image.tobytes() for f in frames}) == 4
 
 
+def test_animate_sweeps_python_names_and_warns_of_what_every_frame_ignores(renderer):
+    """sweep= takes the keywords' spelling (sphere_weight); an option ignored only in some frames
+    (the colour sphere's rotation while its swept weight is 0) is not said to be ignored, one
+    ignored in every frame is, once."""
+    import warnings as python_warnings
+    with python_warnings.catch_warnings(record=True) as caught:
+        python_warnings.simplefilter("always")
+        frames = renderer.animate("gen:spheres:32", technique="demip", frames=3, size=(16, 16),
+                                  sweep={"sphere_weight": (0, 1)}, sphere_rotate=(90, 0))
+        assert not [w for w in caught if "ignored" in str(w.message)], [str(w.message) for w in caught]
+        assert "ignored" in frames[0].warnings[0]  # frame 0 itself does ignore it
+        renderer.animate("gen:spheres:32", technique="demip", frames=3, size=(16, 16),
+                         sphere_rotate=(90, 0))
+    said = [str(w.message) for w in caught if "ignored" in str(w.message)]
+    assert said == ["vsil: --sphere-rotate: the colour sphere is off (--sphere-weight 0, no "
+                    "--legend); ignored"], said
+
+
+def test_broaden_refuses_a_depth_beside_one_width_and_bools():
+    lines = np.zeros((32, 32), np.uint8)
+    lines[16, 4:28] = 1
+    with pytest.raises(ValueError, match="not both"):
+        vsil.broaden(lines, width=3, depth=np.zeros((32, 32), np.float32))
+    with pytest.raises(TypeError, match="width takes a number, not bool"):
+        vsil.broaden(lines, width=True)
+    with pytest.raises(TypeError, match="bins takes a number, not bool"):
+        vsil.measure_width(lines, bins=True)
+
+
 def test_animate_moves_the_view_and_checks_its_input(tmp_path, renderer):
     volume = vsil.generate("spheres", 32)
     frames = renderer.animate(volume, frames=3, view_from=(0, 0), view_to=(90, 30), size=(32, 32))

@@ -161,9 +161,13 @@ def generate(name, size=128):
 
 def _one_line_type_errors(function, name):
     """pybind11's TypeError for arguments of the wrong types spans several lines (the supported
-    signatures, a blank line, what it was given): one line naming the function instead."""
+    signatures, a blank line, what it was given): one line naming the function instead. Their
+    keywords take numbers and arrays: a bool is refused."""
     @functools.wraps(function)
     def call(*args, **kwargs):
+        for key, value in kwargs.items():  # pybind11 takes True as the number 1
+            if isinstance(value, bool):
+                raise TypeError(f"vsil.{name}: {key} takes a number, not bool")
         try:
             return function(*args, **kwargs)
         except TypeError as error:
