@@ -229,8 +229,7 @@ void checkAxisKinds(const std::string& path, const NrrdHeader& header) {
     }
     for (std::size_t axis = 0; axis < names.size(); ++axis) {
       const std::string kind = toLower(names[axis]);
-      if (kind != "domain" && kind != "space" && kind != "time" && kind != "???" &&
-          kind != "none") {
+      if (kind != "domain" && kind != "space" && kind != "???" && kind != "none") {
         throwInputError(path, "kinds: axis " + std::to_string(axis + 1) + " is " +
                                   quote(names[axis]) +
                                   ", not a spatial axis: vsil reads 3D scalar volumes");

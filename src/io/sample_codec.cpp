@@ -172,7 +172,7 @@ void parseTextSamples(const std::string& where, std::string_view text, StoredTyp
     sink.putValue(i, value);
   }
   if (after == TextAfterSamples::WhitespaceOnly) {
-    while (p < end && isSpace(*p)) ++p;
+    while (p < end && (isSpace(*p) || *p == '\0')) ++p;  // a writer's padding is no value
     if (p != end) {
       throwInputError(where, "holds more than the " + std::to_string(count) +
                                  " values its header's sizes give");

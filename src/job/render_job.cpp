@@ -187,10 +187,13 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
 std::vector<std::string> warnings(const RenderRequest& request, const Volume& volume,
                                   ValueRange uploadedRange, int slices) {
   std::vector<std::string> found;
-  // A --sampling lowered so far that a few slices remain shows cross-sections, not the volume.
+  // A --sampling lowered so far that a few slices remain shows cross-sections, not the volume
+  // (a small volume with few slices at the default sampling is what it is).
   constexpr int kFewSlices = 16;
   const double sampling = request.settings.samplesPerVoxel;
-  if (sampling < RenderSettings{}.samplesPerVoxel && slices < kFewSlices) {
+  const double defaultSampling = RenderSettings{}.samplesPerVoxel;
+  if (sampling < defaultSampling && slices < kFewSlices &&
+      slices * defaultSampling / sampling >= kFewSlices) {
     found.push_back("--sampling " + formatNumber(sampling) + " leaves " + std::to_string(slices) +
                     (slices == 1 ? " slice" : " slices") + " through " + volume.source +
                     ": the picture shows cross-sections, not the volume");
