@@ -102,7 +102,8 @@ OptionSpec colorOption() {
 OptionSpec sketchColorOption() {
   return OptionSpec::text("sketch-color", "the colour of sketch lines (default black)")
       .validatedBy([](const OptionValue& value) {
-        if (!textOf(value).empty()) parseOpaqueColor(textOf(value), "--sketch-color", kSketchColorAlpha);
+        if (!textOf(value).empty())
+          parseOpaqueColor(textOf(value), "--sketch-color", kSketchColorAlpha);
       });
 }
 
@@ -128,7 +129,8 @@ IllustrationStyle styleFromOptions(const std::vector<OptionSpec>& declared,
     style.color = parseOpaqueColor(options.text("color"), "--color", kSampleColorAlpha);
   }
   if (given("sketch-color") && !options.text("sketch-color").empty()) {
-    style.sketchColor = parseOpaqueColor(options.text("sketch-color"), "--sketch-color", kSketchColorAlpha);
+    style.sketchColor =
+        parseOpaqueColor(options.text("sketch-color"), "--sketch-color", kSketchColorAlpha);
   }
   if (given("light") && !options.list("light").empty()) {
     std::vector<Light> lights;

@@ -29,7 +29,6 @@ Rgba parseColor(const std::string& text, const std::string& flagName);
 // A colour whose alpha nothing reads (a sample's colour, the line colour measure-width looks
 // for): one with alpha below ff (transparent, #rrggbbaa) is refused, "<flagName>: ... <why>",
 // not silently taken as opaque.
-Rgba parseOpaqueColor(const std::string& text, const std::string& flagName,
-                      const std::string& why);
+Rgba parseOpaqueColor(const std::string& text, const std::string& flagName, const std::string& why);
 
 }  // namespace vsil

@@ -177,7 +177,8 @@ EffectSet parseEffects(std::string_view text, const std::string& where) {
                                  joined({std::begin(kEffectNames), std::end(kEffectNames)}) + ")");
     }
     const auto effect = Effect(found - std::begin(kEffectNames));
-    if (effects.has(effect)) throwInputError(where, "effect " + quotedText(name) + " is named twice");
+    if (effects.has(effect))
+      throwInputError(where, "effect " + quotedText(name) + " is named twice");
     effects.add(effect);
   }
   return effects;
@@ -288,7 +289,8 @@ EffectSet styleEffects(const nlohmann::json& value, const std::string& where) {
   for (std::size_t i = 0; i < value.size(); ++i) {
     const std::string at = where + " " + std::to_string(i + 1);
     for (Effect e : parseEffects(jsonString(value[i], at), at).list()) {
-      if (effects.has(e)) throwInputError(at, "effect " + quotedText(effectName(e)) + " is named twice");
+      if (effects.has(e))
+        throwInputError(at, "effect " + quotedText(effectName(e)) + " is named twice");
       effects.add(e);
     }
   }

@@ -47,7 +47,8 @@ EffectSet parseEffects(std::string_view text, const std::string& where);
 
 // Why a sample colour and a sketch colour take no alpha (core/color.h parseOpaqueColor), for the
 // flags and the style files alike.
-inline constexpr const char* kSampleColorAlpha = "a sample's opacity comes from the transfer function";
+inline constexpr const char* kSampleColorAlpha =
+    "a sample's opacity comes from the transfer function";
 inline constexpr const char* kSketchColorAlpha = "a sketch line's opacity comes from k_ls and k_le";
 
 // One parameter: the paper's name (k_gc ...) or ours where the paper has none.

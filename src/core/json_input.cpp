@@ -49,8 +49,7 @@ Json parseGuarded(std::string_view text, const std::string& source) {
     std::string key;
   };
   std::vector<std::set<std::string>> objectKeys;  // of each object being parsed
-  const auto guard = [&objectKeys](int depth, typename Json::parse_event_t event,
-                                   Json& parsed) {
+  const auto guard = [&objectKeys](int depth, typename Json::parse_event_t event, Json& parsed) {
     using Event = typename Json::parse_event_t;
     if ((event == Event::object_start || event == Event::array_start) &&
         depth >= limits::kMaxJsonDepth) {
@@ -58,7 +57,8 @@ Json parseGuarded(std::string_view text, const std::string& source) {
     }
     if (event == Event::object_start) objectKeys.emplace_back();
     if (event == Event::object_end) objectKeys.pop_back();
-    if (event == Event::key && !objectKeys.back().insert(parsed.template get<std::string>()).second) {
+    if (event == Event::key &&
+        !objectKeys.back().insert(parsed.template get<std::string>()).second) {
       throw DuplicateKey{parsed.template get<std::string>()};
     }
     return true;

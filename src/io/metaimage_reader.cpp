@@ -175,8 +175,9 @@ Volume readMetaImage(const std::string& path, const LoadOptions& options) {
                               false);
   if (header.find("binarydatabyteordermsb") && header.find("elementbyteordermsb") &&
       flag({{"elementbyteordermsb", "ElementByteOrderMSB"}}, false) != bigEndian) {
-    throwInputError(path, "BinaryDataByteOrderMSB and ElementByteOrderMSB disagree: which byte "
-                          "order do the samples have?");
+    throwInputError(path,
+                    "BinaryDataByteOrderMSB and ElementByteOrderMSB disagree: which byte "
+                    "order do the samples have?");
   }
   // MetaIO writers always write BinaryData; without it, binary is what such files hold.
   const bool binary = flag({{"binarydata", "BinaryData"}}, true);
@@ -200,8 +201,8 @@ Volume readMetaImage(const std::string& path, const LoadOptions& options) {
   // Named by the file's own extension (a .mhd may hold its data LOCAL, as a .mha does).
   auto format = [&](const char* encoding) {
     const std::string extension = toLower(std::filesystem::path(path).extension().string());
-    return std::string("MetaImage (") + (extension == ".mhd" ? ".mhd" : ".mha") + ", " +
-           encoding + ")";
+    return std::string("MetaImage (") + (extension == ".mhd" ? ".mhd" : ".mha") + ", " + encoding +
+           ")";
   };
   // The payload's bytes: HeaderSize skipped, or (-1) the last `tail` bytes of the file.
   std::uint64_t offset = payload.offset, available = payload.size;

@@ -407,9 +407,10 @@ PyVolume makeVolume(const py::object& array, const py::object& spacing, const py
     throw PythonTypeError(function + ": array takes a numpy array (z, y, x), not " +
                           typeNameOf(array));
   }
-  const bool numbers =
-      (isSequence(spacing) || py::isinstance<py::array>(spacing)) && py::len(spacing) == 3 &&
-      std::all_of(spacing.begin(), spacing.end(), [](const py::handle& item) { return isNumber(item); });
+  const bool numbers = (isSequence(spacing) || py::isinstance<py::array>(spacing)) &&
+                       py::len(spacing) == 3 &&
+                       std::all_of(spacing.begin(), spacing.end(),
+                                   [](const py::handle& item) { return isNumber(item); });
   if (!numbers) {
     const std::string given = py::repr(spacing);
     throw PythonTypeError(function + ": spacing takes three numbers (x, y, z), not " +
@@ -420,7 +421,8 @@ PyVolume makeVolume(const py::object& array, const py::object& spacing, const py
     throw PythonTypeError(function + ": name takes a str, not " + typeNameOf(name));
   }
   std::vector<double> values;
-  for (const py::handle item : spacing) values.push_back(py::float_(py::reinterpret_borrow<py::object>(item)));
+  for (const py::handle item : spacing)
+    values.push_back(py::float_(py::reinterpret_borrow<py::object>(item)));
   return wrapArray(py::array::ensure(array), values, name.cast<std::string>());
 }
 

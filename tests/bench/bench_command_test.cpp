@@ -228,8 +228,8 @@ TEST(BenchCommand, AnUnreadableDatasetOrAnOutputNamingOneFailsBeforeAnyFrame) {
   const auto dir = test::scratchDir();
   const std::string header = "neghip_64x64x64_uint8.nhdr";
   std::filesystem::copy_file(test::datasetPath(header), dir / header);  // without its .raw
-  for (const char* file : {"hydrogen_atom_128x128x128_uint8.nhdr",
-                           "hydrogen_atom_128x128x128_uint8.raw"}) {
+  for (const char* file :
+       {"hydrogen_atom_128x128x128_uint8.nhdr", "hydrogen_atom_128x128x128_uint8.raw"}) {
     std::filesystem::copy_file(test::datasetPath(file), dir / file);  // readable, run first
   }
   const auto unreadable = test::runVsil("bench --table nk3 --datasets " + dir.string() +

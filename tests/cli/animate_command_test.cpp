@@ -114,8 +114,8 @@ TEST(AnimateCommand, WarnsOfAnOptionOnlyWhereEveryFrameIgnoresIt) {
 // Numbers are read in decimal: CLI11 alone read --frames 010 as the octal 8.
 TEST(AnimateCommand, AFrameCountWithLeadingZerosIsDecimal) {
   const fs::path dir = test::scratchDir() / "ten";
-  const auto result = test::runVsil("animate gen:sphere:16 --size 16x16 --frames 010 --out-dir " +
-                                    dir.string());
+  const auto result =
+      test::runVsil("animate gen:sphere:16 --size 16x16 --frames 010 --out-dir " + dir.string());
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_EQ(readJson(dir / "frames.json")["animation"]["frames"], 10);
   EXPECT_TRUE(fs::is_regular_file(dir / "frame_0009.png"));

@@ -226,8 +226,7 @@ TEST(RenderCommand, WarnsAboutOptionsThatChangeNothing) {
 TEST(RenderCommand, WarnsWhenTheSamplingLeavesFewSlices) {
   const auto dir = test::scratchDir();
   const auto out = (dir / "few.png").string();
-  const auto few =
-      test::runVsil("render gen:sphere:64 --size 32x32 --sampling 0.05 --out " + out);
+  const auto few = test::runVsil("render gen:sphere:64 --size 32x32 --sampling 0.05 --out " + out);
   EXPECT_EQ(few.exitCode, 0) << few.err;
   EXPECT_EQ(few.err,
             "vsil: warning: --sampling 0.05 leaves 5 slices through gen:sphere:64: the picture "

@@ -40,14 +40,14 @@ std::vector<std::string> ignoredDemipOptions(const OptionReader& options) {
 
 TechniqueInfo demipTechniqueInfo() {
   TechniqueInfo info{"demip",
-          "depth-enhanced MIP: the maximum shaded by the depth of the nearest sample "
-          "of its material, tinted by a colour sphere (Díaz & Vázquez)",
-          demipOptions(),
-          FrameOutputs{.state = false, .color = true, .depth = true},
-          [] { return std::make_unique<MipTechnique>(true); },
-          /*usesGradients=*/false,
-          /*checkValues=*/checkDemipValues,
-          /*needsOneTexture=*/{}};
+                     "depth-enhanced MIP: the maximum shaded by the depth of the nearest sample "
+                     "of its material, tinted by a colour sphere (Díaz & Vázquez)",
+                     demipOptions(),
+                     FrameOutputs{.state = false, .color = true, .depth = true},
+                     [] { return std::make_unique<MipTechnique>(true); },
+                     /*usesGradients=*/false,
+                     /*checkValues=*/checkDemipValues,
+                     /*needsOneTexture=*/{}};
   info.ignoredOptions = ignoredDemipOptions;
   return info;
 }
