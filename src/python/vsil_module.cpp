@@ -387,6 +387,11 @@ std::string typeNameOf(const py::handle& value) {
 }
 
 bool isNumber(const py::handle& value) {
+  // A numpy array has __float__ (for one element) but prints as its repr: only a 0-d one is a
+  // number; a 1-d one is a sequence (valueText).
+  if (py::isinstance<py::array>(value)) {
+    return py::reinterpret_borrow<py::array>(value).ndim() == 0;
+  }
   return !py::isinstance<py::bool_>(value) && !py::isinstance<py::str>(value) &&
          (PyLong_Check(value.ptr()) || PyFloat_Check(value.ptr()) || PyIndex_Check(value.ptr()) ||
           py::hasattr(value, "__float__"));
@@ -549,8 +554,10 @@ std::string valueText(const Keyword& keyword, const py::handle& value,
     return fsBytes(py::module_::import("os").attr("fspath")(value));
   }
   if (isNumber(value)) return py::str(value);
+  const bool vector =
+      py::isinstance<py::array>(value) && py::reinterpret_borrow<py::array>(value).ndim() == 1;
   if (keyword.kind != "number" && keyword.kind != "integer" &&
-      (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value))) {
+      (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value) || vector)) {
     std::string joined;
     bool first = true;
     for (const py::handle item : value) {

@@ -898,6 +898,14 @@ def test_animate_sweeps_python_names_and_warns_of_what_every_frame_ignores(rende
                     "--legend); ignored"], said
 
 
+def test_a_numpy_vector_serves_as_a_pair_and_a_0d_array_as_a_number(renderer):
+    """view=np.array([60, 20]) read as its repr '[60 20]' and was refused."""
+    volume = vsil.generate("spheres", 32)
+    expected = renderer.render(volume, view=(60, 20), zoom=1.5, size=(16, 16)).image
+    given = renderer.render(volume, view=np.array([60, 20]), zoom=np.array(1.5), size=(16, 16))
+    assert np.array_equal(given.image, expected)
+
+
 def test_broaden_refuses_a_depth_beside_one_width_and_bools():
     lines = np.zeros((32, 32), np.uint8)
     lines[16, 4:28] = 1
