@@ -362,8 +362,19 @@ IllustrationStyle parseStyle(const nlohmann::json& json, const std::string& sour
   if (json.contains("transfer_function")) {
     const nlohmann::json& tf = json["transfer_function"];
     if (tf.is_string()) {
-      std::filesystem::path file = tf.get_ref<const std::string&>();
+      const std::string& text = tf.get_ref<const std::string&>();
+      std::filesystem::path file = text;
       if (file.is_relative()) file = baseDir / file;
+      // A preset scales by the volume's histogram, which a style is read without.
+      const auto presets = transferFunctionPresetNames();
+      std::error_code error;
+      if (std::find(presets.begin(), presets.end(), text) != presets.end() &&
+          !std::filesystem::exists(file, error)) {
+        throwInputError(where("transfer_function"),
+                        quotedText(text) +
+                            " is a preset, which goes with --tf; a style names a FILE.json or "
+                            "holds the points");
+      }
       style.transferFunction = loadTransferFunction(file.string());
     } else {
       style.transferFunction = parseTransferFunction(tf, where("transfer_function"));
