@@ -200,6 +200,10 @@ TEST(RenderCommand, WarnsAboutOptionsThatChangeNothing) {
       {"--technique demip --sphere-map green-red",
        "--sphere-map: the colour sphere is off (--sphere-weight 0, no --legend); ignored"},
       {"--fill-color red", "--fill-color: there is no --fill; ignored"},
+      // A style the user wrote, as its flags (a preset's values are its own: below).
+      {"--technique illustrate --tf ramp --style '{\"parameters\": {\"k_os\": 2}}'",
+       "--style (inline): parameters: k_os: the transfer function gives the opacity (k_os, k_oe "
+       "shape the power opacity without one); ignored"},
   };
   for (const auto& [args, warning] : cases) {
     const auto result =
@@ -213,7 +217,8 @@ TEST(RenderCommand, WarnsAboutOptionsThatChangeNothing) {
         "--technique illustrate --effects silhouette --param k_ss=20",
         "--technique illustrate --effects halo --halo-mode exact",
         "--technique demip --sphere-map green-red --sphere-weight 0.5",
-        "--technique demip --sphere-map green-red --legend", "--fill-color red --fill flat"}) {
+        "--technique demip --sphere-map green-red --legend", "--fill-color red --fill flat",
+        "--technique illustrate --style fig6-distance-halo --halo-mode exact"}) {
     const auto result =
         test::runVsil("render gen:sphere:16 --size 16x16 " + std::string(args) + " --out " + out);
     EXPECT_EQ(result.exitCode, 0) << args << ": " << result.err;

@@ -39,36 +39,55 @@ std::string upper(std::string text) {
   return text;
 }
 
-// What changes nothing in the frame (TechniqueInfo::ignoredOptions): a colour or the power
-// opacity's k_os, k_oe beside a transfer function (it gives both), an effect's parameters,
-// colour or mode with that effect off.
-std::vector<std::string> ignoredIllustrateOptions(const OptionReader& options) {
-  const Illustration illustration = illustrationFromOptions(illustrateOptions(), options);
-  const EffectSet& effects = illustration.effects;
-  const bool transferFunction = illustration.transferFunction.has_value();
-  std::vector<std::string> ignored;
-  if (transferFunction && options.given("color")) {
-    ignored.push_back("--color: the transfer function gives the samples' colour; ignored");
+// How a source of illustration values names them in a warning: the flags, or a style file.
+struct ValueNames {
+  std::string color, sketchColor, parameter;
+};
+
+// What of `set` changes nothing in `frame`: a colour or the power opacity's k_os, k_oe beside a
+// transfer function (it gives both), an effect's parameters or colour with that effect off.
+void addIgnored(const IllustrationStyle& set, const ValueNames& names, const Illustration& frame,
+                std::vector<std::string>& ignored) {
+  const bool transferFunction = frame.transferFunction.has_value();
+  if (set.color && transferFunction) {
+    ignored.push_back(names.color + ": the transfer function gives the samples' colour; ignored");
   }
-  if (options.given("sketch-color") && !effects.has(Effect::Sketch)) {
-    ignored.push_back("--sketch-color: the sketch effect is off; ignored");
+  if (set.sketchColor && !frame.effects.has(Effect::Sketch)) {
+    ignored.push_back(names.sketchColor + ": the sketch effect is off; ignored");
   }
-  if (options.given("halo-mode") && !effects.has(Effect::Halo)) {
-    ignored.push_back("--halo-mode: the halo effect is off; ignored");
-  }
-  if (!options.given("param")) return ignored;
-  ParameterValues given;
-  for (const auto& text : options.list("param")) parseParameterList(text, "--param", {}, "", given);
-  for (const auto& [name, value] : given) {
+  for (const auto& [name, value] : set.parameters) {
     const ParameterSpec& spec = *findParameter(name);
-    if (spec.effect && !effects.has(*spec.effect)) {
-      ignored.push_back("--param " + name + ": the " + effectName(*spec.effect) +
+    if (spec.effect && !frame.effects.has(*spec.effect)) {
+      ignored.push_back(names.parameter + name + ": the " + effectName(*spec.effect) +
                         " effect is off; ignored");
     } else if (transferFunction && (name == "k_os" || name == "k_oe")) {
-      ignored.push_back("--param " + name +
+      ignored.push_back(names.parameter + name +
                         ": the transfer function gives the opacity (k_os, k_oe shape the power "
                         "opacity without one); ignored");
     }
+  }
+}
+
+// TechniqueInfo::ignoredOptions: the flags' values, and those of a style the user wrote (a
+// file or inline JSON; a preset carries values for effects one may turn off), that change
+// nothing; --halo-mode with the halo effect off.
+std::vector<std::string> ignoredIllustrateOptions(const OptionReader& options) {
+  const Illustration frame = illustrationFromOptions(illustrateOptions(), options);
+  std::vector<std::string> ignored;
+  addIgnored(styleFromOptions(illustrateOptions(), options),
+             {"--color", "--sketch-color", "--param "}, frame, ignored);
+  if (options.given("halo-mode") && !frame.effects.has(Effect::Halo)) {
+    ignored.push_back("--halo-mode: the halo effect is off; ignored");
+  }
+  const std::string& style = options.text("style");
+  const auto presets = stylePresetNames();
+  if (options.given("style") && !style.empty() &&
+      std::find(presets.begin(), presets.end(), style) == presets.end()) {
+    const std::string where =
+        "--style " + (isInlineSource(style) ? std::string("(inline)") : style);
+    addIgnored(loadStyle(style),
+               {where + ": color", where + ": sketch_color", where + ": parameters: "}, frame,
+               ignored);
   }
   return ignored;
 }
