@@ -906,6 +906,18 @@ def test_a_numpy_vector_serves_as_a_pair_and_a_0d_array_as_a_number(renderer):
     assert np.array_equal(given.image, expected)
 
 
+@pytest.mark.parametrize("arguments, says", [
+    (dict(frames="010"), "frames takes an int, not str"),
+    (dict(frames=True), "frames takes an int, not bool"),
+    (dict(frames=2, orbit="0x10"), "orbit takes a number, not str"),
+    (dict(frames=2, fps=None), "fps takes a number, not NoneType"),
+    (dict(frames=2, keep_frames=1), "keep_frames takes True or False, not int")])
+def test_animate_arguments_of_the_wrong_type_are_one_line(renderer, arguments, says):
+    with pytest.raises(TypeError) as error:
+        renderer.animate("gen:sphere:16", size=(16, 16), **arguments)
+    assert str(error.value) == "vsil.Renderer.animate: " + says
+
+
 def test_broaden_refuses_a_depth_beside_one_width_and_bools():
     lines = np.zeros((32, 32), np.uint8)
     lines[16, 4:28] = 1

@@ -13,6 +13,7 @@ their signatures, help and the stub (__init__.pyi) are made from the CLI's optio
 """
 import functools
 import inspect
+import numbers
 import os
 
 from . import _vsil
@@ -79,6 +80,17 @@ class Renderer(_vsil._Renderer):
 
     def animate(self, volume, *, frames, orbit=0.0, view_from=None, view_to=None, sweep=None,
                 video=None, fps=25.0, keep_frames=True, **options):
+        # One line naming the argument (pybind11's TypeError lists the whole signature).
+        def wrong(name, takes, value):
+            raise TypeError(f"vsil.Renderer.animate: {name} takes {takes}, not "
+                            f"{type(value).__name__}")
+        if isinstance(frames, bool) or not isinstance(frames, numbers.Integral):
+            wrong("frames", "an int", frames)
+        for name, value in (("orbit", orbit), ("fps", fps)):
+            if isinstance(value, bool) or not isinstance(value, numbers.Real):
+                wrong(name, "a number", value)
+        if not isinstance(keep_frames, bool):
+            wrong("keep_frames", "True or False", keep_frames)
         return super().animate(_fspath(volume), frames=frames, orbit=orbit, view_from=view_from,
                                view_to=view_to, sweep=sweep, video=_fspath(video), fps=fps,
                                keep_frames=keep_frames, **options)
