@@ -42,6 +42,16 @@ std::vector<DatasetChoice<Dataset>> chooseDatasets(std::span<const Dataset> data
   return chosen;
 }
 
+// The file (in the datasets folder) of the dataset named `name`, or none for an unknown name:
+// TableDefinition::datasetFile for tables whose datasets have `name` and `file`.
+template <typename Datasets>
+std::optional<std::string> datasetFileOf(const Datasets& datasets, const std::string& name) {
+  for (const auto& d : datasets) {
+    if (d.name == name) return d.file;
+  }
+  return std::nullopt;
+}
+
 // The volume in a dataset's file, or nothing with `missing` saying why: not there (use
 // --datasets DIR) or not readable. A missing dataset leaves its rows empty; it does not fail the
 // run.

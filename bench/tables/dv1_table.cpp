@@ -137,10 +137,7 @@ std::vector<CaseResult> measureWindow(Renderer& renderer, int window, const Benc
 }  // namespace
 
 std::optional<std::string> dv1DatasetFile(const std::string& name) {
-  for (const auto& d : kDatasets) {
-    if (d.name == name) return d.file;
-  }
-  return std::nullopt;
+  return datasetFileOf(kDatasets, name);
 }
 
 std::vector<std::string> dv1DatasetNames() {

@@ -357,10 +357,7 @@ nlohmann::json missingRow(const Measured& m, int window, const IllustrateCase& c
 }  // namespace
 
 std::optional<std::string> illustrateDatasetFile(const std::string& name) {
-  for (const auto& d : kDatasets) {
-    if (d.name == name) return d.file;
-  }
-  return std::nullopt;
+  return datasetFileOf(kDatasets, name);
 }
 
 std::vector<std::string> illustrateDatasetNames() {

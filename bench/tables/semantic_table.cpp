@@ -502,10 +502,7 @@ std::string formatSignedMs(double ms) {
 }  // namespace
 
 std::optional<std::string> semanticDatasetFile(const std::string& name) {
-  for (const auto& d : kDatasets) {
-    if (d.name == name) return d.file;
-  }
-  return std::nullopt;
+  return datasetFileOf(kDatasets, name);
 }
 
 std::vector<std::string> semanticDatasetNames() {
