@@ -167,6 +167,18 @@ std::vector<std::string> EffectSet::names() const {
   return names;
 }
 
+namespace {
+
+// Adds `effect`, refusing one `effects` holds already (--effects halo,halo).
+void addEffectOnce(EffectSet& effects, Effect effect, const std::string& where) {
+  if (effects.has(effect)) {
+    throwInputError(where, "effect " + quotedText(effectName(effect)) + " is named twice");
+  }
+  effects.add(effect);
+}
+
+}  // namespace
+
 EffectSet parseEffects(std::string_view text, const std::string& where) {
   EffectSet effects;
   if (trimmed(text).empty() || trimmed(text) == "none") return effects;
@@ -176,10 +188,7 @@ EffectSet parseEffects(std::string_view text, const std::string& where) {
       throwInputError(where, "unknown effect " + quotedText(name) + " (known: " +
                                  joined({std::begin(kEffectNames), std::end(kEffectNames)}) + ")");
     }
-    const auto effect = Effect(found - std::begin(kEffectNames));
-    if (effects.has(effect))
-      throwInputError(where, "effect " + quotedText(name) + " is named twice");
-    effects.add(effect);
+    addEffectOnce(effects, Effect(found - std::begin(kEffectNames)), where);
   }
   return effects;
 }
@@ -288,11 +297,8 @@ EffectSet styleEffects(const nlohmann::json& value, const std::string& where) {
   EffectSet effects;
   for (std::size_t i = 0; i < value.size(); ++i) {
     const std::string at = where + " " + std::to_string(i + 1);
-    for (Effect e : parseEffects(jsonString(value[i], at), at).list()) {
-      if (effects.has(e))
-        throwInputError(at, "effect " + quotedText(effectName(e)) + " is named twice");
-      effects.add(e);
-    }
+    for (Effect e : parseEffects(jsonString(value[i], at), at).list())
+      addEffectOnce(effects, e, at);
   }
   return effects;
 }
