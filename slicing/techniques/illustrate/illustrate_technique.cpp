@@ -80,9 +80,7 @@ std::vector<std::string> ignoredIllustrateOptions(const OptionReader& options) {
     ignored.push_back("--halo-mode: the halo effect is off; ignored");
   }
   const std::string& style = options.text("style");
-  const auto presets = stylePresetNames();
-  if (options.given("style") && !style.empty() &&
-      std::find(presets.begin(), presets.end(), style) == presets.end()) {
+  if (options.given("style") && (isInlineSource(style) || isStyleFile(style))) {
     const std::string where =
         "--style " + (isInlineSource(style) ? std::string("(inline)") : style);
     addIgnored(loadStyle(style),
