@@ -1,5 +1,6 @@
 #include "io/sample_codec.h"
 
+#include <cctype>
 #include <cmath>
 
 #include "core/error.h"
@@ -171,12 +172,12 @@ void parseTextSamples(const std::string& where, std::string_view text, StoredTyp
     }
     sink.putValue(i, value);
   }
-  if (after == TextAfterSamples::WhitespaceOnly) {
-    while (p < end && (isSpace(*p) || *p == '\0')) ++p;  // a writer's padding is no value
-    if (p != end) {
-      throwInputError(where, "holds more than the " + std::to_string(count) +
-                                 " values its header's sizes give");
-    }
+  while (p < end && (isSpace(*p) || *p == '\0')) ++p;  // a writer's padding is no value
+  const bool startsValue = p != end && (std::isdigit(static_cast<unsigned char>(*p)) || *p == '+' ||
+                                        *p == '-' || *p == '.');
+  if (after == TextAfterSamples::WhitespaceOnly ? p != end : startsValue) {
+    throwInputError(
+        where, "holds more than the " + std::to_string(count) + " values its header's sizes give");
   }
   sink.finish();
 }

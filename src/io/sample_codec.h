@@ -43,15 +43,15 @@ std::uint64_t payloadBytes(glm::ivec3 dims, StoredType type);
 // "128x128x128 uint8", for messages.
 std::string describeLayout(glm::ivec3 dims, StoredType type);
 
-// What may follow the samples of a text payload: anything (legacy VTK, where other sections
-// follow), or whitespace alone (NRRD, MetaImage: a value more means the header's sizes are not
-// the file's).
-enum class TextAfterSamples { Anything, WhitespaceOnly };
+// What may follow the samples of a text payload: a keyword or nothing (legacy VTK, where other
+// sections follow), or whitespace alone (NRRD, MetaImage). A value more means the header's sizes
+// are not the file's.
+enum class TextAfterSamples { KeywordOrNothing, WhitespaceOnly };
 
 // Parses the sink's file sample count of whitespace-separated numbers (ASCII payloads) into
 // `sink`. Integer types must hold integers within their range; floats must be finite (and,
 // for Float64, within float range). Throws InputError naming `where` and the sample.
 void parseTextSamples(const std::string& where, std::string_view text, StoredType type,
-                      SampleSink& sink, TextAfterSamples after = TextAfterSamples::Anything);
+                      SampleSink& sink, TextAfterSamples after);
 
 }  // namespace vsil::io

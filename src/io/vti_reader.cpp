@@ -417,7 +417,7 @@ Volume readVti(const std::string& path, const LoadOptions& options) {
   if (format == "ascii") {
     Volume volume = start();
     SampleSink sink(path, volume, subsetOf(volume), type, encoding.bigEndian);
-    parseTextSamples(path, text ? text : "", type, sink);
+    parseTextSamples(path, text ? text : "", type, sink, TextAfterSamples::WhitespaceOnly);
     return volume;
   }
   std::vector<std::uint8_t> decoded;  // base64 forms, decoded

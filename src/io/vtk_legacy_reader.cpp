@@ -193,7 +193,7 @@ Volume readLegacyVtk(const std::string& path, const LoadOptions& options) {
   SampleSink sink(path, volume, subsetOf(volume), type, /*bigEndian=*/true);
   const auto bytes = readFileBytes(path, header.dataOffset, std::min(available, wanted));
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-  parseTextSamples(path, text, type, sink);
+  parseTextSamples(path, text, type, sink, TextAfterSamples::KeywordOrNothing);
   return volume;
 }
 

@@ -84,6 +84,9 @@ write('nrrd_two_units.nrrd', (nrrd % ('uint8', '2 2 2', 'space dimension: 3\nspa
 write('nrrd_ascii_extra.nrrd', (nrrd % ('uint8', '2 2 2', '', 'ascii')) + ' '.join(['7'] * 9) + '\n')
 write('mha_ascii_extra.mha', 'ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\n'
       'BinaryData = False\nElementDataFile = LOCAL\n' + ' '.join(['7'] * 9) + '\n')
+write('vtk_ascii_extra.vtk', vtk % ('ASCII', '2 2 2', '8', 'unsigned_char') + ' '.join(['7'] * 9) + '\n')
+write('vti_ascii_extra.vti', vti_head % '' + '<DataArray type="UInt8" Name="s" format="ascii">' +
+      ' '.join(['7'] * 9) + '</DataArray>\n' + vti_tail + '</VTKFile>\n')
 write('mha_byte_orders_disagree.mha', b'ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\n'
       b'ElementType = MET_USHORT\nElementByteOrderMSB = False\nBinaryDataByteOrderMSB = True\n'
       b'ElementDataFile = LOCAL\n' + bytes(16))

@@ -93,6 +93,26 @@ TEST(LegacyReader, ALookupTableLineInLowerCaseIndentedOrAfterABlankLineIsSkipped
   }
 }
 
+// ASCII samples may be followed by the file's other sections (VTK reads on); a number right
+// after them means DIMENSIONS is not the file's and is refused.
+TEST(LegacyReader, AsciiSamplesMayBeFollowedByASectionButNotByAValue) {
+  const std::string head =
+      "# vtk DataFile Version 3.0\nsections\nASCII\nDATASET STRUCTURED_POINTS\n"
+      "DIMENSIONS 2 2 2\nPOINT_DATA 8\nSCALARS density unsigned_char 1\n"
+      "LOOKUP_TABLE default\n1 2 3 4 5 6 7 8\n";
+  const auto path = test::scratchDir() / "sections.vtk";
+  test::writeFile(path, head +
+                            "SCALARS other float 1\nLOOKUP_TABLE default\n9 9 9 9 9 9 9 9\n"
+                            "CELL_DATA 1\n");
+  const Volume volume = loadVolume(path.string());
+  for (std::size_t i = 0; i < 8; ++i) ASSERT_EQ(volume.value(i), float(i + 1));
+  for (const char* extra : {"9\n", "-1\n", ".5\n", "+3 SCALARS\n"}) {
+    test::writeFile(path, head + extra);
+    test::expectInputError([&] { loadVolume(path.string()); }, path.string(),
+                           {"holds more than the 8 values its header's sizes give"});
+  }
+}
+
 // int, unsigned_int, vtktypeint64 and vtktypeuint64 (BINARY, big-endian, and ASCII) are kept as
 // float32, as the other readers keep the wide integers: exact up to 2^24, rounded ones counted.
 TEST(LegacyReader, WideIntegersConvertToFloat32CountingRoundedSamples) {
