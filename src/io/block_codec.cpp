@@ -79,11 +79,12 @@ bool inflateWhole(std::span<const std::uint8_t> compressed, std::uint64_t expect
       decompressor(libdeflate_alloc_decompressor(), &libdeflate_free_decompressor);
   if (!decompressor) return false;
   const auto out = std::make_unique_for_overwrite<std::uint8_t[]>(std::size_t(expected));
-  std::size_t read = 0, made = 0;  // bytes after the stream's end are ignored, as zlib's are
+  std::size_t read = 0, made = 0;
+  // Anything else than what inflateStream accepts goes there, for its error.
   if (libdeflate_zlib_decompress_ex(decompressor.get(), compressed.data(), compressed.size(),
                                     out.get(), std::size_t(expected), &read,
                                     &made) != LIBDEFLATE_SUCCESS ||
-      made != expected) {
+      made != expected || !isStreamPadding(compressed.subspan(read))) {
     return false;
   }
   if (made) write(std::span<const std::uint8_t>(out.get(), made));

@@ -100,6 +100,16 @@ void inflateStream(const std::string& where, const std::string& what, DeflateWra
     stream.fail("inflates to " + std::to_string(produced) + " bytes, " + std::to_string(expected) +
                 " expected");
   }
+  do {
+    if (!isStreamPadding(in)) stream.fail("is followed by bytes that are not part of it");
+    in = read();
+  } while (!in.empty());
+}
+
+bool isStreamPadding(std::span<const std::uint8_t> bytes) {
+  return std::all_of(bytes.begin(), bytes.end(), [](std::uint8_t b) {
+    return b == 0 || b == ' ' || b == '\t' || b == '\n' || b == '\r';
+  });
 }
 
 }  // namespace vsil::io

@@ -14,12 +14,16 @@ enum class DeflateWrapper { Zlib, Gzip };
 // Inflates one complete stream into exactly `expected` bytes: `read` hands out the compressed
 // bytes in pieces (an empty piece when there are no more), `write` receives the inflated bytes
 // in order, in pieces of at most 1 MiB + 1. Throws InputError naming `where` (and `what`, e.g.
-// "zlib block 3") if the stream is corrupt, truncated, or inflates to any other size; bytes
-// after the end of the stream are ignored.
+// "zlib block 3") if the stream is corrupt, truncated, inflates to any other size, or is
+// followed by anything but padding (isStreamPadding).
 void inflateStream(const std::string& where, const std::string& what, DeflateWrapper wrapper,
                    std::uint64_t expected,
                    const std::function<std::span<const std::uint8_t>()>& read,
                    const std::function<void(std::span<const std::uint8_t>)>& write);
+
+// True where bytes after a compressed stream are a writer's padding (NUL bytes, whitespace), as
+// gzip takes them; anything else there means the header's sizes are not the file's.
+bool isStreamPadding(std::span<const std::uint8_t> bytes);
 
 // Deflate packs at most 1032:1; fewer compressed bytes than expected/1032 cannot hold the data.
 // Throws InputError before anything is allocated for them.

@@ -27,6 +27,7 @@ write('nrrd_list.nhdr', 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 2\nenco
 write('nrrd_version9.nrrd', (nrrd % ('uint8', '4 4 4', '', 'raw')).replace('NRRD0004', 'NRRD0009').encode() + bytes(64))
 write('gzip_bomb.nrrd', (nrrd % ('uint8', '4 4 4', '', 'gzip')).encode() + gzip.compress(bytes(1 << 20), 9, mtime=0))
 write('empty.nrrd', b'')
+write('gzip_trailing_junk.nrrd', (nrrd % ('uint8', '4 4 4', '', 'gzip')).encode() + gzip.compress(bytes(64), 9, mtime=0) + b'JUNKJUNK')
 # A header claiming 1024³ uint16 samples with 16 bytes of payload, and one whose data file does
 # not exist: the texture and memory checks answer first (they run before any payload is opened
 # or read); with a small enough --crop they pass and the payload's own error follows.
@@ -139,6 +140,8 @@ write('lying_dimsize.mhd', mha % (3, '8 8 8', '', 'lying_dimsize.raw'))
 write('lying_dimsize.raw', bytes(64))
 write('zlib_bomb.mha', (mha % (3, '4 4 4', 'CompressedData = True\n', 'LOCAL')).encode() +
       zlib.compress(bytes(1 << 20), 9))
+write('zlib_trailing_junk.mha', (mha % (3, '4 4 4', 'CompressedData = True\n', 'LOCAL')).encode() +
+      zlib.compress(bytes(64), 9) + b'JUNKJUNK')
 write('bad_compressed_size.mha', (mha % (3, '4 4 4', 'CompressedData = True\nCompressedDataSize = 999999\n',
                                          'LOCAL')).encode() + zlib.compress(bytes(64), 9))
 write('multichannel.mha', (mha % (3, '2 2 2', 'ElementNumberOfChannels = 3\n', 'LOCAL')).encode() + bytes(24))

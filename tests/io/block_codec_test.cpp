@@ -52,9 +52,15 @@ TEST(ZlibBlock, InflatesToTheSameBytesWholeOrStreamed) {
     const Bytes data = noisyRuns(size, unsigned(size));
     Bytes compressed = test::deflateBytes(data, false);
     EXPECT_EQ(inflated(compressed, size), data) << size;
-    // Bytes after the stream's end are ignored either way.
-    compressed.insert(compressed.end(), {1, 2, 3});
-    EXPECT_EQ(inflated(compressed, size), data) << size << " with trailing bytes";
+    // A writer's padding after the stream's end is read past either way; other bytes there
+    // are refused either way.
+    Bytes padded = compressed;
+    padded.insert(padded.end(), {0, 0, '\n', ' '});
+    EXPECT_EQ(inflated(padded, size), data) << size << " with padding";
+    compressed.insert(compressed.end(), {0, 1, 2, 3});
+    EXPECT_EQ(inflateError(compressed, size),
+              "image.vti: zlib block 0 is followed by bytes that are not part of it")
+        << size;
   }
 }
 
