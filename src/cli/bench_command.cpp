@@ -24,13 +24,6 @@ struct BenchFlags {
   GlOptions gl;
 };
 
-// A failed self-check: the numbers of that row are not to be trusted. main() reports it as an
-// internal failure (exit 1) after every table has been printed and written.
-class SelfCheckFailed : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
 void run(BenchFlags flags) {
   if (!flags.datasets.empty()) flags.options.datasetsDir = flags.datasets;
   flags.options.gl = toContextOptions(flags.gl);
@@ -45,8 +38,9 @@ void run(BenchFlags flags) {
       bench::runBench(options, tables, std::cerr, isatty(STDERR_FILENO) == 1);
   reportStream({options.json, options.markdown, options.plot}) << tables.str() << std::flush;
   if (!report.failures.empty()) {
-    throw SelfCheckFailed("bench: " + std::to_string(report.failures.size()) +
-                          " self-check(s) failed, first: " + report.failures.front());
+    throw CheckFailed(
+        "bench: " + std::to_string(report.failures.size()) +
+        " self-check(s) failed (their rows say FAILED), first: " + report.failures.front());
   }
 }
 

@@ -1,6 +1,7 @@
 // vsil: volume silhouette illustration. Only this file turns errors into exit statuses:
 // 2 for bad input (files, flags, parameters), 1 for internal failures and for what this machine
-// lacks (UnavailableError: no usable OpenGL back end, a driver without a needed feature), 3 when
+// lacks (UnavailableError: no usable OpenGL back end, a driver without a needed feature) and for
+// results that failed their own check (CheckFailed: `vsil bench`'s self-checks), 3 when
 // a command finished with some of its parts failed (PartialFailure: tasks of `vsil sweep`).
 #include <cerrno>
 #include <cstdio>
@@ -65,6 +66,9 @@ int run(int argc, char** argv) {
     std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
     return kPartialFailureStatus;
   } catch (const vsil::UnavailableError& e) {
+    std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
+    return 1;
+  } catch (const vsil::CheckFailed& e) {
     std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
     return 1;
   } catch (const std::bad_alloc&) {

@@ -1,7 +1,7 @@
 #pragma once
 // Errors. Library code throws; only main() turns an error into an exit status:
 // InputError (bad files, flags, parameters: the user can fix it) exits 2, PartialFailure 3,
-// everything else 1.
+// everything else 1 (UnavailableError and CheckFailed without the words "internal error").
 #include <stdexcept>
 #include <string>
 
@@ -28,6 +28,14 @@ class InputError : public std::runtime_error {
 // names what is missing and what to try instead, on one line, e.g. "--gl egl: no EGL device or
 // surfaceless platform (libEGL.so.1 not found); try --gl osmesa". Exits 1, printed as it is.
 class UnavailableError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A result failed the check the command runs on it (`vsil bench`'s self-checks: a row marked
+// FAILED). Its numbers are not to be trusted, whether vsil or the input is at fault (a dataset
+// file that is not the classic one). Exits 1, printed as it is, after every result is written.
+class CheckFailed : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };

@@ -251,6 +251,30 @@ TEST(BenchCommand, AnUnreadableDatasetOrAnOutputNamingOneFailsBeforeAnyFrame) {
   EXPECT_EQ(named.out, "");
 }
 
+// A dataset file that is not the classic one (here all zeros: no surface at the table's iso)
+// fails the self-checks: exit 1 once the rows are written, each failed row marked, and the
+// message says so without calling it vsil's internal error.
+TEST(BenchCommand, ADatasetWithoutSurfacesFailsItsSelfChecksAfterWritingTheRows) {
+  const auto dir = test::scratchDir();
+  std::ofstream(dir / "neghip_64x64x64_uint8.nhdr")
+      << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 64 64 64\nencoding: raw\n"
+         "data file: neghip_64x64x64_uint8.raw\n";
+  std::ofstream(dir / "neghip_64x64x64_uint8.raw") << std::string(64 * 64 * 64, '\0');
+  const auto json = dir / "rows.json";
+  const auto result =
+      test::runVsil("bench --table nk3 --datasets " + dir.string() +
+                    " --only neghip --sizes 16 --frames 1 --warmup 0 --json " + json.string());
+  EXPECT_EQ(result.exitCode, 1) << result.err;
+  EXPECT_NE(result.err.find("vsil: bench: "), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("self-check(s) failed (their rows say FAILED), first: neghip"),
+            std::string::npos)
+      << result.err;
+  EXPECT_EQ(result.err.find("internal error"), std::string::npos) << result.err;
+  ASSERT_TRUE(std::filesystem::exists(json));
+  EXPECT_NE(test::readFileBytes(json).find("FAILED: frame 1 has no line pixels"),
+            std::string::npos);
+}
+
 // The illustrate table on the smallest dataset: RA, the plain composite, each effect, all of
 // them, every row checked by the bench itself and its ratio to the right reference.
 TEST(BenchCommand, IllustrateTableHasEveryCaseCheckedWithItsRatio) {
