@@ -10,7 +10,7 @@ namespace {
 
 constexpr int kV = BrickLayout::kOverlap;
 constexpr double kUnbounded = 1e30;
-constexpr int kMinStorage = 8;
+constexpr int kMinStorage = BrickLayout::kMinStorage;
 
 // One axis of a layout: per brick its origin, texture size and owned sample positions.
 struct AxisBricks {

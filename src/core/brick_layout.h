@@ -34,6 +34,8 @@ class BrickLayout {
  public:
   // Overlap stored on each side of a brick's own voxels.
   static constexpr int kOverlap = 2;
+  // The smallest brick texture side: the first power of two above 2·kOverlap.
+  static constexpr int kMinStorage = 8;
   // Where sample positions are rounded to (1/1024 voxel, common.glsl quantizedVoxel): every
   // brick-local coordinate is then exact in float for volumes up to 8192 voxels per side.
   static constexpr float kSampleQuantum = 1.0f / 1024.0f;

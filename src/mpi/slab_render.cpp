@@ -232,21 +232,26 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSide);
   BrickLayout chosen =
       BrickLayout::choose(dims, layoutTexelBytes(first.type()), maxTextureBytes, maxSide);
-  glm::ivec3 storage = chosen.bricks()[0].size;
+  // An axis of at most 2·kOverlap voxels is one brick of its own size in `chosen`, a storage
+  // withStorage cannot cut: the smallest cuttable storage holds it as one brick as well.
+  glm::ivec3 storage = glm::max(chosen.bricks()[0].size, glm::ivec3(BrickLayout::kMinStorage));
   BrickLayout layout = BrickLayout::withStorage(dims, storage);
-  // At least one brick layer per rank: smaller bricks along z (8 texels at least). Ghost voxels
+  // At least one brick layer per rank: smaller bricks along z (kMinStorage at least). Ghost voxels
   // are held as whole brick layers (as many as cover the ghost width), so where a technique
   // reads them, four layers per rank keep the ghosts near a quarter of a slab on each side
   // (else two ranks would each hold the whole volume) at the cost of more slice pieces.
   const int wantedLayers = ranks * (ghostVoxels > 0 && ranks > 1 ? 4 : 1);
-  while (layout.counts().z < wantedLayers && storage.z > 8) {
+  while (layout.counts().z < wantedLayers && storage.z > BrickLayout::kMinStorage) {
     storage.z /= 2;
     layout = BrickLayout::withStorage(dims, storage);
   }
   const int layers = layout.counts().z;
   if (layers < ranks) {
-    throw EveryRankError(spec + ": " + std::to_string(dims.z) + " slices make " +
-                         std::to_string(layers) + " brick layers, fewer than the " +
+    const auto counted = [](int n, const std::string& what) {
+      return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+    };
+    throw EveryRankError(spec + ": " + counted(dims.z, "slice") + " make " +
+                         counted(layers, "brick layer") + ", fewer than the " +
                          std::to_string(ranks) + " ranks; run fewer ranks");
   }
   SlabRead read;

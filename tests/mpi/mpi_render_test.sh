@@ -212,6 +212,20 @@ mpmd_case "another technique" render "$volume" --technique silhouette --size 64x
 mpmd_case "another command" info "$volume"
 mpmd_case "another view" render "$volume" --technique mip --size 64x64 --out "$work/many.png" \
   --view 180,0
+# A volume of 4 slices or fewer (one brick of its own size along z, which slabs could not cut:
+# an internal error on every rank) is one brick layer: refused once (exit 1, as what these ranks
+# cannot do), no output.
+for thin in gen:sphere:4 gen:sphere:2; do
+  status=0
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$vsil" render "$thin" --size 32x32 \
+    --out "$work/thin.png" >"$work/out" 2>"$work/err" || status=$?
+  [[ $status == 1 ]] || { cat "$work/err" >&2; fail "$thin -np 2: exit $status, expected 1"; }
+  [[ ! -e $work/thin.png ]] || fail "$thin -np 2: an output file was written"
+  count=$(grep -c "make 1 brick layer, fewer than the 2 ranks; run fewer ranks" "$work/err" || true)
+  [[ $count == 1 ]] || { cat "$work/err" >&2; fail "$thin -np 2: the refusal printed $count times"; }
+done
+echo "volumes of 2 and 4 slices across 2 ranks: one refusal line, exit 1, no output"
+
 # A refused flag is the same on every rank: said once.
 if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --bogus >"$work/out" \
   2>"$work/err"; then
