@@ -67,19 +67,23 @@ int size() {
   return value;
 }
 
+int firstRankDiffering(const std::string& mine) {
+  if (!active() || size() < 2) return -1;
+  unsigned long long length = mine.size();
+  MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+  std::string first = rank() == 0 ? mine : std::string(std::size_t(length), '\0');
+  // What the callers compare (a command line, a volume's fingerprint) is far below INT_MAX bytes.
+  if (length > 0) MPI_Bcast(first.data(), int(length), MPI_CHAR, 0, MPI_COMM_WORLD);
+  const int differs = first == mine ? std::numeric_limits<int>::max() : rank();
+  int lowest = differs;
+  MPI_Allreduce(&differs, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  return lowest == std::numeric_limits<int>::max() ? -1 : lowest;
+}
+
 void requireSameCommand(int argc, char** argv) {
-  if (!active() || size() < 2) return;
   std::string arguments;  // each argument ended by a NUL: "a b" and "a" "b" differ
   for (int i = 1; i < argc; ++i) arguments.append(argv[i]).push_back('\0');
-  unsigned long long length = arguments.size();
-  MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
-  std::string first = rank() == 0 ? arguments : std::string(std::size_t(length), '\0');
-  // A command line is far below INT_MAX bytes (the kernel's ARG_MAX).
-  if (length > 0) MPI_Bcast(first.data(), int(length), MPI_CHAR, 0, MPI_COMM_WORLD);
-  const int mine = first == arguments ? std::numeric_limits<int>::max() : rank();
-  int lowest = mine;
-  MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-  if (lowest != std::numeric_limits<int>::max()) {
+  if (const int lowest = firstRankDiffering(arguments); lowest >= 0) {
     throw EveryRankError("mpirun: rank " + std::to_string(lowest) +
                              " runs another command line than rank 0: every rank must run the "
                              "same vsil command",
@@ -101,6 +105,9 @@ bool active() {
 }
 void initIfLaunched(int*, char***) {}
 void requireSameCommand(int, char**) {}
+int firstRankDiffering(const std::string&) {
+  return -1;
+}
 int rank() {
   return 0;
 }

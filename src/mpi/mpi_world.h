@@ -36,6 +36,9 @@ void initIfLaunched(int* argc, char*** argv);
 // collective every rank of an active world calls first; throws EveryRankError (status 2) on
 // every rank when any differs. Nothing without MPI or with one rank.
 void requireSameCommand(int argc, char** argv);
+// The lowest rank whose `mine` differs from rank 0's, or -1 when every rank's is the same: a
+// collective every rank calls. -1 without MPI or with one rank.
+int firstRankDiffering(const std::string& mine);
 // Whether MPI is initialized and not yet finalized.
 bool active();
 // This process's rank in MPI_COMM_WORLD and the world's size: 0 and 1 when MPI is not active.

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
+#include <sstream>
+#include <string_view>
 
 #include "core/clock.h"
 #include "core/error.h"
@@ -227,6 +230,26 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   // The file's dimensions and type from its header and one slice.
   const Volume first = probeSlab(spec, load);
   const glm::ivec3 dims = fileDims(first);
+  // The command lines agree (requireSameCommand), but one path may name different files on
+  // different ranks (another working directory, a node's stale copy), whose slabs would
+  // combine into a picture of neither: the file's size, type, spacing and first slice must
+  // be rank 0's.
+  const std::string fingerprint = first.visit([&](auto samples) {
+    const std::string_view bytes(reinterpret_cast<const char*>(samples.data()),
+                                 samples.size_bytes());
+    std::ostringstream text;
+    text << dims.x << "x" << dims.y << "x" << dims.z << " " << sampleTypeName(first.type()) << " "
+         << first.spacing.x << "," << first.spacing.y << "," << first.spacing.z << " "
+         << std::hash<std::string_view>{}(bytes);
+    return text.str();
+  });
+  if (const int other = firstRankDiffering(fingerprint); other >= 0) {
+    throw EveryRankError("mpirun: rank " + std::to_string(other) + " reads another volume from " +
+                             spec +
+                             " than rank 0 (its size, type, spacing or first slice differ): "
+                             "every rank must read the same file",
+                         2);
+  }
 
   GLint maxSide = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSide);

@@ -226,6 +226,23 @@ for thin in gen:sphere:4 gen:sphere:2; do
 done
 echo "volumes of 2 and 4 slices across 2 ranks: one refusal line, exit 1, no output"
 
+# One path naming different files on different ranks (another working directory): refused on
+# every rank before any frame (exit 2, one line from rank 0), no output.
+for dir in a b; do
+  mkdir -p "$work/wd_$dir"
+  { printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 16 16 16\nencoding: raw\n\n'
+    head -c 4096 /dev/urandom; } >"$work/wd_$dir/vol.nrrd"
+done
+if timeout 120 "$mpiexec" --oversubscribe -np 1 -wdir "$work/wd_a" "$vsil" render vol.nrrd \
+  --size 32x32 --out "$work/wd.png" : -np 1 -wdir "$work/wd_b" "$vsil" render vol.nrrd \
+  --size 32x32 --out "$work/wd.png" >"$work/out" 2>"$work/err"; then
+  fail "different files behind one path: expected a refusal"
+fi
+[[ ! -e $work/wd.png ]] || fail "different files behind one path: an output file was written"
+count=$(grep -c "rank 1 reads another volume from vol.nrrd than rank 0" "$work/err" || true)
+[[ $count == 1 ]] || { cat "$work/err" >&2; fail "different files: the refusal printed $count times"; }
+echo "one path, different files on two ranks: one refusal line, no output"
+
 # A refused flag is the same on every rank: said once.
 if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --bogus >"$work/out" \
   2>"$work/err"; then
