@@ -50,7 +50,10 @@ class InflateStream {
     fail(std::string("is corrupt (zlib: ") + (stream_.msg ? stream_.msg : "error") + ")");
   }
 
-  std::uint64_t totalOut() const { return stream_.total_out; }
+  // Ready for the next gzip member: one gzip file may hold several, read one after another.
+  void nextMember() {
+    if (inflateReset(&stream_) != Z_OK) fail("could not restart zlib");
+  }
 
  private:
   z_stream stream_{};
@@ -95,6 +98,13 @@ void inflateStream(const std::string& where, const std::string& what, DeflateWra
     if (made) write(std::span<const std::uint8_t>(buffer.data(), made));
     produced += made;
     if (!ended && in.size() + out.size() == before && !in.empty()) stream.fail("makes no progress");
+    if (ended && wrapper == DeflateWrapper::Gzip) {
+      if (in.empty()) in = read();
+      if (!in.empty() && in.front() == 0x1f) {  // the next member's magic (1f 8b)
+        stream.nextMember();
+        ended = false;
+      }
+    }
   }
   if (produced != expected) {
     stream.fail("inflates to " + std::to_string(produced) + " bytes, " + std::to_string(expected) +

@@ -11,7 +11,8 @@ namespace vsil::io {
 
 enum class DeflateWrapper { Zlib, Gzip };
 
-// Inflates one complete stream into exactly `expected` bytes: `read` hands out the compressed
+// Inflates one complete stream (with Gzip, one or more members, as gzip reads them) into
+// exactly `expected` bytes: `read` hands out the compressed
 // bytes in pieces (an empty piece when there are no more), `write` receives the inflated bytes
 // in order, in pieces of at most 1 MiB + 1. Throws InputError naming `where` (and `what`, e.g.
 // "zlib block 3") if the stream is corrupt, truncated, inflates to any other size, or is

@@ -193,6 +193,31 @@ TEST(NrrdReader, AsciiEncodingAndByteSkip) {
   EXPECT_EQ(test::floatsOf(fromEnd), (std::vector<float>{1, 2, 3, 4}));
 }
 
+// A gzip payload of several members (`cat a.gz b.gz`) is read whole, as gzip reads it; padding
+// may follow the last member, anything else may not.
+TEST(NrrdReader, GzipPayloadOfSeveralMembers) {
+  test::Bytes twoMembers = test::deflateBytes({1, 2}, true);
+  const test::Bytes second = test::deflateBytes({3, 4}, true);
+  twoMembers.insert(twoMembers.end(), second.begin(), second.end());
+  EXPECT_EQ(test::floatsOf(loadAttached("type: uint8\nencoding: gzip\n", twoMembers)),
+            (std::vector<float>{1, 2, 3, 4}));
+  test::Bytes padded = twoMembers;
+  padded.insert(padded.end(), {0, 0, '\n'});
+  EXPECT_EQ(test::floatsOf(loadAttached("type: uint8\nencoding: gzip\n", padded)),
+            (std::vector<float>{1, 2, 3, 4}));
+  test::Bytes junk = twoMembers;
+  junk.insert(junk.end(), {'J', 'U', 'N', 'K'});
+  test::expectInputError([&] { loadAttached("type: uint8\nencoding: gzip\n", junk); },
+                         (test::scratchDir() / "v.nrrd").string(),
+                         {"is followed by bytes that are not part of it"});
+  const test::Bytes oneMore = test::deflateBytes({5}, true);
+  test::Bytes tooLong = twoMembers;
+  tooLong.insert(tooLong.end(), oneMore.begin(), oneMore.end());
+  test::expectInputError([&] { loadAttached("type: uint8\nencoding: gzip\n", tooLong); },
+                         (test::scratchDir() / "v.nrrd").string(),
+                         {"inflates to more than the 4 bytes expected"});
+}
+
 TEST(NrrdReader, CrLfHeadersAndKeyValuePairs) {
   const auto path = test::scratchDir() / "crlf.nrrd";
   test::writeFile(path, std::string("NRRD0004\r\ntype: uint8\r\nmodality:=CT\r\ndimension: 3\r\n"
