@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -820,6 +821,34 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
                               ": not positive");
   }
 
+  // Slices shifted in-plane from one to the next (a gantry tilt, or a series put together
+  // wrongly) are read as a straight stack: the picture is not sheared as the patient is. Said
+  // where the shift passes half a pixel; a tilt's regular step is kept in the patient placement.
+  glm::dvec3 sliceStep = normal * spacingZ;
+  if (slices.size() > 1) {
+    const glm::dvec3 step =
+        (slices.back().origin - slices.front().origin) / double(slices.size() - 1);
+    double largest = 0, irregular = 0;
+    for (std::size_t i = 1; i < slices.size(); ++i) {
+      const glm::dvec3 offset = slices[i].origin - slices.front().origin;
+      largest = std::max(largest, glm::length(offset - normal * glm::dot(offset, normal)));
+      irregular = std::max(irregular, glm::length(offset - step * double(i)));
+    }
+    const double halfPixel = 0.5 * std::min(spacing.x, spacing.y);
+    const auto rounded = [](double v) { return formatNumber(std::round(v * 100) / 100); };
+    if (largest > halfPixel && irregular <= halfPixel) {
+      const double shift = glm::length(step - normal * glm::dot(step, normal));
+      sliceStep = step;
+      warnings.push_back(path + ": slices shift in-plane by " + rounded(shift) +
+                         " per slice (a gantry tilt of " +
+                         rounded(std::atan2(shift, spacingZ) * 180 / std::numbers::pi) +
+                         " degrees): read as a straight stack, not sheared as the patient is");
+    } else if (largest > halfPixel) {
+      warnings.push_back(path + ": slices lie shifted in-plane, up to " + rounded(largest) +
+                         " from the first and not in steps: read as a straight stack");
+    }
+  }
+
   Volume volume = startVolume(path, dims, type, spacing, options, rescale);
   const std::string modality = trimmed(scanner.GetValue(firstFile, kModality));
   volume.format = std::string(frames > 1 ? "DICOM multi-frame (" : "DICOM series (") +
@@ -833,9 +862,9 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
   if (volume.name.empty()) volume.name = "dicom";  // the root folder
   volume.warnings = warnings;
   const VolumeSubset subset = subsetOf(volume);
-  const glm::dmat4 worldFromFile(
-      glm::dvec4(rowDir * spacing.x, 0), glm::dvec4(columnDir * spacing.y, 0),
-      glm::dvec4(normal * spacingZ, 0), glm::dvec4(slices.front().origin, 1));
+  const glm::dmat4 worldFromFile(glm::dvec4(rowDir * spacing.x, 0),
+                                 glm::dvec4(columnDir * spacing.y, 0), glm::dvec4(sliceStep, 0),
+                                 glm::dvec4(slices.front().origin, 1));
   volume.orientations.push_back({"patient",
                                  "LPS",
                                  worldFromFile * fileFromKept(subset),

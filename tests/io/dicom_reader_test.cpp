@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <sstream>
 #include <string>
@@ -394,8 +395,11 @@ TEST(DicomReader, TheVolumeIsNamedAfterItsFolder) {
 }
 
 // A series of `slices` copies of ct_series' first slice, 2.5 apart, in the scratch folder `name`
-// (the position's text rewritten in place: "-12.0\\30.5\\" and the height fill its 16 bytes).
-fs::path longCtSeries(const std::string& name, int slices) {
+// (the position's text rewritten in place: "-12.0\\", y and the height fill its 16 bytes); y
+// of slice i is `y(i)`, 4 characters ("30.5").
+fs::path longCtSeries(
+    const std::string& name, int slices,
+    const std::function<std::string(int)>& y = [](int) { return "30.5"; }) {
   const fs::path folder = test::scratchDir() / name;
   fs::remove_all(folder);
   fs::create_directories(folder);
@@ -405,12 +409,43 @@ fs::path longCtSeries(const std::string& name, int slices) {
   EXPECT_NE(value, std::string::npos);
   for (int i = 0; i < slices && value != std::string::npos; ++i) {
     std::string position =
-        "-12.0\\30.5\\" + std::to_string(100 + 5 * i / 2) + (i % 2 ? ".5" : ".0");
+        "-12.0\\" + y(i) + "\\" + std::to_string(100 + 5 * i / 2) + (i % 2 ? ".5" : ".0");
     position.resize(16, ' ');
     bytes.replace(value, 16, position);
     std::ofstream(folder / ("IM" + std::to_string(i)), std::ios::binary) << bytes;
   }
   return folder;
+}
+
+// Slices shifted in-plane from one to the next (a gantry tilt: 1 per 2.5 along y, 21.8 degrees)
+// are read as a straight stack, with a warning; the patient placement keeps the files' step.
+// Shifts that are not steps (a series put together wrongly) are said as such; shifts within
+// half a pixel (0.25 here) are not said.
+TEST(DicomReader, SlicesShiftedInPlaneAreSaidAndTheTiltKeptInThePlacement) {
+  const Volume tilted = loadVolume(
+      longCtSeries("tilted", 4, [](int i) { return std::to_string(30 + i) + ".5"; }).string());
+  ASSERT_EQ(tilted.warnings.size(), 1u);
+  EXPECT_NE(tilted.warnings[0].find(
+                "slices shift in-plane by 1 per slice (a gantry tilt of 21.8 degrees): read as a "
+                "straight stack"),
+            std::string::npos)
+      << tilted.warnings[0];
+  const glm::dvec4 step = tilted.orientations[0].worldFromIndex * glm::dvec4(0, 0, 1, 0);
+  EXPECT_NEAR(step.y, 1.0, 1e-9);
+  EXPECT_NEAR(step.z, 2.5, 1e-9);
+
+  const Volume jumbled = loadVolume(
+      longCtSeries("jumbled", 4, [](int i) { return i % 2 ? "33.5" : "30.5"; }).string());
+  ASSERT_EQ(jumbled.warnings.size(), 1u);
+  EXPECT_NE(jumbled.warnings[0].find(
+                "slices lie shifted in-plane, up to 3 from the first and not in steps"),
+            std::string::npos)
+      << jumbled.warnings[0];
+
+  const Volume within = loadVolume(
+      longCtSeries("within", 4, [](int i) { return i == 2 ? "30.7" : "30.5"; }).string());
+  EXPECT_TRUE(within.warnings.empty()) << within.warnings[0];
+  EXPECT_NEAR((within.orientations[0].worldFromIndex * glm::dvec4(0, 0, 1, 0)).y, 0.0, 1e-9);
 }
 
 // What the descriptors of process `pid` point at ("pipe:[123]", "/tmp/x", ...); empty when it
