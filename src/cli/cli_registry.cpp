@@ -5,6 +5,7 @@
 
 #include "cli/cli_parse.h"
 #include "core/version.h"
+#include "mpi/mpi_world.h"
 
 namespace vsil::cli {
 
@@ -25,6 +26,21 @@ void setUpApp(CLI::App& app) {
                    [](const auto& a, const auto& b) { return a.order < b.order; });
   for (const auto& command : commands) command.setup(app);
   readNumbersAsDecimal(app);
+  // Under mpirun with several ranks only render and sweep share their work out; any other
+  // command would run once per rank (N servers, every frame N times, N reports): refused once,
+  // before its flags are read.
+  for (CLI::App* command : app.get_subcommands({})) {
+    const std::string name = command->get_name();
+    if (name == "render" || name == "sweep") continue;
+    command->preparse_callback([name](std::size_t) {
+      if (mpi::size() > 1) {
+        throw mpi::EveryRankError(
+            name + " runs in one process: run it without mpirun (only render and " +
+                "sweep share their work across ranks)",
+            2);
+      }
+    });
+  }
 }
 
 namespace {

@@ -243,6 +243,20 @@ count=$(grep -c "rank 1 reads another volume from vol.nrrd than rank 0" "$work/e
 [[ $count == 1 ]] || { cat "$work/err" >&2; fail "different files: the refusal printed $count times"; }
 echo "one path, different files on two ranks: one refusal line, no output"
 
+# Commands that run in one process (all but render and sweep) ran once per rank (two servers,
+# every frame twice): refused once, exit 2, before any work.
+for command in "info $volume" "animate $volume --frames 2 --size 32x32 --out-dir $work/frames"; do
+  status=0
+  # shellcheck disable=SC2086 # the command's words
+  timeout 120 "$mpiexec" --oversubscribe -np 2 "$vsil" $command >"$work/out" 2>"$work/err" ||
+    status=$?
+  [[ $status == 2 ]] || { cat "$work/err" >&2; fail "$command -np 2: exit $status, expected 2"; }
+  count=$(grep -c "runs in one process: run it without mpirun" "$work/err" || true)
+  [[ $count == 1 ]] || { cat "$work/err" >&2; fail "$command -np 2: refused $count times"; }
+  [[ ! -s $work/out && ! -e $work/frames ]] || fail "$command -np 2: it ran"
+done
+echo "info and animate under mpirun -np 2: one refusal line, exit 2, nothing run"
+
 # A refused flag is the same on every rank: said once.
 if "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --bogus >"$work/out" \
   2>"$work/err"; then
