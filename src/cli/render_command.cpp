@@ -72,10 +72,22 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   // Under a launcher a build without MPI would be N copies of the whole render racing for one
   // file: it says so instead (.ci/run checks the line).
   if (mpi::launched() && !mpi::built()) mpi::require("vsil render under an MPI launcher");
-  const LoadOptions loadOptions = toLoadOptions(flags.volume);
-  RenderRequest request = toRenderRequest(flags);
-  request.settings.readDepth = !outputs.depthOut.empty();
-  RenderJob::checkRequest(request, loadOptions.limits);
+  // The flags' and outputs' checks. Under mpirun every rank runs them alike, but a folder or the
+  // memory may differ between nodes: the ranks agree, and a refusal is said once by rank 0.
+  LoadOptions loadOptions;
+  RenderRequest request;
+  OutputBatch batch;
+  std::optional<std::string> refusal;
+  try {
+    loadOptions = toLoadOptions(flags.volume);
+    request = toRenderRequest(flags);
+    request.settings.readDepth = !outputs.depthOut.empty();
+    RenderJob::checkRequest(request, loadOptions.limits);
+    checkOutputs(flags, outputs, batch);
+  } catch (const InputError& e) {
+    refusal = e.what();
+  }
+  mpi::refuseAlike(refusal);
   // Under mpirun with several ranks: a combine rule the slab renderer does not run, and options
   // that need the volume in one texture (a slab is not), refuse alike on every rank before
   // reading anything.
@@ -98,8 +110,6 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
                               ": these options need the volume in one texture, which a slab "
                               "rendered across MPI ranks is not; run one rank");
   }
-  OutputBatch batch;
-  checkOutputs(flags, outputs, batch);
   const gl::ContextOptions glOptions = toContextOptions(flags.gl);
   if (validateOnly()) return;
 
@@ -149,7 +159,10 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   StageClock frameClock;
   RenderOutput output = job.render(request, loadOptions.limits);
   [[maybe_unused]] const StageTime frame = frameClock.elapsed();  // for the mpi metadata
-  for (const auto& warning : output.warnings) std::cerr << "vsil: warning: " << warning << "\n";
+  // Every rank has the same warnings (from the flags): said once.
+  if (mpi::rank() == 0) {
+    for (const auto& warning : output.warnings) std::cerr << "vsil: warning: " << warning << "\n";
+  }
 #ifdef VSIL_HAVE_MPI
   if (acrossRanks) {
     // Collectives on every rank; only rank 0 writes.

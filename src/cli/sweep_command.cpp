@@ -421,31 +421,41 @@ void run(const SweepFlags& flags) {
   // Under a launcher every rank must share the work; a build without MPI cannot, and N copies
   // each running the whole sweep would only overwrite each other's files.
   if (mpi::launched()) mpi::require("vsil sweep under an MPI launcher");
-  if (flags.json.empty() && flags.csv.empty()) {
-    throw InputError("sweep: nothing to write (give --json FILE and/or --csv FILE)");
-  }
-  // The sweep file is read first: an output naming it is refused before any task runs.
-  const SweepPlan plan = readSweepPlan(flags.file);
+  // The flags', the plan's and the outputs' checks: under mpirun the ranks agree, and a refusal
+  // is said once by rank 0 (mpi::refuseAlike).
+  SweepPlan plan;
   OutputBatch batch;
-  batch.claim("--json", flags.json);
-  batch.claim("--csv", flags.csv);
-  if (!flags.outDir.empty()) {
-    const std::string where = "--out-dir " + flags.outDir;
-    const fs::file_type type = io::fileTypeAt(flags.outDir, where);
-    if (type != fs::file_type::not_found && type != fs::file_type::directory) {
-      throwInputError(where, "is not a folder");
+  std::optional<std::string> refusal;
+  try {
+    if (flags.json.empty() && flags.csv.empty()) {
+      throw InputError("sweep: nothing to write (give --json FILE and/or --csv FILE)");
     }
-    // A folder of images where a result file goes.
-    batch.claim("--out-dir", flags.outDir, OutputKind::Folder);
+    // The sweep file is read first: an output naming it is refused before any task runs.
+    plan = readSweepPlan(flags.file);
+    batch.claim("--json", flags.json);
+    batch.claim("--csv", flags.csv);
+    if (!flags.outDir.empty()) {
+      const std::string where = "--out-dir " + flags.outDir;
+      const fs::file_type type = io::fileTypeAt(flags.outDir, where);
+      if (type != fs::file_type::not_found && type != fs::file_type::directory) {
+        throwInputError(where, "is not a folder");
+      }
+      // A folder of images where a result file goes.
+      batch.claim("--out-dir", flags.outDir, OutputKind::Folder);
+    }
+  } catch (const InputError& e) {
+    refusal = e.what();
   }
+  mpi::refuseAlike(refusal);
   if (validateOnly()) return;
   if (!flags.outDir.empty() && mpi::rank() == 0) {
     std::error_code error;
     fs::create_directories(flags.outDir, error);
     if (error) {
-      throwInputError("--out-dir " + flags.outDir, "cannot create the folder: " + error.message());
+      refusal = "--out-dir " + flags.outDir + ": cannot create the folder: " + error.message();
     }
   }
+  mpi::refuseAlike(refusal);
 
   const int count = int(plan.tasks.size());
   TaskRunner runner(plan, flags);

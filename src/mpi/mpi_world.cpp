@@ -80,6 +80,24 @@ int firstRankDiffering(const std::string& mine) {
   return lowest == std::numeric_limits<int>::max() ? -1 : lowest;
 }
 
+void refuseAlike(const std::optional<std::string>& refusal) {
+  if (!active() || size() < 2) {
+    if (refusal) throw InputError(*refusal);
+    return;
+  }
+  const int mine = refusal ? rank() : std::numeric_limits<int>::max();
+  int lowest = mine;
+  MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (lowest == std::numeric_limits<int>::max()) return;
+  std::string message = rank() == lowest ? *refusal : std::string();
+  unsigned long long length = message.size();
+  MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG_LONG, lowest, MPI_COMM_WORLD);
+  message.resize(std::size_t(length));
+  // A one-line error message is far below INT_MAX bytes.
+  if (length > 0) MPI_Bcast(message.data(), int(length), MPI_CHAR, lowest, MPI_COMM_WORLD);
+  throw EveryRankError(message, 2);
+}
+
 void requireSameCommand(int argc, char** argv) {
   std::string arguments;  // each argument ended by a NUL: "a b" and "a" "b" differ
   for (int i = 1; i < argc; ++i) arguments.append(argv[i]).push_back('\0');
@@ -107,6 +125,9 @@ void initIfLaunched(int*, char***) {}
 void requireSameCommand(int, char**) {}
 int firstRankDiffering(const std::string&) {
   return -1;
+}
+void refuseAlike(const std::optional<std::string>& refusal) {
+  if (refusal) throw InputError(*refusal);
 }
 int rank() {
   return 0;

@@ -3,6 +3,7 @@
 // MPI only when an MPI launcher (mpirun, srun) started the process: a plain `vsil render` pays
 // nothing for MPI, and a build without MPI renders as before. Code that needs MPI includes
 // <mpi.h> itself, in files built only with VSIL_HAVE_MPI (src/mpi/CMakeLists.txt).
+#include <optional>
 #include <string>
 
 #include "core/error.h"
@@ -39,6 +40,12 @@ void requireSameCommand(int argc, char** argv);
 // The lowest rank whose `mine` differs from rank 0's, or -1 when every rank's is the same: a
 // collective every rank calls. -1 without MPI or with one rank.
 int firstRankDiffering(const std::string& mine);
+// Checks that every rank runs alike but whose outcome may still differ between ranks (a file or
+// folder on one node, its memory): `refusal` is this rank's error message, if it refused. A
+// collective every rank calls: where any rank refused, every rank throws EveryRankError (status
+// 2) with the lowest refusing rank's message, said once by rank 0, so that no rank goes on into
+// a collective the others never reach. Without MPI or with one rank: InputError(*refusal).
+void refuseAlike(const std::optional<std::string>& refusal);
 // Whether MPI is initialized and not yet finalized.
 bool active();
 // This process's rank in MPI_COMM_WORLD and the world's size: 0 and 1 when MPI is not active.

@@ -265,3 +265,28 @@ fi
 count=$(grep -c "not expected: --bogus" "$work/err" || true)
 [[ $count == 1 ]] || { cat "$work/err" >&2; fail "--bogus: the refusal printed $count times"; }
 echo "ranks with different command lines, a refused flag: one line from rank 0, no output"
+
+# Refusals found after the flags are read (a value out of range, an output the technique does
+# not make, a sweep with nothing to write) and the flags' warnings: said once, not per rank
+# (each rank said them, and rank 0's exit aborted the others with Open MPI's banner).
+refused_once() {  # $1: the refusal's text; the rest: the command after "vsil"
+  local text=$1
+  shift
+  if timeout 120 "$mpiexec" --oversubscribe -np 2 "$vsil" "$@" >"$work/out" 2>"$work/err"; then
+    fail "$*: expected a refusal"
+  fi
+  count=$(grep -c -- "$text" "$work/err" || true)
+  [[ $count == 1 ]] || { cat "$work/err" >&2; fail "$*: '$text' printed $count times"; }
+  ! grep -q "MPI_ABORT" "$work/err" || { cat "$work/err" >&2; fail "$*: MPI_Abort"; }
+}
+refused_once "vsil: --zoom: must be in" render "$volume" --size 32x32 --zoom 0 --out "$work/z.png"
+refused_once "makes no state image" render "$volume" --technique illustrate --size 32x32 \
+  --state-out "$work/s.png" --out "$work/z.png"
+refused_once "sweep: nothing to write" sweep /dev/null
+[[ ! -e $work/z.png ]] || fail "a refused render wrote its output"
+timeout 120 "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --technique illustrate \
+  --size 32x32 --halo-mode exact --out "$work/z.png" >"$work/out" 2>"$work/err" ||
+  { cat "$work/err" >&2; fail "illustrate --halo-mode exact without halos -np 2 failed"; }
+count=$(grep -c "the halo effect is off; ignored" "$work/err" || true)
+[[ $count == 1 ]] || { cat "$work/err" >&2; fail "a flag's warning printed $count times"; }
+echo "refusals after the flags are read and the flags' warnings: said once by rank 0"
