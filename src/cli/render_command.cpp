@@ -145,6 +145,10 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   Volume loaded;
   if (!acrossRanks) loaded = loadVolume(flags.input, load);
   printVolumeWarnings(loaded);
+#ifdef VSIL_HAVE_MPI
+  // The file's warnings, said once: rank 0's slab is read from the file every rank reads.
+  if (acrossRanks && mpi::rank() == 0) printVolumeWarnings(slab->volume);
+#endif
   const StageTime read = clock.lap();
   progress.step("uploading the volume");
 #ifdef VSIL_HAVE_MPI

@@ -290,3 +290,14 @@ timeout 120 "$mpiexec" --oversubscribe -np 2 "$vsil" render "$volume" --techniqu
 count=$(grep -c "the halo effect is off; ignored" "$work/err" || true)
 [[ $count == 1 ]] || { cat "$work/err" >&2; fail "a flag's warning printed $count times"; }
 echo "refusals after the flags are read and the flags' warnings: said once by rank 0"
+
+# The file's warnings (here int32 samples rounded to float32) reach the user once: across ranks
+# they were dropped (each rank's slab held them, none said them).
+{ printf 'NRRD0004\ntype: int32\ndimension: 3\nsizes: 16 16 16\nendian: little\nencoding: raw\n\n'
+  head -c 16384 /dev/urandom; } >"$work/wide.nrrd"
+timeout 120 "$mpiexec" --oversubscribe -np 2 "$vsil" render "$work/wide.nrrd" --technique mip \
+  --size 32x32 --out "$work/w.png" >"$work/out" 2>"$work/err" ||
+  { cat "$work/err" >&2; fail "an int32 file across 2 ranks failed"; }
+count=$(grep -c "samples lost precision as float32" "$work/err" || true)
+[[ $count == 1 ]] || { cat "$work/err" >&2; fail "the file's warning printed $count times"; }
+echo "the file's warnings across ranks: said once"
