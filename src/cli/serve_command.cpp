@@ -15,6 +15,7 @@ struct ServeFlags {
   std::string bind = "127.0.0.1";
   int port = 8080;
   std::string token;
+  double maxFrameSamples = serve::ServeOptions::kDefaultMaxFrameSamples;
 };
 
 serve::FrameServer* runningServer = nullptr;
@@ -26,10 +27,12 @@ extern "C" void stopServing(int) {
 
 void run(const CLI::App& command, const ServeFlags& flags) {
   serve::ServeOptions options;
-  options.command = serve::givenRenderFlags(command, {"bind", "port", "token"});
+  options.command =
+      serve::givenRenderFlags(command, {"bind", "port", "token", "max-frame-samples"});
   options.bind = flags.bind;
   options.port = flags.port;
   options.token = flags.token;
+  options.maxFrameSamples = flags.maxFrameSamples;
   serve::checkServeOptions(options);
   if (validateOnly()) return;
 
@@ -59,6 +62,11 @@ const CommandRegistration registerServeCommand(50, [](CLI::App& app) {
   command->add_option("--token", flags->token,
                       "a secret every request must carry (?token=...); needed to bind "
                       "beyond loopback");
+  command
+      ->add_option("--max-frame-samples", flags->maxFrameSamples,
+                   "the most pixels x --sampling a page may ask of one frame (a frame's time "
+                   "grows with both; at least what the command line asks)")
+      ->capture_default_str();
   // The callback owns renderFlags too: addRenderOptions bound the options to its members
   // (run reads the given flags from the command, but CLI11 still stores into them).
   command->callback([command, flags, renderFlags] { run(*command, *flags); });

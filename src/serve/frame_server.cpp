@@ -1,5 +1,6 @@
 #include "serve/frame_server.h"
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <future>
@@ -13,6 +14,7 @@
 #include "core/error.h"
 #include "core/image_file.h"
 #include "core/json_input.h"
+#include "core/options.h"
 #include "serve/frame_queue.h"
 
 namespace vsil::serve {
@@ -62,6 +64,25 @@ struct FrameServer::Impl {
         page(options.command),
         base(checkRenderCommandLine(options.command)) {}
 
+  // Pixels × slices per voxel of a render.
+  static double frameSamples(const CheckedRender& render) {
+    const RenderSettings& settings = render.request.settings;
+    return double(settings.size.x) * double(settings.size.y) * settings.samplesPerVoxel;
+  }
+
+  // A page's frame within the server's bound (ServeOptions::maxFrameSamples).
+  void checkFrameSamples(const CheckedRender& render) const {
+    const double bound = std::max(options.maxFrameSamples, frameSamples(base));
+    if (frameSamples(render) > bound) {
+      const RenderSettings& settings = render.request.settings;
+      throwInputError("--size " + std::to_string(settings.size.x) + "x" +
+                          std::to_string(settings.size.y) + " at --sampling " +
+                          formatNumber(settings.samplesPerVoxel),
+                      "more pixels x sampling than this server renders per frame (" +
+                          formatNumber(bound) + "; vsil serve --max-frame-samples)");
+    }
+  }
+
   void startRenderer() {
     std::promise<void> ready;
     std::future<void> started = ready.get_future();
@@ -104,6 +125,7 @@ struct FrameServer::Impl {
     try {
       line = page.apply(parameters);
       checked = checkRenderCommandLine(line);
+      checkFrameSamples(checked);
     } catch (const InputError& e) {
       return answerText(response, 400, e.what());
     }
@@ -217,6 +239,9 @@ void checkServeOptions(const ServeOptions& options) {
     throwInputError("--port", std::to_string(options.port) + " is not a port (0..65535)");
   }
   checkRenderCommandLine(options.command);
+  if (!(options.maxFrameSamples >= 1)) {
+    throwInputError("--max-frame-samples", "must be at least 1");
+  }
 }
 
 FrameServer::FrameServer(ServeOptions options) {

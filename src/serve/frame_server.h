@@ -24,6 +24,11 @@ struct ServeOptions {
   std::string bind = "127.0.0.1";
   int port = 8080;  // 0: any free port (port() says which)
   std::string token;
+  // The most pixels × --sampling (slices per voxel) a page may ask of one frame, or what the
+  // command line itself asks if that is more: a frame's time grows with both, and one request
+  // holds the only renderer for as long as it takes.
+  double maxFrameSamples = kDefaultMaxFrameSamples;
+  static constexpr double kDefaultMaxFrameSamples = 2048.0 * 2048.0 * 2.0;
 };
 
 // Whether `host` is a loopback address (127.0.0.0/8, ::1, localhost): the page is then

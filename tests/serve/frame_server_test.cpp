@@ -213,6 +213,36 @@ TEST(FrameServer, BadParametersAre400WithTheOneLineMessageAndTheServerGoesOn) {
   EXPECT_EQ(preset->status, 200) << preset->body;
 }
 
+// A page's frame may cost at most --max-frame-samples pixels x sampling (or what the command
+// line asks, if more): one request held the only renderer for as long as it asked (4000² at
+// sampling 8: 38 s), every other page waiting behind it.
+TEST(FrameServer, APageFrameBeyondTheServersSampleBoundIs400) {
+  ServeOptions options = smallServer();
+  options.maxFrameSamples = 200.0 * 200.0 * 2.0;
+  Running server(options);
+  auto over = server.get("/frame?size=400x200&sampling=2");
+  ASSERT_TRUE(over);
+  EXPECT_EQ(over->status, 400) << over->body;
+  EXPECT_EQ(over->body,
+            "--size 400x200 at --sampling 2: more pixels x sampling than this server renders per "
+            "frame (80000; vsil serve --max-frame-samples)\n");
+  auto within = server.get("/frame?size=200x200&sampling=2");
+  ASSERT_TRUE(within);
+  EXPECT_EQ(within->status, 200) << within->body;
+
+  // The command line's own frame is never over the bound.
+  ServeOptions large = smallServer();
+  large.command.flags = {{"size", {"400x400"}}};
+  large.maxFrameSamples = 100;
+  Running own(large);
+  auto first = own.get("/frame");
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->status, 200) << first->body;
+  auto more = own.get("/frame?sampling=2");
+  ASSERT_TRUE(more);
+  EXPECT_EQ(more->status, 400) << more->body;
+}
+
 // Connections that send half a request and wait (or never send one) do not lock the page out:
 // with the library's defaults (8 workers, 5 s read timeout) 24 of them delayed the next request
 // past 20 s (three rounds of 8 waits, measured: the test failed at 20.4 s).
