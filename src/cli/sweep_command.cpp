@@ -183,6 +183,15 @@ SweepPlan readSweepPlan(const std::string& path) {
     for (const auto& [key, values] : given.items()) {
       const std::string where = path + ": axes: " + key;
       checkFixedPerRank(key, where);
+      // A swept flag's value in "render" would never be used (every task takes the axis's).
+      if (document.contains("render")) {
+        for (const auto& [renderKey, renderValue] : document["render"].items()) {
+          if (flagName(renderKey) == flagName(key)) {
+            throwInputError(where, "is swept, and \"render\" sets it too (" + renderKey +
+                                       "), which no task would use: give it in one place");
+          }
+        }
+      }
       if (!values.is_array() || values.empty()) {
         throwInputError(where, "must be a non-empty array of values");
       }

@@ -87,6 +87,14 @@ rc=$?
 [[ $rc == 2 ]] || fail "two spellings of one flag exited $rc, not 2"
 grep -qx "vsil: $dir/twice.json: axes: width-near: names the same flag as width_near: give one" \
   "$dir/err" || fail "two spellings of one flag: $(cat "$dir/err")"
+# A flag both in "render" and swept: render's value no task would use (it was dropped silently).
+echo '{"render": {"zoom": 2}, "axes": {"zoom": [1, 3]}}' >"$dir/both.json"
+"$vsil" sweep "$dir/both.json" --json "$dir/both-out.json" 2>"$dir/err"
+rc=$?
+[[ $rc == 2 ]] || fail "a flag in render and in axes exited $rc, not 2"
+grep -qx "vsil: $dir/both.json: axes: zoom: is swept, and \"render\" sets it too (zoom), which no task would use: give it in one place" \
+  "$dir/err" || fail "a flag in render and in axes: $(cat "$dir/err")"
+[[ ! -e $dir/both-out.json ]] || fail "a refused sweep wrote its result"
 
 # An --out-dir naming a result file (either spelling) is refused before any render, as two
 # outputs naming one file are (it rendered every task, then failed with "Is a directory").
