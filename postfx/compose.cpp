@@ -38,6 +38,20 @@ cv::Mat composeColorOverBackground(const cv::Mat4f& color, const Rgba& backgroun
   return bgr;
 }
 
+// Straight-alpha `top` over `bottom` (BGRA, 8 bits): an opaque top or a transparent bottom
+// gives `top` exactly (a line over the transparent background keeps its own alpha).
+cv::Vec4b over(const cv::Vec4b& top, const cv::Vec4b& bottom) {
+  if (top[3] == 255 || bottom[3] == 0) return top;
+  const double a = top[3] / 255.0, b = bottom[3] / 255.0 * (1.0 - a);
+  const double outAlpha = a + b;
+  cv::Vec4b out;
+  for (int c = 0; c < 3; ++c) {
+    out[c] = cv::saturate_cast<std::uint8_t>(std::lround((top[c] * a + bottom[c] * b) / outAlpha));
+  }
+  out[3] = cv::saturate_cast<std::uint8_t>(std::lround(outAlpha * 255.0));
+  return out;
+}
+
 }  // namespace
 
 const char* fillModeName(FillMode fill) {
@@ -50,8 +64,9 @@ cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& opti
   const Rgba background = options.background.value_or(kDefaultBackground);
   if (frame.state.empty()) return composeColorOverBackground(frame.color, background);
   const cv::Mat1b band = lines.empty() ? broadenSilhouettes(frame, options.width, blur) : lines;
-  const bool opaque = options.lineColor.a == 255 && background.a == 255 &&
-                      (options.fill == FillMode::None || options.fillColor.a == 255);
+  // Lines and fills with an alpha are composited over what is under them (the fill over the
+  // background, a line over both), as the volume's colours are.
+  const bool opaque = background.a == 255;
   const cv::Vec4b lineColor = options.lineColor.bgra(), fillColor = options.fillColor.bgra();
   const bool shaded = options.fill == FillMode::Shaded && !frame.shade.empty();
   const bool toned = options.fill == FillMode::Tone && !frame.tone.empty();
@@ -61,11 +76,10 @@ cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& opti
     const std::uint8_t* inBand = band[y];
     const std::uint8_t* state = frame.state[y];
     for (int x = 0; x < image.cols; ++x) {
-      if (inBand[x]) {
-        out[x] = lineColor;
+      if (options.fill == FillMode::None || state[x] == std::uint8_t(PixelState::Empty)) {
+        if (inBand[x]) out[x] = over(lineColor, out[x]);
         continue;
       }
-      if (options.fill == FillMode::None || state[x] == std::uint8_t(PixelState::Empty)) continue;
       cv::Vec4b fill = fillColor;
       if (shaded) {
         const float shade = frame.shade(y, x);
@@ -78,7 +92,8 @@ cv::Mat composeIllustration(const FrameBuffers& frame, const PostfxOptions& opti
           fill[c] = cv::saturate_cast<std::uint8_t>(std::lround(rgb[2 - c] * 255.0));
         }
       }
-      out[x] = fill;
+      out[x] = over(fill, out[x]);
+      if (inBand[x]) out[x] = over(lineColor, out[x]);
     }
   }
   if (!opaque) return image;

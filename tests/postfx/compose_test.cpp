@@ -50,6 +50,33 @@ TEST(Compose, LinesFillAndBackground) {
   EXPECT_EQ(composeIllustration(frame, options, blur).type(), CV_8UC4);
 }
 
+// Colours with an alpha are composited over what is under them (they replaced it: a
+// half-transparent fill punched a half-transparent hole in an opaque background); over a
+// transparent background they keep their own alpha.
+TEST(Compose, ColoursWithAnAlphaGoOverWhatIsUnderThem) {
+  const FrameBuffers frame = test::discsFrame({100, 100}, {{{50.3, 49.6}, 30, 0.5}});
+  PostfxOptions options;
+  options.width = WidthLaw::fixed(5);
+  options.lineColor = {0, 0, 255, 128};
+  options.background = {255, 255, 255, 255};
+  options.fill = FillMode::Flat;
+  options.fillColor = {255, 0, 0, 128};
+  FftGaussianBlur blur;
+  const cv::Mat opaque = composeIllustration(frame, options, blur);
+  ASSERT_EQ(opaque.type(), CV_8UC3);
+  EXPECT_EQ(opaque.at<cv::Vec3b>(50, 50), cv::Vec3b(127, 127, 255)) << "fill over white (BGR)";
+  EXPECT_EQ(opaque.at<cv::Vec3b>(2, 2), cv::Vec3b(255, 255, 255)) << "background";
+  // On the outline inside the disc: the line over the fill over white; outside it: over white.
+  EXPECT_EQ(opaque.at<cv::Vec3b>(50, 21), cv::Vec3b(191, 63, 127)) << "line over fill";
+  EXPECT_EQ(opaque.at<cv::Vec3b>(50, 19), cv::Vec3b(255, 127, 127)) << "line over white";
+
+  options.background = parseColor("transparent", "--background");
+  const cv::Mat clear = composeIllustration(frame, options, blur);
+  ASSERT_EQ(clear.type(), CV_8UC4);
+  EXPECT_EQ(clear.at<cv::Vec4b>(50, 50), cv::Vec4b(0, 0, 255, 128)) << "the fill's own alpha";
+  EXPECT_EQ(clear.at<cv::Vec4b>(50, 19), cv::Vec4b(255, 0, 0, 128)) << "the line's own alpha";
+}
+
 TEST(Compose, ToneFillShowsTheTechniquesColourAtFilledPixels) {
   FrameBuffers frame = test::discsFrame({100, 100}, {{{50.3, 49.6}, 30, 0.5}});
   // Red fading to green from left to right (straight RGB), red beyond 1 left of x = 50.
