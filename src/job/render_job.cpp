@@ -194,8 +194,9 @@ std::vector<std::string> warnings(const RenderRequest& request, const Volume& vo
   const double defaultSampling = RenderSettings{}.samplesPerVoxel;
   if (sampling < defaultSampling && slices < kFewSlices &&
       slices * defaultSampling / sampling >= kFewSlices) {
-    found.push_back("--sampling " + formatNumber(sampling) + " leaves " + std::to_string(slices) +
-                    (slices == 1 ? " slice" : " slices") + " through " + volume.source +
+    // Without the view's own count: an animation says it once, not once per count.
+    found.push_back("--sampling " + formatNumber(sampling) + " leaves fewer than " +
+                    std::to_string(kFewSlices) + " slices through " + volume.source +
                     ": the picture shows cross-sections, not the volume");
   }
   const TechniqueInfo& technique = findTechnique(request.settings.technique);

@@ -234,8 +234,20 @@ TEST(RenderCommand, WarnsWhenTheSamplingLeavesFewSlices) {
   const auto few = test::runVsil("render gen:sphere:64 --size 32x32 --sampling 0.05 --out " + out);
   EXPECT_EQ(few.exitCode, 0) << few.err;
   EXPECT_EQ(few.err,
-            "vsil: warning: --sampling 0.05 leaves 5 slices through gen:sphere:64: the picture "
-            "shows cross-sections, not the volume\n");
+            "vsil: warning: --sampling 0.05 leaves fewer than 16 slices through gen:sphere:64: "
+            "the picture shows cross-sections, not the volume\n");
+  // An orbit's views leave different counts: said once.
+  const auto orbit = test::runVsil(
+      "animate gen:sphere:64 --size 32x32 --sampling 0.05 --frames 4 "
+      "--orbit 90 --out-dir " +
+      (dir / "orbit").string());
+  EXPECT_EQ(orbit.exitCode, 0) << orbit.err;
+  std::size_t said = 0;
+  for (std::size_t at = 0; (at = orbit.err.find("leaves fewer than 16", at)) != std::string::npos;
+       ++at) {
+    ++said;
+  }
+  EXPECT_EQ(said, 1u) << orbit.err;
   for (const std::string args : {"gen:sphere:64 --sampling 0.25", "gen:sphere:8"}) {
     const auto enough = test::runVsil("render " + args + " --size 32x32 --out " + out);
     EXPECT_EQ(enough.exitCode, 0) << enough.err;
