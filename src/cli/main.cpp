@@ -9,6 +9,7 @@
 #include <exception>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 
 #include "cli/cli_parse.h"
@@ -21,13 +22,38 @@ namespace {
 
 constexpr int kPartialFailureStatus = 3;
 
+// vsil's command line. Options may read the files they name while they are parsed (--rules,
+// --tf, --style), which under mpirun can fail on some ranks only (a node without the file):
+// once every option is parsed and before the command runs, the ranks meet (mpi::refuseAlike),
+// and a rank whose options were refused meets them from run()'s handler with its message, so
+// that the refusal is one line from rank 0 and no rank waits for another.
+class VsilApp : public CLI::App {
+ public:
+  using CLI::App::App;
+  bool optionsParsed() const { return optionsParsed_; }
+
+ private:
+  void pre_callback() override {
+    optionsParsed_ = true;
+    vsil::mpi::refuseAlike(std::nullopt);
+  }
+  bool optionsParsed_ = false;
+};
+
+// An error every rank has: said once, by rank 0; every rank ends without aborting the others.
+int everyRankFails(const vsil::mpi::EveryRankError& e) {
+  if (vsil::mpi::rank() == 0) std::cerr << "vsil: " << e.what() << "\n";
+  vsil::mpi::failAlike();
+  return e.status();
+}
+
 int run(int argc, char** argv) {
   // Ctrl-C, SIGTERM, SIGHUP: remove the temporary file of an output being written, then die
   // of the signal as usual (core/atomic_file.h). Targets are only ever replaced by rename().
   vsil::installOutputCleanupOnSignals();
   // No output of the command may replace a file it reads (core/atomic_file.h).
   vsil::recordInputFiles();
-  CLI::App app{"vsil: silhouettes and illustrations of volume data, rendered offscreen"};
+  VsilApp app{"vsil: silhouettes and illustrations of volume data, rendered offscreen"};
   vsil::cli::setUpApp(app);
   try {
     vsil::mpi::requireSameCommand(argc, argv);
@@ -56,12 +82,17 @@ int run(int argc, char** argv) {
     vsil::mpi::failAlike();
     return 2;
   } catch (const vsil::InputError& e) {
+    if (!app.optionsParsed() && vsil::mpi::size() > 1) {
+      try {
+        vsil::mpi::refuseAlike(std::string(e.what()));  // throws on every rank
+      } catch (const vsil::mpi::EveryRankError& every) {
+        return everyRankFails(every);
+      }
+    }
     std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
     return 2;
   } catch (const vsil::mpi::EveryRankError& e) {
-    if (vsil::mpi::rank() == 0) std::cerr << "vsil: " << e.what() << "\n";
-    vsil::mpi::failAlike();
-    return e.status();
+    return everyRankFails(e);
   } catch (const vsil::PartialFailure& e) {
     std::cerr << vsil::mpi::errorPrefix() << e.what() << "\n";
     return kPartialFailureStatus;

@@ -53,6 +53,21 @@ void refuseFolderTarget(const std::string& output, const std::filesystem::path& 
   }
 }
 
+// The folder an output file goes into is there before any work (a missing one was found only
+// when the result was written, after the whole render).
+void refuseMissingFolder(const std::string& output, const std::filesystem::path& target) {
+  const std::filesystem::path folder =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  std::error_code error;
+  const std::filesystem::file_type type = std::filesystem::status(folder, error).type();
+  if (type == std::filesystem::file_type::not_found) {
+    throw InputError(output + ": folder " + folder.string() + " does not exist");
+  }
+  if (type != std::filesystem::file_type::directory && !error) {
+    throw InputError(output + ": " + folder.string() + " is not a folder");
+  }
+}
+
 void refuseInputTarget(const std::string& output, const std::filesystem::path& target) {
   const std::string input = inputNamedBy(target);
   if (input.empty()) return;
@@ -308,7 +323,10 @@ std::filesystem::path resolvedOutput(const std::filesystem::path& path) {
 void OutputBatch::claim(const std::string& flag, const std::filesystem::path& path,
                         OutputKind kind) {
   if (path.empty()) return;
-  if (kind == OutputKind::File) refuseFolderTarget(flag + " " + path.string(), path);
+  if (kind == OutputKind::File) {
+    refuseFolderTarget(flag + " " + path.string(), path);
+    refuseMissingFolder(flag + " " + path.string(), path);
+  }
   refuseInputTarget(flag + " " + path.string(), path);
   Claim claim{flag, path, resolvedOutput(path)};
   for (const Claim& other : claims_) {

@@ -301,3 +301,21 @@ timeout 120 "$mpiexec" --oversubscribe -np 2 "$vsil" render "$work/wide.nrrd" --
 count=$(grep -c "samples lost precision as float32" "$work/err" || true)
 [[ $count == 1 ]] || { cat "$work/err" >&2; fail "the file's warning printed $count times"; }
 echo "the file's warnings across ranks: said once"
+
+# Options that read their files while parsed (--rules, --tf): refused once, also where only one
+# rank lacks the file (another working directory): the ranks meet after parsing, none waits. An
+# output into a missing folder: refused once, before the frame.
+refused_once "missing.rules: no such file" render "$volume" --technique semantic \
+  --rules "$work/missing.rules" --size 32x32 --out "$work/rf.png"
+refused_once "does not exist" render "$volume" --size 32x32 --out "$work/no_such_folder/z.png"
+cp "$(dirname "$0")/../../src/core/rules/example.rules" "$work/wd_a/my.rules"
+if timeout 120 "$mpiexec" --oversubscribe -np 1 -wdir "$work/wd_a" "$vsil" render "$volume" \
+  --technique semantic --rules my.rules --size 32x32 --out "$work/rf.png" : -np 1 \
+  -wdir "$work/wd_b" "$vsil" render "$volume" --technique semantic --rules my.rules \
+  --size 32x32 --out "$work/rf.png" >"$work/out" 2>"$work/err"; then
+  fail "a rules file on one rank only: expected a refusal"
+fi
+count=$(grep -c "my.rules: no such file" "$work/err" || true)
+[[ $count == 1 ]] || { cat "$work/err" >&2; fail "a rules file on one rank only: said $count times"; }
+[[ ! -e $work/rf.png ]] || fail "a refused render wrote its output"
+echo "files the options read, missing everywhere or on one rank, and a missing output folder: once"
