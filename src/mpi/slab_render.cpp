@@ -274,8 +274,9 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
       return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
     };
     throw EveryRankError(spec + ": " + counted(dims.z, "slice") + " make " +
-                         counted(layers, "brick layer") + ", fewer than the " +
-                         std::to_string(ranks) + " ranks; run fewer ranks");
+                             counted(layers, "brick layer") + ", fewer than the " +
+                             std::to_string(ranks) + " ranks; run fewer ranks",
+                         2);
   }
   SlabRead read;
   SlabPart& part = read.part;

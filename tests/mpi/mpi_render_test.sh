@@ -213,18 +213,18 @@ mpmd_case "another command" info "$volume"
 mpmd_case "another view" render "$volume" --technique mip --size 64x64 --out "$work/many.png" \
   --view 180,0
 # A volume of 4 slices or fewer (one brick of its own size along z, which slabs could not cut:
-# an internal error on every rank) is one brick layer: refused once (exit 1, as what these ranks
-# cannot do), no output.
+# an internal error on every rank) is one brick layer: refused once (exit 2: run fewer ranks), no
+# output.
 for thin in gen:sphere:4 gen:sphere:2; do
   status=0
   timeout 120 "$mpiexec" --oversubscribe -np 2 "$vsil" render "$thin" --size 32x32 \
     --out "$work/thin.png" >"$work/out" 2>"$work/err" || status=$?
-  [[ $status == 1 ]] || { cat "$work/err" >&2; fail "$thin -np 2: exit $status, expected 1"; }
+  [[ $status == 2 ]] || { cat "$work/err" >&2; fail "$thin -np 2: exit $status, expected 2"; }
   [[ ! -e $work/thin.png ]] || fail "$thin -np 2: an output file was written"
   count=$(grep -c "make 1 brick layer, fewer than the 2 ranks; run fewer ranks" "$work/err" || true)
   [[ $count == 1 ]] || { cat "$work/err" >&2; fail "$thin -np 2: the refusal printed $count times"; }
 done
-echo "volumes of 2 and 4 slices across 2 ranks: one refusal line, exit 1, no output"
+echo "volumes of 2 and 4 slices across 2 ranks: one refusal line, exit 2, no output"
 
 # One path naming different files on different ranks (another working directory): refused on
 # every rank before any frame (exit 2, one line from rank 0), no output.
