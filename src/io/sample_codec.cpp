@@ -1,5 +1,6 @@
 #include "io/sample_codec.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 
@@ -173,8 +174,15 @@ void parseTextSamples(const std::string& where, std::string_view text, StoredTyp
     sink.putValue(i, value);
   }
   while (p < end && (isSpace(*p) || *p == '\0')) ++p;  // a writer's padding is no value
-  const bool startsValue = p != end && (std::isdigit(static_cast<unsigned char>(*p)) || *p == '+' ||
-                                        *p == '-' || *p == '.');
+  // A value starts with a digit, a sign or a point, or is nan or inf (as the samples may be).
+  const char* tokenEnd = p;
+  while (tokenEnd < end && !isSpace(*tokenEnd) && *tokenEnd != '\0') ++tokenEnd;
+  std::string next(p, tokenEnd);
+  std::transform(next.begin(), next.end(), next.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  const bool startsValue =
+      p != end && (std::isdigit(static_cast<unsigned char>(*p)) || *p == '+' || *p == '-' ||
+                   *p == '.' || next == "nan" || next == "inf" || next == "infinity");
   if (after == TextAfterSamples::WhitespaceOnly ? p != end : startsValue) {
     throwInputError(
         where, "holds more than the " + std::to_string(count) + " values its header's sizes give");

@@ -413,17 +413,22 @@ Volume readVti(const std::string& path, const LoadOptions& options) {
     return volume;
   };
 
-  const char* text = array->GetText();
+  // The array's character data: every text node, across comments and child elements (VTK's
+  // writer may put an <InformationKey> before the values), joined as XML joins them.
+  std::string text;
+  for (const tinyxml2::XMLNode* node = array->FirstChild(); node; node = node->NextSibling()) {
+    if (const tinyxml2::XMLText* part = node->ToText()) text += part->Value();
+  }
   if (format == "ascii") {
     Volume volume = start();
     SampleSink sink(path, volume, subsetOf(volume), type, encoding.bigEndian);
-    parseTextSamples(path, text ? text : "", type, sink, TextAfterSamples::WhitespaceOnly);
+    parseTextSamples(path, text, type, sink, TextAfterSamples::WhitespaceOnly);
     return volume;
   }
   std::vector<std::uint8_t> decoded;  // base64 forms, decoded
   std::optional<BlockSource> block;
   if (format == "binary") {
-    decoded = decodeBase64(path, text ? text : "");
+    decoded = decodeBase64(path, text);
     block.emplace(decoded);
   } else if (format == "appended") {
     if (!part.appendedOffset) {

@@ -246,6 +246,32 @@ TEST(VtiReader, WideIntegersConvertToFloat32CountingRoundedSamples) {
   }
 }
 
+// An inline array's values are its whole character data: VTK's writer may put an
+// <InformationKey> before them, and a comment may sit among them (the first text node alone
+// read as "0 characters" or too few values); a value after a comment is still one too many.
+TEST(VtiReader, InlineValuesAreTheArraysWholeCharacterData) {
+  const auto file = [](const std::string& content) {
+    const auto path = test::scratchDir() / "inline.vti";
+    test::writeFile(path,
+                    "<VTKFile type=\"ImageData\" byte_order=\"LittleEndian\">\n"
+                    "<ImageData WholeExtent=\"0 1 0 1 0 0\" Spacing=\"1 1 1\"><Piece>"
+                    "<PointData><DataArray type=\"UInt8\" Name=\"s\" format=\"ascii\">" +
+                        content + "</DataArray></PointData></Piece></ImageData></VTKFile>\n");
+    return path.string();
+  };
+  const std::string key =
+      "<InformationKey name=\"L2_NORM_RANGE\" location=\"vtkDataArray\" length=\"2\">"
+      "<Value index=\"0\">0</Value><Value index=\"1\">9</Value></InformationKey>\n";
+  for (const std::string& content :
+       {key + "1 2 3 4\n", std::string("1 2 <!-- c --> 3 4"), "1 2 3 4\n" + key}) {
+    EXPECT_EQ(test::floatsOf(loadVolume(file(content))), (std::vector<float>{1, 2, 3, 4}))
+        << content;
+  }
+  test::expectInputError([&] { loadVolume(file("1 2 3 4 <!-- c --> 5")); },
+                         (test::scratchDir() / "inline.vti").string(),
+                         {"holds more than the 4 values its header's sizes give"});
+}
+
 // LZ4 and xz blocks get zlib's bomb protection: a block that decompresses to more (or less)
 // than its header says is refused, naming the block.
 TEST(VtiReader, Lz4AndLzmaBlocksMustDecompressToTheirSize) {

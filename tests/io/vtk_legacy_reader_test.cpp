@@ -106,7 +106,7 @@ TEST(LegacyReader, AsciiSamplesMayBeFollowedByASectionButNotByAValue) {
                             "CELL_DATA 1\n");
   const Volume volume = loadVolume(path.string());
   for (std::size_t i = 0; i < 8; ++i) ASSERT_EQ(volume.value(i), float(i + 1));
-  for (const char* extra : {"9\n", "-1\n", ".5\n", "+3 SCALARS\n"}) {
+  for (const char* extra : {"9\n", "-1\n", ".5\n", "+3 SCALARS\n", "nan\n", "INF\n"}) {
     test::writeFile(path, head + extra);
     test::expectInputError([&] { loadVolume(path.string()); }, path.string(),
                            {"holds more than the 8 values its header's sizes give"});
