@@ -80,6 +80,7 @@ void inflateStream(const std::string& where, const std::string& what, DeflateWra
   InflateStream stream(where, what, wrapper);
   std::vector<std::uint8_t> buffer(std::size_t(std::min<std::uint64_t>(expected, kPiece)) + 1);
   std::span<const std::uint8_t> in;
+  std::vector<std::uint8_t> joined;  // a piece's last byte and the next piece, where needed
   std::uint64_t produced = 0;
   bool ended = false;
   while (!ended) {
@@ -99,8 +100,18 @@ void inflateStream(const std::string& where, const std::string& what, DeflateWra
     produced += made;
     if (!ended && in.size() + out.size() == before && !in.empty()) stream.fail("makes no progress");
     if (ended && wrapper == DeflateWrapper::Gzip) {
-      if (in.empty()) in = read();
-      if (!in.empty() && in.front() == 0x1f) {  // the next member's magic (1f 8b)
+      // Another member may follow, after NUL padding, as gzip reads on through both.
+      for (;;) {
+        while (!in.empty() && in.front() == 0) in = in.subspan(1);
+        if (!in.empty() || (in = read()).empty()) break;
+      }
+      if (in.size() == 1) {  // the magic may straddle two pieces
+        joined.assign(in.begin(), in.end());
+        const auto more = read();
+        joined.insert(joined.end(), more.begin(), more.end());
+        in = joined;
+      }
+      if (in.size() >= 2 && in[0] == 0x1f && in[1] == 0x8b) {  // the next member's magic
         stream.nextMember();
         ended = false;
       }

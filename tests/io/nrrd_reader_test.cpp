@@ -205,6 +205,19 @@ TEST(NrrdReader, GzipPayloadOfSeveralMembers) {
   padded.insert(padded.end(), {0, 0, '\n'});
   EXPECT_EQ(test::floatsOf(loadAttached("type: uint8\nencoding: gzip\n", padded)),
             (std::vector<float>{1, 2, 3, 4}));
+  test::Bytes paddedBetween = test::deflateBytes({1, 2}, true);
+  paddedBetween.insert(paddedBetween.end(), {0, 0, 0});
+  paddedBetween.insert(paddedBetween.end(), second.begin(), second.end());
+  EXPECT_EQ(test::floatsOf(loadAttached("type: uint8\nencoding: gzip\n", paddedBetween)),
+            (std::vector<float>{1, 2, 3, 4}))
+      << "NUL padding between members";
+  for (const test::Bytes& after : {test::Bytes{'J', 'U', 'N', 'K'}, test::Bytes{0x1f, 'X', 'Y'}}) {
+    test::Bytes junk = twoMembers;
+    junk.insert(junk.end(), after.begin(), after.end());
+    test::expectInputError([&] { loadAttached("type: uint8\nencoding: gzip\n", junk); },
+                           (test::scratchDir() / "v.nrrd").string(),
+                           {"is followed by bytes that are not part of it"});
+  }
   test::Bytes junk = twoMembers;
   junk.insert(junk.end(), {'J', 'U', 'N', 'K'});
   test::expectInputError([&] { loadAttached("type: uint8\nencoding: gzip\n", junk); },
