@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <future>
 #include <iostream>
 #include <thread>
@@ -239,8 +240,8 @@ void checkServeOptions(const ServeOptions& options) {
     throwInputError("--port", std::to_string(options.port) + " is not a port (0..65535)");
   }
   checkRenderCommandLine(options.command);
-  if (!(options.maxFrameSamples >= 1)) {
-    throwInputError("--max-frame-samples", "must be at least 1");
+  if (!(options.maxFrameSamples >= 1) || !std::isfinite(options.maxFrameSamples)) {
+    throwInputError("--max-frame-samples", "must be a finite number, at least 1");
   }
 }
 

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <thread>
 #include <vector>
@@ -241,6 +242,14 @@ TEST(FrameServer, APageFrameBeyondTheServersSampleBoundIs400) {
   auto more = own.get("/frame?sampling=2");
   ASSERT_TRUE(more);
   EXPECT_EQ(more->status, 400) << more->body;
+
+  // A bound that bounds nothing is refused before the server starts.
+  for (const double bad :
+       {0.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
+    ServeOptions unbounded = smallServer();
+    unbounded.maxFrameSamples = bad;
+    EXPECT_THROW(checkServeOptions(unbounded), InputError) << bad;
+  }
 }
 
 // Connections that send half a request and wait (or never send one) do not lock the page out:
