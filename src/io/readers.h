@@ -20,6 +20,7 @@ Volume readVti(const std::string& path, const LoadOptions& options);        // V
 Volume readLegacyVtk(const std::string& path, const LoadOptions& options);  // STRUCTURED_POINTS
 Volume readMetaImage(const std::string& path, const LoadOptions& options);  // .mhd, .mha
 Volume readNifti(const std::string& path, const LoadOptions& options);      // .nii, .hdr/.img, .gz
+Volume readSlc(const std::string& path, const LoadOptions& options);        // VolVis .slc
 Volume readDicomSeries(const std::string& path, const LoadOptions& options);  // folder, slice
 Volume readRaw(const std::string& path, const RawLayout& layout, const LoadOptions& options);
 

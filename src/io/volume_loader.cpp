@@ -44,6 +44,7 @@ Volume loadVolume(const std::string& spec, const LoadOptions& options) {
   if (extension == ".nrrd" || extension == ".nhdr") return read(io::readNrrd);
   if (extension == ".vti") return read(io::readVti);
   if (extension == ".vtk") return read(io::readLegacyVtk);
+  if (extension == ".slc") return read(io::readSlc);
   if (extension == ".mhd" || extension == ".mha") return read(io::readMetaImage);
   for (const char* nifti : {".nii", ".nii.gz", ".hdr", ".hdr.gz", ".img", ".img.gz"}) {
     if (extension == nifti) return read(io::readNifti);

@@ -37,8 +37,8 @@ struct LoadOptions {
 
 // The files loadVolume reads, for help texts and messages.
 inline constexpr const char* kVolumeFileKinds =
-    ".nrrd, .nhdr, .vti, .vtk, .mhd, .mha, .nii, .nii.gz, .hdr/.img, .dcm or a folder of DICOM "
-    "slices";
+    ".nrrd, .nhdr, .vti, .vtk, .mhd, .mha, .nii, .nii.gz, .hdr/.img, .slc, .dcm or a folder of "
+    "DICOM slices";
 
 // `spec` is a path (kVolumeFileKinds, or any file with options.raw set) or a generator
 // `gen:NAME[:N]` (see generators/generators.h). Throws InputError naming the file and problem.
