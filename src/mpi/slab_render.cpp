@@ -273,9 +273,10 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
     const auto counted = [](int n, const std::string& what) {
       return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
     };
-    throw EveryRankError(spec + ": " + counted(dims.z, "slice") + " make " +
-                             counted(layers, "brick layer") + ", fewer than the " +
-                             std::to_string(ranks) + " ranks; run fewer ranks",
+    throw EveryRankError(spec + ": " + counted(dims.z, "slice") +
+                             (dims.z == 1 ? " makes " : " make ") + counted(layers, "brick layer") +
+                             ", fewer than the " + std::to_string(ranks) +
+                             " ranks; run fewer ranks",
                          2);
   }
   SlabRead read;
