@@ -67,17 +67,31 @@ int size() {
   return value;
 }
 
+namespace {
+
+// The lowest rank where `holds`, or -1 where it holds on none: a collective.
+int lowestRankWhere(bool holds) {
+  const int mine = holds ? rank() : std::numeric_limits<int>::max();
+  int lowest = mine;
+  MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  return lowest == std::numeric_limits<int>::max() ? -1 : lowest;
+}
+
+// `root`'s `text` on every rank: a collective. What the callers send (a command line, a
+// volume's fingerprint, a one-line message) is far below INT_MAX bytes.
+std::string broadcastText(std::string text, int root) {
+  unsigned long long length = text.size();
+  MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG_LONG, root, MPI_COMM_WORLD);
+  text.resize(std::size_t(length));
+  if (length > 0) MPI_Bcast(text.data(), int(length), MPI_CHAR, root, MPI_COMM_WORLD);
+  return text;
+}
+
+}  // namespace
+
 int firstRankDiffering(const std::string& mine) {
   if (!active() || size() < 2) return -1;
-  unsigned long long length = mine.size();
-  MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
-  std::string first = rank() == 0 ? mine : std::string(std::size_t(length), '\0');
-  // What the callers compare (a command line, a volume's fingerprint) is far below INT_MAX bytes.
-  if (length > 0) MPI_Bcast(first.data(), int(length), MPI_CHAR, 0, MPI_COMM_WORLD);
-  const int differs = first == mine ? std::numeric_limits<int>::max() : rank();
-  int lowest = differs;
-  MPI_Allreduce(&differs, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-  return lowest == std::numeric_limits<int>::max() ? -1 : lowest;
+  return lowestRankWhere(broadcastText(rank() == 0 ? mine : std::string(), 0) != mine);
 }
 
 void refuseAlike(const std::optional<std::string>& refusal) {
@@ -85,17 +99,9 @@ void refuseAlike(const std::optional<std::string>& refusal) {
     if (refusal) throw InputError(*refusal);
     return;
   }
-  const int mine = refusal ? rank() : std::numeric_limits<int>::max();
-  int lowest = mine;
-  MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-  if (lowest == std::numeric_limits<int>::max()) return;
-  std::string message = rank() == lowest ? *refusal : std::string();
-  unsigned long long length = message.size();
-  MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG_LONG, lowest, MPI_COMM_WORLD);
-  message.resize(std::size_t(length));
-  // A one-line error message is far below INT_MAX bytes.
-  if (length > 0) MPI_Bcast(message.data(), int(length), MPI_CHAR, lowest, MPI_COMM_WORLD);
-  throw EveryRankError(message, 2);
+  const int lowest = lowestRankWhere(refusal.has_value());
+  if (lowest < 0) return;
+  throw EveryRankError(broadcastText(rank() == lowest ? *refusal : std::string(), lowest), 2);
 }
 
 void requireSameCommand(int argc, char** argv) {
