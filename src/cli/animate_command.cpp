@@ -138,9 +138,9 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
   for (int i = 0; i < frames; ++i) {
     const auto frameStart = Clock::now();
     RenderOutput output = job.render(plan.request(i), loadOptions.limits);
-    for (const auto& warning : warnings.add(output.warnings)) {
+    if (const auto now = warnings.add(output.warnings); !now.empty()) {
       progress.finish();
-      std::cerr << "vsil: warning: " << warning << "\n";
+      printWarnings(now);
     }
     const auto writeStart = Clock::now();
     const std::string file = outDir.empty() ? "" : frameFileName(i, frames);
@@ -182,9 +182,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
     }
   }
   progress.finish();
-  for (const auto& warning : warnings.finish(frames)) {
-    std::cerr << "vsil: warning: " << warning << "\n";
-  }
+  printWarnings(warnings.finish(frames));
   if (video) video->finish();
   const double framesMs = millisecondsSince(loopStart);
   const double fps = frames / (framesMs / 1000.0);

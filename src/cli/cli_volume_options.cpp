@@ -187,9 +187,12 @@ LoadOptions toLoadOptions(const VolumeOptions& options) {
   return load;
 }
 
+void printWarnings(const std::vector<std::string>& warnings) {
+  for (const std::string& warning : warnings) std::cerr << "vsil: warning: " << warning << "\n";
+}
+
 void printVolumeWarnings(const Volume& volume) {
-  for (const std::string& warning : volume.warnings)
-    std::cerr << "vsil: warning: " << warning << "\n";
+  printWarnings(volume.warnings);
 }
 
 }  // namespace vsil::cli

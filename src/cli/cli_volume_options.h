@@ -87,7 +87,9 @@ Json describeFile(const Volume& volume) {
   return file.empty() ? Json() : file;
 }
 
-// Prints the volume's reading warnings to stderr, "vsil: warning: ..." each.
+// Prints warnings to stderr, "vsil: warning: ..." each.
+void printWarnings(const std::vector<std::string>& warnings);
+// Prints the volume's reading warnings so.
 void printVolumeWarnings(const Volume& volume);
 
 }  // namespace vsil::cli

@@ -164,9 +164,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
   RenderOutput output = job.render(request, loadOptions.limits);
   [[maybe_unused]] const StageTime frame = frameClock.elapsed();  // for the mpi metadata
   // Every rank has the same warnings (from the flags): said once.
-  if (mpi::rank() == 0) {
-    for (const auto& warning : output.warnings) std::cerr << "vsil: warning: " << warning << "\n";
-  }
+  if (mpi::rank() == 0) printWarnings(output.warnings);
 #ifdef VSIL_HAVE_MPI
   if (acrossRanks) {
     // Collectives on every rank; only rank 0 writes.
