@@ -24,7 +24,9 @@ constexpr int kMaxIcon = 1024;  // icon pixels per side (VolVis writes 100 x 100
 // The file in memory, read token by token where it is text.
 class SlcCursor {
  public:
-  SlcCursor(const std::string& path, std::string_view bytes) : path_(path), bytes_(bytes) {}
+  SlcCursor(const std::string& path, std::string_view bytes, std::size_t at = 0)
+      : path_(path), bytes_(bytes), at_(at) {}
+  std::size_t offset() const { return at_; }
 
   std::string_view token(const std::string& what) {
     while (at_ < bytes_.size() && std::isspace(static_cast<unsigned char>(bytes_[at_]))) ++at_;
@@ -64,7 +66,7 @@ class SlcCursor {
  private:
   const std::string& path_;
   std::string_view bytes_;
-  std::size_t at_ = 0;
+  std::size_t at_;
 };
 
 // One slice's RLE bytes into exactly `out.size()` samples.
@@ -134,11 +136,8 @@ Volume readSlc(const std::string& path, const LoadOptions& options) {
                               describeLayout(dims, StoredType::UInt8) + " can");
   }
   const std::string file = readWholeFile(path, fileBytes);
-  SlcCursor cursor(path, file);
-  for (const char* skipped : {"magic number", "size", "size", "size", "bits per voxel", "spacing",
-                              "spacing", "spacing", "units", "data origin", "data modification"}) {
-    cursor.token(skipped);
-  }
+  SlcCursor cursor(path, file, header.offset());  // on from the spacing
+  for (const char* skipped : {"units", "data origin", "data modification"}) cursor.token(skipped);
   const std::int64_t compression = cursor.integer("compression");
   if (compression != 0 && compression != 1) {
     throwInputError(path, "compression " + std::to_string(compression) +
