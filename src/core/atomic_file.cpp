@@ -53,21 +53,6 @@ void refuseFolderTarget(const std::string& output, const std::filesystem::path& 
   }
 }
 
-// The folder an output file goes into is there before any work (a missing one was found only
-// when the result was written, after the whole render).
-void refuseMissingFolder(const std::string& output, const std::filesystem::path& target) {
-  const std::filesystem::path folder =
-      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-  std::error_code error;
-  const std::filesystem::file_type type = std::filesystem::status(folder, error).type();
-  if (type == std::filesystem::file_type::not_found) {
-    throw InputError(output + ": folder " + folder.string() + " does not exist");
-  }
-  if (type != std::filesystem::file_type::directory && !error) {
-    throw InputError(output + ": " + folder.string() + " is not a folder");
-  }
-}
-
 void refuseInputTarget(const std::string& output, const std::filesystem::path& target) {
   const std::string input = inputNamedBy(target);
   if (input.empty()) return;
@@ -167,6 +152,20 @@ std::filesystem::path linkTarget(const std::filesystem::path& path) {
 }
 
 }  // namespace
+
+void refuseMissingFolder(const std::string& output, const std::filesystem::path& target) {
+  const std::filesystem::path folder =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  std::error_code error;
+  const std::filesystem::file_type type = std::filesystem::status(folder, error).type();
+  if (type == std::filesystem::file_type::not_found) {
+    throw InputError(output + ": folder " + folder.string() + " does not exist");
+  }
+  if (error) throw InputError(output + ": cannot be examined: " + error.message());
+  if (type != std::filesystem::file_type::directory) {
+    throw InputError(output + ": " + folder.string() + " is not a folder");
+  }
+}
 
 void installOutputCleanupOnSignals() {
   for (int signal : kCleanupSignals) {

@@ -108,6 +108,11 @@ class OutputBatch {
   std::vector<std::unique_ptr<AtomicOutputFile>> files_;
 };
 
+// Throws InputError "<output>: folder F does not exist" (or "F is not a folder", or "cannot be
+// examined: ...") unless the folder an output file goes into is there: checked before any work,
+// since a missing one was otherwise found only when the result was written, after the render.
+void refuseMissingFolder(const std::string& output, const std::filesystem::path& target);
+
 // Throws InputError (naming the path) when the directory is missing or not writable.
 void writeFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
 void writeFileAtomically(const std::filesystem::path& path, std::string_view text);

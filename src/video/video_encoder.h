@@ -15,6 +15,10 @@ class Encoder {
   virtual void write(const cv::Mat& bgr) = 0;
   // Finishes the file (the container's index, trailing frames).
   virtual void close() = 0;
+  // After close(): how many frames the file gives back, decoded; -1 when it cannot be opened.
+  // OpenCV's VideoWriter reports no failed write (a full disk left a video without its index,
+  // or cut short, that still counted as written), so the file is read back instead.
+  virtual int framesReadBack() = 0;
 };
 
 // The plugin's entry point: an encoder writing `path` in the codec `fourcc` through OpenCV's

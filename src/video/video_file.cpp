@@ -10,7 +10,6 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/plugin.h"
-#include "io/file_access.h"
 #include "video/video_encoder.h"
 
 namespace vsil {
@@ -63,11 +62,7 @@ void VideoFile::checkTarget(const std::string& flag, const std::filesystem::path
     throwInputError(
         where, "unknown video format '" + target.extension().string() + "' (known: " + known + ")");
   }
-  const std::filesystem::path folder =
-      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-  if (io::fileTypeAt(folder, where) != std::filesystem::file_type::directory) {
-    throwInputError(where, "folder " + folder.string() + " does not exist");
-  }
+  refuseMissingFolder(where, target);
   if (size.x % 2 != 0 || size.y % 2 != 0) {
     throwInputError(where, "video needs an even width and height (--size " +
                                std::to_string(size.x) + "x" + std::to_string(size.y) + ")");
@@ -115,6 +110,16 @@ void VideoFile::write(const cv::Mat& image) {
 
 void VideoFile::finish() {
   writer_->encoder->close();
+  file_->finish();
+  const int readBack = writer_->encoder->framesReadBack();
+  if (readBack != frames_) {
+    throwInputError(file_->target().string(),
+                    "cannot write the video whole (" +
+                        (readBack < 0 ? std::string("it cannot be read back")
+                                      : std::to_string(readBack) + " of " +
+                                            std::to_string(frames_) + " frames read back") +
+                        "; is the disk full?)");
+  }
   file_->commit();
 }
 

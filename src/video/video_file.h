@@ -21,12 +21,12 @@ class AtomicOutputFile;
 
 class VideoFile {
  public:
-  // The checks that create nothing: a known extension, an existing folder, an even size and a
-  // frame rate in (0, 1000]. Throws InputError naming `flag` and the path.
   // Whether a video can take `fps` frames per second: [0.01, 1000]. A value no video could
   // take is refused also where no video is written.
   static bool validFps(double fps);
   static constexpr const char* kFpsRange = "[0.01, 1000]";  // for messages
+  // The checks that create nothing: a known extension, an existing folder, an even size and a
+  // frame rate in kFpsRange. Throws InputError naming `flag` and the path.
   static void checkTarget(const std::string& flag, const std::filesystem::path& target,
                           glm::ivec2 size, double fps);
 
@@ -41,7 +41,9 @@ class VideoFile {
 
   // Appends a frame: 8-bit BGR or BGRA of the size given.
   void write(const cv::Mat& image);
-  // Closes the writer and renames the temporary over the target.
+  // Closes the writer, reads the video back and renames the temporary over the target. Throws
+  // InputError naming the target when the file does not give back every frame written (a full
+  // disk: OpenCV reports no failed write); the temporary is then removed.
   void finish();
   int framesWritten() const { return frames_; }
 

@@ -2,11 +2,16 @@
 // sweeps that reach the metadata and change what they should, every frame the same bytes as
 // `vsil render` with that frame's parameters, the video (read back), progress and --quiet.
 // Small on purpose (64² frames of a 48³ volume, a handful of frames).
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -235,6 +240,35 @@ TEST(AnimateCommand, VideoHoldsTheFramesOfThePngs) {
     const std::string name = entry.path().filename().string();
     EXPECT_TRUE(name == "frames" || name == "movie.avi" || name == "movie.mp4") << name;
   }
+}
+
+// A video the disk cannot hold is refused, not left half-written: OpenCV's VideoWriter reports
+// no failed write, so a full disk (here a file-size limit, 1 KiB, with SIGXFSZ ignored so that
+// writes fail with EFBIG) left an MP4 without its index, or an AVI cut short, exit 0.
+TEST(AnimateCommand, AVideoTheDiskCannotHoldIsRefused) {
+  const fs::path dir = test::scratchDir();
+  struct rlimit previous {};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &previous), 0);
+  const auto previousHandler = std::signal(SIGXFSZ, SIG_IGN);  // inherited through exec
+  struct rlimit small = previous;
+  small.rlim_cur = 1024;
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+  std::vector<test::CommandResult> results;
+  for (const char* name : {"movie.mp4", "movie.avi"}) {
+    results.push_back(
+        test::runVsil("animate gen:spheres:48 --size 128x128 --frames 12 --quiet "
+                      "--video " +
+                      (dir / name).string()));
+  }
+  setrlimit(RLIMIT_FSIZE, &previous);
+  std::signal(SIGXFSZ, previousHandler);
+  for (const test::CommandResult& result : results) {
+    EXPECT_EQ(result.exitCode, 2) << result.out << result.err;
+    EXPECT_NE(result.err.find("cannot write the video whole"), std::string::npos) << result.err;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  }
+  // Neither the videos nor a temporary.
+  EXPECT_TRUE(fs::is_empty(dir));
 }
 
 TEST(AnimateCommand, ShowsProgressUnlessQuiet) {
