@@ -10,14 +10,18 @@
 namespace vsil {
 namespace {
 
-// An SLC of 3 x 2 x `slices.size()` samples with a 2 x 1 icon; each slice's stored bytes as given.
+// An SLC of 3 x 2 x `slices.size()` samples with a 2 x 1 icon; each slice's stored bytes as given,
+// after "N X" when run-length coded (`sizeLine` between N and its bytes), alone when not (as
+// vtkSLCReader reads them). `header` goes before the magic number's line ends.
 std::string writeSlc(const std::string& name, int compression,
-                     const std::vector<test::Bytes>& slices, const std::string& sizes = "3 2") {
-  std::string text = "11111\n" + sizes + " " + std::to_string(slices.size()) +
+                     const std::vector<test::Bytes>& slices, const std::string& sizes = "3 2",
+                     const std::string& sizeLine = " X", const std::string& header = "") {
+  std::string text = "11111" + header + "\n" + sizes + " " + std::to_string(slices.size()) +
                      " 8\n0.5 1.000000 2.25\n1 6 0 " + std::to_string(compression) + "\n2 1 X" +
                      std::string(6, '\x7f');
   for (const test::Bytes& slice : slices) {
-    text += std::to_string(slice.size()) + " X" + test::asText(slice);
+    if (compression != 0) text += std::to_string(slice.size()) + sizeLine;
+    text += test::asText(slice);
   }
   const auto path = test::scratchDir() / name;
   test::writeFile(path, text);
@@ -37,6 +41,13 @@ TEST(SlcReader, ReadsRawAndRunLengthSlices) {
       loadVolume(writeSlc("rle.slc", 1, {{0x03, 9, 0x83, 1, 2, 3, 0x00}, {0x06, 200}}));
   EXPECT_EQ(test::floatsOf(rle),
             (std::vector<float>{9, 9, 9, 1, 2, 3, 200, 200, 200, 200, 200, 200}));
+  // As fscanf reads "%d X": the X right after the count; a header of 5000 blanks more
+  // (whitespace to fscanf).
+  const Volume tight = loadVolume(writeSlc("tight.slc", 1, {{0x06, 5}, {0x06, 6}}, "3 2", "X"));
+  EXPECT_EQ(test::floatsOf(tight), (std::vector<float>{5, 5, 5, 5, 5, 5, 6, 6, 6, 6, 6, 6}));
+  const Volume longHeader = loadVolume(
+      writeSlc("long_header.slc", 0, {{1, 2, 3, 4, 5, 6}}, "3 2", " X", std::string(5000, ' ')));
+  EXPECT_EQ(test::floatsOf(longHeader), (std::vector<float>{1, 2, 3, 4, 5, 6}));
 }
 
 TEST(SlcReader, NegHipIsTheRawCopyWithItsBorder) {
@@ -64,7 +75,7 @@ TEST(SlcReader, MalformedFilesAreRefusedNamingTheProblem) {
       {"overrun.slc", 1, {{0x07, 1}}, "slice 0: decodes to more than the 6 samples of a slice"},
       {"short.slc", 1, {{0x02, 1, 0x00}}, "slice 0: decodes to 2 samples, 6 expected"},
       {"cut_run.slc", 1, {{0x84, 1, 2}}, "slice 0: ends inside a run"},
-      {"raw_size.slc", 0, {{1, 2, 3}}, "slice 0 holds 3 bytes, 6 expected"},
+      {"raw_size.slc", 0, {{1, 2, 3}}, "slice 0 needs 6 bytes, the file holds 3 more"},
       {"compression.slc", 2, {{1, 2, 3, 4, 5, 6}}, "compression 2 is neither 0 (none) nor 1"},
   };
   for (const Bad& bad : cases) {
@@ -84,6 +95,17 @@ TEST(SlcReader, MalformedFilesAreRefusedNamingTheProblem) {
   const std::string whole = test::readFileBytes(cut);
   test::writeFile(cut, whole.substr(0, whole.size() - 2));
   test::expectInputError([&] { loadVolume(cut); }, cut, {"slice 1 needs 6 bytes"});
+  // A run-length slice without its "N X" line: said so, without echoing the binary bytes.
+  const std::string noSize = writeSlc("no_size.slc", 1, {{0x86, 1, 2, 3, 4, 5, 6}}, "3 2", "");
+  std::string bytes = test::readFileBytes(noSize);
+  bytes.erase(bytes.size() - 8, 1);  // the "7" of the size line
+  test::writeFile(noSize, bytes);
+  test::expectInputError([&] { loadVolume(noSize); }, noSize,
+                         {"slice 0's size is not a number (\"N X\" expected)"});
+  const std::string longHeader =
+      writeSlc("longer.slc", 0, {{1, 2, 3, 4, 5, 6}}, "3 2", " X", std::string(70000, ' '));
+  test::expectInputError([&] { loadVolume(longHeader); }, longHeader,
+                         {"header runs past its first 65536 bytes"});
 }
 
 }  // namespace
