@@ -67,7 +67,7 @@ struct TechniqueInfo {
   // Options given that change nothing in a frame with these options (a sketch colour with the
   // sketch effect off): one line each, "--flag: why; ignored", which the frame warns with, as
   // with the line flags of a technique that draws no lines. Unset: none.
-  std::function<std::vector<std::string>(const OptionReader& options)> ignoredOptions;
+  std::function<std::vector<std::string>(const OptionReader& options)> ignoredOptions = nullptr;
 
   const OptionSpec* option(const std::string& optionName) const;
   bool usesIso() const { return option("iso") != nullptr; }

@@ -8,11 +8,43 @@
 namespace vsil {
 
 // `text` with each control byte (a NUL, ESC, CR, a newline: what a hostile file may put in a
-// name or value that a message quotes) replaced by '?', so that it prints as one line, whole
-// (a NUL would cut what() short) and without driving the terminal.
+// name or value that a message quotes) and each byte of no valid UTF-8 sequence (binary bytes
+// quoted from a file; a terminal shows them as garbage, a JSON writer refuses them) replaced
+// by '?', so that it prints as one line, whole (a NUL would cut what() short), without driving
+// the terminal. UTF-8 names (Ünterschädel.nrrd) stay as they are.
 inline std::string oneLine(std::string text) {
-  for (char& c : text) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  for (std::size_t i = 0; i < text.size();) {
+    const unsigned char lead = byte(i);
+    // The length of a sequence starting here (RFC 3629: no overlong forms, nothing past U+10FFFF,
+    // no surrogates), 0 when it starts none.
+    std::size_t length = 0;
+    unsigned char low = 0x80, high = 0xbf;  // the second byte's range
+    if (lead < 0x80) {
+      length = 1;
+    } else if (lead >= 0xc2 && lead <= 0xdf) {
+      length = 2;
+    } else if (lead >= 0xe0 && lead <= 0xef) {
+      length = 3;
+      if (lead == 0xe0) low = 0xa0;
+      if (lead == 0xed) high = 0x9f;
+    } else if (lead >= 0xf0 && lead <= 0xf4) {
+      length = 4;
+      if (lead == 0xf0) low = 0x90;
+      if (lead == 0xf4) high = 0x8f;
+    }
+    bool valid = length > 0 && i + length <= text.size();
+    for (std::size_t k = 1; valid && k < length; ++k) {
+      const unsigned char next = byte(i + k);
+      valid = k == 1 ? next >= low && next <= high : next >= 0x80 && next <= 0xbf;
+    }
+    if (!valid) {
+      text[i++] = '?';
+    } else if (lead < 0x20 || lead == 0x7f) {
+      text[i++] = '?';
+    } else {
+      i += length;
+    }
   }
   return text;
 }

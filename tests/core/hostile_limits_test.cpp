@@ -85,5 +85,24 @@ TEST(HostileLimits, JsonSnippetQuotesTheStartOnly) {
   EXPECT_EQ(jsonSnippet(nlohmann::json(3.5)), "3.5");
 }
 
+// An error message quoting a hostile file's bytes is one line of valid UTF-8: control bytes
+// and bytes of no UTF-8 sequence (binary data, a truncated or overlong sequence, a surrogate)
+// become '?', UTF-8 names stay.
+TEST(HostileLimits, MessagesAreOneLineOfValidUtf8) {
+  EXPECT_EQ(oneLine("a\nb\x1b[31m\x7f"), "a?b?[31m?");
+  const std::string names =
+      "Sch\xc3\xa4"
+      "del \xe2\x86\x92 \xf0\x9f\x98\x80";  // Schädel → 😀
+  EXPECT_EQ(oneLine(names), names);
+  EXPECT_EQ(oneLine("\xff\xfe\x80"), "???");
+  EXPECT_EQ(oneLine("cut \xe2\x86"), "cut ??");           // a sequence cut short
+  EXPECT_EQ(oneLine("\xc0\xaf \xe0\x80\xaf"), "?? ???");  // overlong '/'
+  EXPECT_EQ(oneLine("\xed\xa0\x80"), "???");              // a surrogate
+  EXPECT_EQ(oneLine("\xf4\x90\x80\x80"), "????");         // past U+10FFFF
+  EXPECT_EQ(oneLine(std::string("a\0b", 3)), "a?b");
+  EXPECT_STREQ(InputError("x.slc: value [\x86\x01\xc3] is not a number").what(),
+               "x.slc: value [???] is not a number");
+}
+
 }  // namespace
 }  // namespace vsil

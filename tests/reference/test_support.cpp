@@ -134,7 +134,9 @@ InterruptedRun runVsilInterrupted(const std::vector<std::string>& arguments, dou
     std::this_thread::sleep_for(std::chrono::duration<double>(delay));
     ::kill(pid, signal);
   }
-  if (!ended) EXPECT_EQ(::waitpid(pid, &run.status, 0), pid);
+  if (!ended) {
+    EXPECT_EQ(::waitpid(pid, &run.status, 0), pid);
+  }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;
 }

@@ -268,7 +268,9 @@ TEST(FrameServer, IdleConnectionsDoNotStarveTheNextRequest) {
     address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     ASSERT_EQ(::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
     const std::string half = "GET /frame HTTP/1.1\r\nHost: x\r\n";
-    if (i % 2 == 0) ASSERT_EQ(::send(fd, half.data(), half.size(), 0), ssize_t(half.size()));
+    if (i % 2 == 0) {
+      ASSERT_EQ(::send(fd, half.data(), half.size(), 0), ssize_t(half.size()));
+    }
     idle.push_back(fd);
   }
   const auto start = std::chrono::steady_clock::now();
