@@ -549,6 +549,15 @@ std::optional<double> opsDefaultOverRaDefault(const std::vector<CaseResult>& cas
   return ratio;
 }
 
+// RA/OPS of one pipeline's columns (the case holding RA and the one holding OPS): RA's frame
+// rate over OPS's, from the frames taken in turn, paired as every ratio the tables print.
+std::optional<double> raOverOps(const CaseResult& ra, const CaseResult& ops) {
+  const double ratio =
+      pairedRatio(valuesOf(ops.frames, &FrameSample::ms), valuesOf(ra.frames, &FrameSample::ms));
+  if (!std::isfinite(ratio)) return std::nullopt;
+  return ratio;
+}
+
 nlohmann::json jsonOrNull(const std::optional<double>& value) {
   return value ? nlohmann::json(*value) : nlohmann::json();
 }
@@ -576,13 +585,14 @@ nlohmann::json missingRow(const Nk3Measured& m, int window, const Nk3Column& col
               {"missing", m.missing},
               {"ops_default_over_ra_default", nullptr},
               {"ops_default_over_ra_default_cpu", nullptr},
+              {"ra_over_ops", nullptr},
               {"check", nullptr}});
   return row;
 }
 
 nlohmann::json measuredRow(const Nk3Measured& m, int window, const CaseResult& r,
                            std::optional<double> opsOverRa, std::optional<double> opsOverRaCpu,
-                           const BenchOptions& options) {
+                           std::optional<double> pipelineRaOverOps, const BenchOptions& options) {
   nlohmann::json row = caseRow(m.dataset, window, *r.column);
   row.update({{"frames", r.stats.frames},
               {"warmup", options.warmup},
@@ -604,6 +614,7 @@ nlohmann::json measuredRow(const Nk3Measured& m, int window, const CaseResult& r
               {"cpu_ms", valuesOf(r.frames, &FrameSample::cpuMs)},
               {"ops_default_over_ra_default", jsonOrNull(opsOverRa)},
               {"ops_default_over_ra_default_cpu", jsonOrNull(opsOverRaCpu)},
+              {"ra_over_ops", jsonOrNull(pipelineRaOverOps)},
               {"check", checkText(r.problems)}});
   if (r.column->broadened) {
     row["line_width"] = kBroadenedWidth;
@@ -624,8 +635,15 @@ std::vector<nlohmann::json> jsonRows(const Nk3Measured& m, const BenchOptions& o
     const std::optional<double> opsOverRa = opsDefaultOverRaDefault(window.cases);
     const std::optional<double> opsOverRaCpu =
         opsDefaultOverRaDefault(window.cases, &FrameSample::cpuMs);
-    for (const CaseResult& r : window.cases) {
-      rows.push_back(measuredRow(m, window.size, r, opsOverRa, opsOverRaCpu, options));
+    for (std::size_t i = 0; i < window.cases.size(); ++i) {
+      // RA/OPS of the pipeline this case belongs to (its columns come kColumnsPerPipeline apart).
+      const std::size_t first = i - i % kColumnsPerPipeline;
+      const std::optional<double> pipelineRaOverOps =
+          first + kOps < window.cases.size()
+              ? raOverOps(window.cases[first + kRa], window.cases[first + kOps])
+              : std::nullopt;
+      rows.push_back(measuredRow(m, window.size, window.cases[i], opsOverRa, opsOverRaCpu,
+                                 pipelineRaOverOps, options));
     }
   }
   return rows;
@@ -647,7 +665,8 @@ std::vector<std::string> failedChecks(const Nk3Measured& m) {
 // One line of the printed table: a dataset at one window size with one pipeline.
 struct Nk3Line {
   std::string dataset, size, window, pipeline;
-  std::vector<double> fps;  // RA, OPS, BS (0: not measured)
+  std::vector<double> fps;          // RA, OPS, BS (0: not measured)
+  std::optional<double> raOverOps;  // paired (raOverOps)
   std::optional<PaperFps> paper;
   std::string check;
   // On a window's first line only: the ratio belongs to the window, not to one pipeline.
@@ -664,8 +683,8 @@ std::vector<Nk3Line> tableLines(const Nk3Measured& m) {
       Nk3Line line{
           m.dataset.name, missing ? m.dataset.paperSize : dimsLabel(m.dims),
           std::to_string(window.size) + "²", columns[first].pipeline,
-          std::vector<double>(kColumnsPerPipeline, 0.0), paperFor(m.dataset, window.size),
-          missing ? "missing" : "ok",
+          std::vector<double>(kColumnsPerPipeline, 0.0), std::nullopt,
+          paperFor(m.dataset, window.size), missing ? "missing" : "ok",
           // the window's ratio, on its first line only
           first == 0 ? opsDefaultOverRaDefault(window.cases) : std::nullopt,
           first == 0 ? opsDefaultOverRaDefault(window.cases, &FrameSample::cpuMs) : std::nullopt};
@@ -676,6 +695,9 @@ std::vector<Nk3Line> tableLines(const Nk3Measured& m) {
         if (!result.problems.empty()) failed += " " + result.column->key;
       }
       if (!failed.empty()) line.check = "FAILED:" + failed;
+      if (first + kOps < window.cases.size()) {
+        line.raOverOps = raOverOps(window.cases[first + kRa], window.cases[first + kOps]);
+      }
       lines.push_back(std::move(line));
     }
   }
@@ -699,7 +721,7 @@ TextTable textTable(const std::vector<Nk3Line>& lines) {
   for (const Nk3Line& l : lines) {
     std::vector<std::string> cells{l.dataset, l.size, l.window, l.pipeline};
     for (double fps : l.fps) cells.push_back(formatFps(fps));
-    cells.push_back(formatRatio(l.fps[kRa] / l.fps[kOps]));
+    cells.push_back(l.raOverOps ? formatRatio(*l.raOverOps) : "");
     cells.push_back(l.opsDefaultOverRaDefault ? formatRatio(*l.opsDefaultOverRaDefault) : "");
     cells.push_back(l.opsDefaultOverRaDefaultCpu ? formatRatio(*l.opsDefaultOverRaDefaultCpu) : "");
     for (std::size_t i = 0; i < kColumnsPerPipeline; ++i) {

@@ -169,6 +169,33 @@ TEST_F(Nk3Run, OpsDefaultOverRaDefaultComesFromTheDefaultPipelines) {
   EXPECT_NE(result_.out.find("OPS default / RA default"), std::string::npos) << result_.out;
 }
 
+// RA/OPS per pipeline (round 14: it was the ratio of the two medians, from frames of different
+// turns, and disagreed with the defaults' column in the same row): the median of the turns'
+// quotients, on every row of the pipeline.
+TEST_F(Nk3Run, RaOverOpsIsPairedPerPipeline) {
+  ASSERT_EQ(result_.exitCode, 0) << result_.err;
+  const auto rows = nlohmann::json::parse(test::readFileBytes(dir_ / "nk3.json"))["rows"];
+  using Frames = std::vector<double>;
+  std::map<std::string, Frames> ms;  // dataset/pipeline/ra|ops|bs -> frames
+  for (const auto& row : rows) {
+    const std::string technique = row["technique"];  // ra, ra-paper, ops-tiles, ...
+    ms[row["dataset"].get<std::string>() + "/" + row["pipeline"].get<std::string>() + "/" +
+       technique.substr(0, technique.find('-'))] = row["ms"].get<Frames>();
+  }
+  int checked = 0;
+  for (const auto& row : rows) {
+    SCOPED_TRACE(row.dump());
+    const std::string key =
+        row["dataset"].get<std::string>() + "/" + row["pipeline"].get<std::string>() + "/";
+    const Frames& ra = ms.at(key + "ra");
+    const Frames& ops = ms.at(key + "ops");
+    ASSERT_EQ(ra.size(), 2u);
+    EXPECT_NEAR(row["ra_over_ops"].get<double>(), 0.5 * (ops[0] / ra[0] + ops[1] / ra[1]), 1e-9);
+    ++checked;
+  }
+  EXPECT_GT(checked, 0);
+}
+
 TEST_F(Nk3Run, WritesMarkdownAndPlot) {
   ASSERT_EQ(result_.exitCode, 0) << result_.err;
   const std::string markdown = test::readFileBytes(dir_ / "nk3.md");
