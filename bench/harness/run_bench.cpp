@@ -14,6 +14,7 @@
 #include "harness/machine_info.h"
 #include "harness/plot.h"
 #include "harness/table_registry.h"
+#include "harness/timing_stats.h"
 
 namespace vsil::bench {
 namespace {
@@ -82,6 +83,33 @@ std::string markdownReport(const MachineInfo& machine, const std::vector<TableRe
     for (const auto& failure : table.failures) out += "- **check failed**: " + failure + "\n";
   }
   return out;
+}
+
+// The timed frames of the rows that carry them ("ms"), named by dataset, size and case.
+std::vector<CaseFrames> caseFramesOf(const std::vector<nlohmann::json>& rows) {
+  std::vector<CaseFrames> cases;
+  for (const auto& row : rows) {
+    const auto ms = row.find("ms");
+    if (ms == row.end() || !ms->is_array()) continue;
+    std::string name;
+    const auto add = [&](const std::string& text) { name += (name.empty() ? "" : " ") + text; };
+    for (const char* key : {"dataset", "width", "case", "technique"}) {
+      const auto field = row.find(key);
+      if (field == row.end() || field->is_null()) continue;
+      if (std::string(key) == "width") {
+        add(field->dump() + "²");
+      } else if (field->is_string()) {
+        add(field->get<std::string>());
+      }
+      if (std::string(key) == "case") break;  // the case names its technique
+    }
+    CaseFrames frames{name, {}};
+    for (const auto& value : *ms) {
+      if (value.is_number()) frames.ms.push_back(value.get<double>());
+    }
+    cases.push_back(std::move(frames));
+  }
+  return cases;
 }
 
 }  // namespace
@@ -169,6 +197,7 @@ BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostrea
       Progress progress(progressOut, progressIsTerminal);
       table = implementedTable(name).run(options, progress);
     }
+    if (auto note = unsteadyNote(caseFramesOf(table.rows))) table.notes.push_back(*note);
     out << "\n" << table.name << ": " << table.title << "\n" << table.text;
     for (const auto& note : table.notes) out << "  " << note << "\n";
     for (const auto& failure : table.failures) out << "  check FAILED: " << failure << "\n";

@@ -3,6 +3,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 
 namespace vsil::bench {
@@ -34,6 +35,35 @@ double pairedRatio(const std::vector<double>& a, const std::vector<double>& b) {
     quotients.push_back(a[i] / b[i]);
   }
   return median(std::move(quotients));
+}
+
+std::optional<std::string> unsteadyNote(const std::vector<CaseFrames>& cases) {
+  const CaseFrames* worst = nullptr;
+  double worstSpread = 0;
+  int over = 0, counted = 0;
+  for (const CaseFrames& c : cases) {
+    if (c.ms.size() < 2) continue;
+    const auto [fastest, slowest] = std::minmax_element(c.ms.begin(), c.ms.end());
+    if (!(*fastest > 0)) continue;
+    ++counted;
+    const double spread = *slowest / *fastest;
+    if (spread > kUnsteadySpread) ++over;
+    if (spread > worstSpread) {
+      worstSpread = spread;
+      worst = &c;
+    }
+  }
+  if (over == 0) return std::nullopt;
+  const auto [fastest, slowest] = std::minmax_element(worst->ms.begin(), worst->ms.end());
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "UNSTEADY RUN: frame times of one case spread up to %.2fx (%s: %.1f to %.1f ms; "
+                "%d of %d cases past %.1fx): the machine's speed changed during the run (other "
+                "load?), so these frame rates may be off by as much; the paired ratios cancel "
+                "most of it; rerun on a quiet machine or with more --frames",
+                worstSpread, worst->name.c_str(), *fastest, *slowest, over, counted,
+                kUnsteadySpread);
+  return std::string(text);
 }
 
 double processCpuMs() {

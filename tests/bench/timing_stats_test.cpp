@@ -1,5 +1,6 @@
 // The bench's ratio of two cases from paired frames (harness/timing_stats.h pairedRatio).
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -28,6 +29,23 @@ TEST(PairedRatio, NoRatioWithoutPairsOrWithATimeNotPositive) {
   EXPECT_TRUE(std::isnan(pairedRatio({1, 2}, {1, 0})));
   EXPECT_TRUE(std::isnan(pairedRatio({-1, 2}, {1, 1})));
   EXPECT_TRUE(std::isnan(pairedRatio({NAN, 2}, {1, 1})));
+}
+
+// A table says when its frame times were unsteady (round 14: a loaded machine's frames swung 2×
+// and the table showed 168 fps against 98 with nothing to tell): the worst case named, with
+// its fastest and slowest frame; nothing when every case kept within kUnsteadySpread (2).
+TEST(UnsteadyNote, NamesTheWorstCaseWhenFramesSpreadPastTheLimit) {
+  EXPECT_FALSE(unsteadyNote({}).has_value());
+  EXPECT_FALSE(unsteadyNote({{"a", {10, 11, 19.9}}, {"b", {20, 39}}, {"c", {5}}}).has_value());
+  const auto note =
+      unsteadyNote({{"a", {10, 11, 21}}, {"bonsai 512² mip", {40, 90, 41}}, {"c", {5, 5}}});
+  ASSERT_TRUE(note.has_value());
+  EXPECT_NE(note->find("UNSTEADY RUN: frame times of one case spread up to 2.25x "
+                       "(bonsai 512² mip: 40.0 to 90.0 ms; 2 of 3 cases past 2.0x)"),
+            std::string::npos)
+      << *note;
+  // One case alone, a frame of 0 ms (no measure) not counted.
+  EXPECT_FALSE(unsteadyNote({{"a", {0, 30}}}).has_value());
 }
 
 }  // namespace
