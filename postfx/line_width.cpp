@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -235,6 +237,42 @@ std::string emptyDepthBinsWarning(const std::vector<LineWidthSample>& samples,
   if (samples.empty() || binned > 0) return "";
   return where + ": none of the " + std::to_string(samples.size()) +
          " line samples has a depth within 2 px: every depth bin is empty";
+}
+
+std::string regionsNotLinesWarning(const cv::Mat1b& lineMask,
+                                   const std::vector<LineWidthSample>& samples,
+                                   const std::string& where) {
+  if (samples.empty()) return "";
+  cv::Mat1i labels;
+  const int regions = cv::connectedComponents(lineMask, labels, 8, CV_32S) - 1;  // 0: background
+  std::vector<int> count(std::size_t(regions) + 1, 0);
+  std::vector<double> widthSum(std::size_t(regions) + 1, 0.0);
+  for (const LineWidthSample& sample : samples) {
+    const int region = labels(sample.pixel);
+    ++count[std::size_t(region)];
+    widthSum[std::size_t(region)] += sample.width;
+  }
+  int notLines = 0, samplesInThem = 0;
+  double widest = 0;
+  for (int region = 1; region <= regions; ++region) {
+    const int n = count[std::size_t(region)];
+    if (n == 0) continue;
+    const double width = widthSum[std::size_t(region)] / n;
+    if (double(n) >= width) continue;
+    ++notLines;
+    samplesInThem += n;
+    widest = std::max(widest, width);
+  }
+  // Dots and short dashes of a real render hold a few percent of the samples; a region that
+  // swallowed the lines holds most.
+  if (samplesInThem < kNotLineShare * double(samples.size())) return "";
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(1) << where << ": " << samplesInThem << " of "
+       << samples.size() << " samples lie in " << notLines
+       << (notLines == 1 ? " region" : " regions") << " no longer than wide (up to " << widest
+       << " px across): filled regions, not lines (a line wider than what it outlines, or lines "
+          "merged); their widths are the regions' diameters";
+  return text.str();
 }
 
 nlohmann::json widthStatisticsJson(const WidthStatistics& stats) {

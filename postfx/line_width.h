@@ -82,6 +82,18 @@ std::vector<DepthBin> widthAgainstDepth(const std::vector<LineWidthSample>& samp
 std::string emptyDepthBinsWarning(const std::vector<LineWidthSample>& samples,
                                   const std::vector<DepthBin>& bins, const std::string& where);
 
+// What to warn when at least kNotLineShare of the samples lie in line regions (8-connected
+// regions of lineMask) no longer than they are wide, fewer samples along their medial axis than
+// their mean width: filled regions, whose widths are the region's diameter, not a line's (a
+// line wider than the object it outlines, or lines merged into one area; round 14: a 12 px
+// line around a 14 px sphere read 23.3 px from 3 samples); "" otherwise. A line of width W and
+// length L has about L samples. Renders of the classic datasets at W = 2..8 hold a few such
+// regions (dots, short dashes) with 0-2 % of the samples.
+inline constexpr double kNotLineShare = 0.1;
+std::string regionsNotLinesWarning(const cv::Mat1b& lineMask,
+                                   const std::vector<LineWidthSample>& samples,
+                                   const std::string& where);
+
 // The report's parts as `vsil measure-width --json` writes them and vsil.measure_width returns
 // them: {"count", "mean", ..., "histogram"} and [{"depth_from", "depth_to", "count",
 // "mean_width", "median_width"}, ...], the widths null in a bin without samples.

@@ -50,6 +50,10 @@ void run(const MeasureWidthArgs& args) {
     throwInputError(args.image, "no pixel has the line colour " + args.lineColor);
   }
   const auto samples = measureLineWidths(mask, args.image, maxBytes);
+  if (const std::string warning = regionsNotLinesWarning(mask, samples, args.image);
+      !warning.empty()) {
+    std::cerr << "vsil: warning: " << warning << "\n";
+  }
   std::vector<double> widths;
   for (const auto& s : samples) widths.push_back(s.width);
   const WidthStatistics stats = summarizeWidths(widths, args.binWidth);

@@ -1283,6 +1283,10 @@ py::dict measureWidth(const py::array& image, std::optional<py::array> depth, in
   checkHistogramBinWidth(function + ": bin_width", binWidth);
   const cv::Mat1b mask = maskFromArray(image, function);
   const auto samples = measureLineWidths(mask, function, limits::defaultMemoryBytes());
+  if (const std::string warning = regionsNotLinesWarning(mask, samples, function);
+      !warning.empty()) {
+    warnUser(warning);
+  }
   std::vector<double> widths;
   for (const auto& s : samples) widths.push_back(s.width);
   nlohmann::json report = {{"widths", widthStatisticsJson(summarizeWidths(widths, binWidth))}};

@@ -65,6 +65,23 @@ TEST(RenderThenMeasureWidth, SphereAtWidthNineMeasuresNine) {
     }
   }
   EXPECT_GT(binned, widths["count"].get<int>() / 2) << "most samples find a depth";
+  EXPECT_EQ(measure.err, "") << "a sphere's line is a line";
+}
+
+// A line wider than the object it outlines fills it: measure-width still reports the region
+// (exit 0) and says that its widths are no line's (round 14: 23.3 px read for a 12 px line).
+TEST(RenderThenMeasureWidth, ALineWiderThanTheObjectIsSaidToBeNoLine) {
+  const auto dir = test::scratchDir();
+  const auto out = (dir / "out.png").string();
+  ASSERT_EQ(test::runVsil("render gen:sphere:24 --ortho --view 0,0 --size 64x64 --width 30 "
+                          "--out " +
+                          out)
+                .exitCode,
+            0);
+  const auto measure = test::runVsil("measure-width " + out);
+  ASSERT_EQ(measure.exitCode, 0) << measure.err;
+  EXPECT_NE(measure.err.find("vsil: warning: " + out + ": "), std::string::npos) << measure.err;
+  EXPECT_NE(measure.err.find("no longer than wide"), std::string::npos) << measure.err;
 }
 
 // A width study as a user runs it (the issue that found the depth PNG read back wrongly):

@@ -40,6 +40,24 @@ TEST(LineWidth, MedianOnBroadenedCirclesMatchesTheAreaWidth) {
   }
 }
 
+// A line wider than what it outlines fills a region whose few medial samples read its diameter
+// (round 14: 23.3 px for a 12 px line round a 14 px sphere): said, when such regions hold a
+// tenth of the samples or more; a ring, and a ring beside a few dots, are lines.
+TEST(LineWidth, RegionsNoLongerThanWideAreSaidNotToBeLines) {
+  cv::Mat1b disc(64, 64, std::uint8_t(0));
+  cv::circle(disc, {32, 32}, 12, 255, cv::FILLED);
+  const std::string warning = regionsNotLinesWarning(disc, measureLineWidths(disc), "disc.png");
+  EXPECT_NE(warning.find("disc.png: "), std::string::npos) << warning;
+  EXPECT_NE(warning.find("samples lie in 1 region no longer than wide"), std::string::npos)
+      << warning;
+
+  cv::Mat1b ring(128, 128, std::uint8_t(0));
+  cv::circle(ring, {64, 64}, 40, 255, 6);
+  EXPECT_EQ(regionsNotLinesWarning(ring, measureLineWidths(ring), "ring.png"), "");
+  for (int k = 0; k < 4; ++k) cv::circle(ring, {10 + 8 * k, 10}, 2, 255, cv::FILLED);
+  EXPECT_EQ(regionsNotLinesWarning(ring, measureLineWidths(ring), "ring.png"), "");
+}
+
 TEST(LineWidth, AxisBandsOfEveryIntegerWidth) {
   // From 2: a one-pixel line reads 0.5 px (line_width.h, the edge smoothing's limit).
   for (int width = 2; width <= 12; ++width) {
