@@ -29,7 +29,6 @@
 #include "core/options.h"
 #include "core/progress_line.h"
 #include "core/version.h"
-#include "io/file_access.h"
 #include "job/animation.h"
 #include "video/video_file.h"
 
@@ -64,19 +63,7 @@ void checkOutputs(const AnimateFlags& flags, glm::ivec2 size) {
   if (flags.outDir.empty() && flags.video.empty()) {
     throw InputError("animate: nothing to write (give --out-dir DIR and/or --video FILE)");
   }
-  if (!flags.outDir.empty()) {
-    const fs::path dir = flags.outDir;
-    const std::string where = "--out-dir " + flags.outDir;
-    const fs::file_type type = io::fileTypeAt(dir, where);
-    if (type != fs::file_type::not_found) {
-      if (type != fs::file_type::directory) throwInputError(where, "is not a folder");
-    } else {
-      const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
-      if (io::fileTypeAt(parent, where) != fs::file_type::directory) {
-        throwInputError(where, "folder " + parent.string() + " does not exist");
-      }
-    }
-  }
+  if (!flags.outDir.empty()) refuseOutputFolder("--out-dir " + flags.outDir, flags.outDir);
   if (flags.video.empty() && !VideoFile::validFps(flags.fps)) {
     throwInputError("--fps " + formatNumber(flags.fps),
                     std::string("must be in ") + VideoFile::kFpsRange);

@@ -40,7 +40,6 @@
 #include "core/json_input.h"
 #include "core/progress_line.h"
 #include "core/version.h"
-#include "io/file_access.h"
 #include "job/render_job.h"
 #include "mpi/mpi_world.h"
 #include "mpi/task_farm.h"
@@ -444,11 +443,7 @@ void run(const SweepFlags& flags) {
     batch.claim("--json", flags.json);
     batch.claim("--csv", flags.csv);
     if (!flags.outDir.empty()) {
-      const std::string where = "--out-dir " + flags.outDir;
-      const fs::file_type type = io::fileTypeAt(flags.outDir, where);
-      if (type != fs::file_type::not_found && type != fs::file_type::directory) {
-        throwInputError(where, "is not a folder");
-      }
+      refuseOutputFolder("--out-dir " + flags.outDir, flags.outDir);
       // A folder of images where a result file goes.
       batch.claim("--out-dir", flags.outDir, OutputKind::Folder);
     }
@@ -459,7 +454,7 @@ void run(const SweepFlags& flags) {
   if (validateOnly()) return;
   if (!flags.outDir.empty() && mpi::rank() == 0) {
     std::error_code error;
-    fs::create_directories(flags.outDir, error);
+    fs::create_directory(flags.outDir, error);  // its parent is there (refuseOutputFolder)
     if (error) {
       refusal = "--out-dir " + flags.outDir + ": cannot create the folder: " + error.message();
     }

@@ -167,6 +167,15 @@ void refuseMissingFolder(const std::string& output, const std::filesystem::path&
   }
 }
 
+void refuseOutputFolder(const std::string& output, std::filesystem::path folder) {
+  if (!folder.has_filename() && folder.has_parent_path()) folder = folder.parent_path();  // out/
+  std::error_code error;
+  const std::filesystem::file_type type = std::filesystem::status(folder, error).type();
+  if (type == std::filesystem::file_type::not_found) return refuseMissingFolder(output, folder);
+  if (error) throw InputError(output + ": cannot be examined: " + error.message());
+  if (type != std::filesystem::file_type::directory) throw InputError(output + ": is not a folder");
+}
+
 void installOutputCleanupOnSignals() {
   for (int signal : kCleanupSignals) {
     struct sigaction previous {};

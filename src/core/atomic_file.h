@@ -113,6 +113,11 @@ class OutputBatch {
 // since a missing one was otherwise found only when the result was written, after the render.
 void refuseMissingFolder(const std::string& output, const std::filesystem::path& target);
 
+// The same for an output folder that a command creates when missing (animate's and sweep's
+// --out-dir): it is a folder, or its parent is there ("out/" names the folder out). Throws
+// InputError "<output>: is not a folder" or as refuseMissingFolder for its parent.
+void refuseOutputFolder(const std::string& output, std::filesystem::path folder);
+
 // Throws InputError (naming the path) when the directory is missing or not writable.
 void writeFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
 void writeFileAtomically(const std::filesystem::path& path, std::string_view text);

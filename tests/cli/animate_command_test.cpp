@@ -271,6 +271,19 @@ TEST(AnimateCommand, AVideoTheDiskCannotHoldIsRefused) {
   EXPECT_TRUE(fs::is_empty(dir));
 }
 
+// "--out-dir new/" names the folder new, created in the current folder (it was refused:
+// "folder new does not exist", the trailing slash's empty name taken for the folder).
+TEST(AnimateCommand, AnOutDirWithATrailingSlashIsCreated) {
+  const fs::path dir = test::scratchDir();
+  const auto result = test::runVsil(
+      "animate gen:sphere:16 --size 32x32 --frames 2 --quiet "
+      "--out-dir " +
+      (dir / "new").string() + "/");
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  EXPECT_TRUE(fs::exists(dir / "new" / "frames.json"));
+  EXPECT_TRUE(fs::exists(dir / "new" / "frame_0001.png"));
+}
+
 TEST(AnimateCommand, ShowsProgressUnlessQuiet) {
   const fs::path dir = test::scratchDir();
   const auto loud = test::runVsil("animate gen:sphere:32 --size 32x32 --frames 3 --out-dir " +

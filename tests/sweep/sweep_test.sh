@@ -105,6 +105,16 @@ grep -qx "vsil: --out-dir ./r.json: names the same file as --json r.json; give e
   "$dir/err" || fail "--out-dir naming the --json file: $(cat "$dir/err")"
 [[ ! -e $dir/r.json ]] || fail "--out-dir naming the --json file left r.json"
 
+# An --out-dir whose parent is missing is refused before any render, as animate's (it was
+# created whole, as mkdir -p would, so a typo in its path went unnoticed).
+"$vsil" sweep "$dir/sweep.json" --json "$dir/nested.json" --out-dir "$dir/no/such/images" \
+  2>"$dir/err"
+rc=$?
+[[ $rc == 2 ]] || fail "--out-dir with a missing parent exited $rc, not 2"
+grep -qx "vsil: --out-dir $dir/no/such/images: folder $dir/no/such does not exist" "$dir/err" ||
+  fail "--out-dir with a missing parent: $(cat "$dir/err")"
+[[ ! -e $dir/no && ! -e $dir/nested.json ]] || fail "--out-dir with a missing parent wrote"
+
 if [[ -n $mpirun ]]; then
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
     "$mpirun" --oversubscribe -np 3 "$vsil" sweep "$dir/sweep.json" --json "$dir/three.json" \
