@@ -118,8 +118,15 @@ void inflateStream(const std::string& where, const std::string& what, DeflateWra
     }
   }
   if (produced != expected) {
+    // Bytes that neither pad nor start another member (a blank between two gzip members, which
+    // gzip refuses too) end the stream early: say so, not only that samples are missing.
+    const bool otherBytes = !in.empty() && !isStreamPadding(in);
     stream.fail("inflates to " + std::to_string(produced) + " bytes, " + std::to_string(expected) +
-                " expected");
+                " expected" +
+                (otherBytes ? wrapper == DeflateWrapper::Gzip
+                                  ? " (bytes follow its end that are not another gzip member)"
+                                  : " (bytes follow its end)"
+                            : ""));
   }
   do {
     if (!isStreamPadding(in)) stream.fail("is followed by bytes that are not part of it");

@@ -230,15 +230,8 @@ Volume readMetaImage(const std::string& path, const LoadOptions& options) {
                                 std::to_string(available) + " bytes)");
     }
     const std::uint64_t size = compressedSize.value_or(available);
-    // Deflate never grows data by more than a few bytes per 16 KiB block: more bytes than this
-    // are not a stream of the expected size, and are refused before reading them.
-    const std::uint64_t maxCompressed = expected + expected / 256 + 4096;
-    if (size > maxCompressed) {
-      throwInputError(path, (compressedSize ? "CompressedDataSize " + std::to_string(size)
-                                            : payload.label + " of " + std::to_string(size)) +
-                                " bytes is more than a zlib stream of " + std::to_string(expected) +
-                                " bytes can take" + layout);
-    }
+    // No bound on the size: padding may follow the stream (inflateStream stops at the first
+    // byte beyond the samples, and reads padding without keeping it).
     const std::string what = "zlib " + payload.label;
     checkInflatable(path, what, size, expected);
     Volume volume = startVolume(path, dims, type, spacing, options);
