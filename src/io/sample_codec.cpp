@@ -122,7 +122,10 @@ void parseTextSamples(const std::string& where, std::string_view text, StoredTyp
   }
   const char* p = text.data();
   const char* end = text.data() + text.size();
-  auto isSpace = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; };
+  // Whitespace as a C++ stream (VTK's reader) skips it: form feed and vertical tab too.
+  auto isSpace = [](char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+  };
   const bool isFloat = type == StoredType::Float32 || type == StoredType::Float64;
   // Integer ranges as doubles; text integers beyond 2^53 are read as the nearest double.
   double lo = 0.0, hi = 0.0;
@@ -174,7 +177,8 @@ void parseTextSamples(const std::string& where, std::string_view text, StoredTyp
     sink.putValue(i, value);
   }
   while (p < end && (isSpace(*p) || *p == '\0')) ++p;  // a writer's padding is no value
-  // A value starts with a digit, a sign or a point, or is nan or inf (as the samples may be).
+  // A value starts with a digit, a sign or a point, or with nan or inf (as the samples may be,
+  // "nan(0x1)" and "infinity" included); no keyword of a later section does.
   const char* tokenEnd = p;
   while (tokenEnd < end && !isSpace(*tokenEnd) && *tokenEnd != '\0') ++tokenEnd;
   std::string next(p, tokenEnd);
@@ -182,7 +186,7 @@ void parseTextSamples(const std::string& where, std::string_view text, StoredTyp
                  [](unsigned char c) { return char(std::tolower(c)); });
   const bool startsValue =
       p != end && (std::isdigit(static_cast<unsigned char>(*p)) || *p == '+' || *p == '-' ||
-                   *p == '.' || next == "nan" || next == "inf" || next == "infinity");
+                   *p == '.' || next.starts_with("nan") || next.starts_with("inf"));
   if (after == TextAfterSamples::WhitespaceOnly ? p != end : startsValue) {
     throwInputError(
         where, "holds more than the " + std::to_string(count) + " values its header's sizes give");

@@ -106,7 +106,14 @@ TEST(LegacyReader, AsciiSamplesMayBeFollowedByASectionButNotByAValue) {
                             "CELL_DATA 1\n");
   const Volume volume = loadVolume(path.string());
   for (std::size_t i = 0; i < 8; ++i) ASSERT_EQ(volume.value(i), float(i + 1));
-  for (const char* extra : {"9\n", "-1\n", ".5\n", "+3 SCALARS\n", "nan\n", "INF\n"}) {
+  // Form feed and vertical tab separate values, as in VTK's (istream) reader.
+  std::string separated = head;
+  separated.replace(separated.find("1 2 3"), 5, "1\f2\v3");
+  test::writeFile(path, separated);
+  const Volume spaced = loadVolume(path.string());
+  for (std::size_t i = 0; i < 8; ++i) ASSERT_EQ(spaced.value(i), float(i + 1));
+  for (const char* extra :
+       {"9\n", "-1\n", ".5\n", "+3 SCALARS\n", "nan\n", "INF\n", "nan(0x1)\n", "Infinity\n"}) {
     test::writeFile(path, head + extra);
     test::expectInputError([&] { loadVolume(path.string()); }, path.string(),
                            {"holds more than the 8 values its header's sizes give"});
