@@ -828,16 +828,25 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
   if (slices.size() > 1) {
     const glm::dvec3 step =
         (slices.back().origin - slices.front().origin) / double(slices.size() - 1);
-    double largest = 0, irregular = 0;
+    const auto inPlane = [&](glm::dvec3 v) {
+      return glm::length(v - normal * glm::dot(v, normal));
+    };
+    // irregular: the farthest slice from the line of equal steps; unequalStep: the largest
+    // in-plane difference of one slice-to-slice step from the mean step (a single jump, a
+    // patient's or table's movement, keeps every slice near the line, not its steps equal).
+    double largest = 0, irregular = 0, unequalStep = 0;
     for (std::size_t i = 1; i < slices.size(); ++i) {
       const glm::dvec3 offset = slices[i].origin - slices.front().origin;
-      largest = std::max(largest, glm::length(offset - normal * glm::dot(offset, normal)));
+      largest = std::max(largest, inPlane(offset));
       irregular = std::max(irregular, glm::length(offset - step * double(i)));
+      unequalStep = std::max(unequalStep, inPlane(slices[i].origin - slices[i - 1].origin - step));
     }
     const double halfPixel = 0.5 * std::min(spacing.x, spacing.y);
+    const double shift = inPlane(step);
+    // Steps equal to a quarter of the shift, or to positions written to a hundredth of a pixel.
+    const bool equalSteps = unequalStep <= std::max(0.25 * shift, 0.02 * halfPixel);
     const auto rounded = [](double v) { return formatNumber(std::round(v * 100) / 100); };
-    if (largest > halfPixel && irregular <= halfPixel) {
-      const double shift = glm::length(step - normal * glm::dot(step, normal));
+    if (largest > halfPixel && irregular <= halfPixel && equalSteps) {
       sliceStep = step;
       warnings.push_back(path + ": slices shift in-plane by " + rounded(shift) +
                          " per slice (a gantry tilt of " +

@@ -419,8 +419,8 @@ fs::path longCtSeries(
 
 // Slices shifted in-plane from one to the next (a gantry tilt: 1 per 2.5 along y, 21.8 degrees)
 // are read as a straight stack, with a warning; the patient placement keeps the files' step.
-// Shifts that are not steps (a series put together wrongly) are said as such; shifts within
-// half a pixel (0.25 here) are not said.
+// Shifts that are not equal steps (a series put together wrongly, one jump) are said as such;
+// shifts within half a pixel (0.25 here) are not said.
 TEST(DicomReader, SlicesShiftedInPlaneAreSaidAndTheTiltKeptInThePlacement) {
   const Volume tilted = loadVolume(
       longCtSeries("tilted", 4, [](int i) { return std::to_string(30 + i) + ".5"; }).string());
@@ -441,6 +441,17 @@ TEST(DicomReader, SlicesShiftedInPlaneAreSaidAndTheTiltKeptInThePlacement) {
                 "slices lie shifted in-plane, up to 3 from the first and not in steps"),
             std::string::npos)
       << jumbled.warnings[0];
+
+  // One jump (a patient's or table's movement) keeps every slice within half a pixel of the
+  // line of equal steps, its steps unequal: not a tilt (round 13 read it as one).
+  const Volume jump =
+      loadVolume(longCtSeries("jump", 4, [](int i) { return i < 2 ? "30.5" : "31.1"; }).string());
+  ASSERT_EQ(jump.warnings.size(), 1u);
+  EXPECT_NE(jump.warnings[0].find("slices lie shifted in-plane, up to 0.6 from the first and not "
+                                  "in steps"),
+            std::string::npos)
+      << jump.warnings[0];
+  EXPECT_NEAR((jump.orientations[0].worldFromIndex * glm::dvec4(0, 0, 1, 0)).y, 0.0, 1e-9);
 
   const Volume within = loadVolume(
       longCtSeries("within", 4, [](int i) { return i == 2 ? "30.7" : "30.5"; }).string());
