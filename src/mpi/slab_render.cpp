@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -201,6 +202,22 @@ std::size_t layoutTexelBytes(SampleType type) {
   return type == SampleType::UInt8 || type == SampleType::Int8 ? 2 : 4;
 }
 
+// A read every rank makes before its next collective: a file error on any rank (a bad file
+// every rank reads alike, or a part of it one rank alone reads) is said once, by rank 0, and
+// every rank stops alike (refuseAlike), where each rank aborted with its own line and
+// MPI_Abort's banner.
+Volume loadAlike(const std::string& spec, const LoadOptions& load) {
+  std::optional<Volume> volume;
+  std::optional<std::string> refusal;
+  try {
+    volume = loadVolume(spec, load);
+  } catch (const InputError& e) {
+    refusal = e.what();
+  }
+  refuseAlike(refusal);
+  return std::move(*volume);
+}
+
 }  // namespace
 
 std::vector<double> gatherOnRoot(double value) {
@@ -217,7 +234,7 @@ Volume probeSlab(const std::string& spec, LoadOptions load) {
   load.progress = nullptr;
   load.region.crop = std::array<ReadRegion::Range, 3>{ReadRegion::Range{}, ReadRegion::Range{},
                                                       ReadRegion::Range{0, 1}};
-  return loadVolume(spec, load);
+  return loadAlike(spec, load);
 }
 
 glm::ivec3 fileDims(const Volume& probe) {
@@ -310,7 +327,7 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
   LoadOptions slabLoad = load;
   slabLoad.region.crop = std::array<ReadRegion::Range, 3>{ReadRegion::Range{}, ReadRegion::Range{},
                                                           ReadRegion::Range{part.voxelZ0, voxelZ1}};
-  read.volume = loadVolume(spec, slabLoad);
+  read.volume = loadAlike(spec, slabLoad);
 
   // What every rank must agree on: the texture format, the value range, the derived defaults.
   int wide = textureFormatFor(read.volume) == GL_R32F ? 1 : 0;

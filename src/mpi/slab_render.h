@@ -32,7 +32,8 @@ SlabRead readSlab(const std::string& spec, LoadOptions load, std::uint64_t maxTe
 
 // The file's header and its first slice (what readSlab reads first): the dimensions
 // (fileDims) and spacing for the frame's view before the slabs are chosen. Throws
-// EveryRankError for --crop or --stride.
+// EveryRankError for --crop or --stride, and on every rank, with the lowest failing rank's
+// message said once, for a file any rank cannot read (as readSlab for its slab's part).
 Volume probeSlab(const std::string& spec, LoadOptions load);
 glm::ivec3 fileDims(const Volume& probe);
 

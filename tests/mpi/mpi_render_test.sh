@@ -302,6 +302,20 @@ count=$(grep -c "samples lost precision as float32" "$work/err" || true)
 [[ $count == 1 ]] || { cat "$work/err" >&2; fail "the file's warning printed $count times"; }
 echo "the file's warnings across ranks: said once"
 
+# A file's errors, met by every rank alike (a bad header) or by one rank alone (the gzip check
+# at the stream's end, in the last slab): said once, by rank 0, with no MPI_Abort banner (each
+# rank said its own, and the launcher its banner).
+{ printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 16 16 16\nencoding: gzip\n\n'
+  head -c 4096 /dev/urandom | gzip -c; } >"$work/badcrc.nrrd"
+size=$(stat -c %s "$work/badcrc.nrrd")
+printf '\0\0\0\0' | dd of="$work/badcrc.nrrd" bs=1 seek=$((size - 8)) conv=notrunc status=none
+refused_once "badcrc.nrrd: gzip payload after the header is corrupt" render "$work/badcrc.nrrd" \
+  --size 32x32 --out "$work/c.png"
+printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 16 16\nencoding: raw\n\n' >"$work/bad.nrrd"
+refused_once "bad.nrrd: " render "$work/bad.nrrd" --size 32x32 --out "$work/c.png"
+[[ ! -e $work/c.png ]] || fail "a render of a bad file wrote its output"
+echo "a file's errors across ranks: said once"
+
 # Options that read their files while parsed (--rules, --tf): refused once, also where only one
 # rank lacks the file (another working directory): the ranks meet after parsing, none waits. An
 # output into a missing folder: refused once, before the frame.
