@@ -8,11 +8,20 @@
 namespace vsil {
 
 // `text` with each control byte (a NUL, ESC, CR, a newline: what a hostile file may put in a
-// name or value that a message quotes) and each byte of no valid UTF-8 sequence (binary bytes
-// quoted from a file; a terminal shows them as garbage, a JSON writer refuses them) replaced
-// by '?', so that it prints as one line, whole (a NUL would cut what() short), without driving
-// the terminal. UTF-8 names (Ünterschädel.nrrd) stay as they are.
+// name or value that a message quotes) replaced by '?', so that it prints as one line, whole
+// (a NUL would cut what() short) and without driving the terminal. Other bytes stay: a file's
+// name that is not UTF-8 is named as it is (Python gives it back through os.fsdecode).
 inline std::string oneLine(std::string text) {
+  for (char& c : text) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  return text;
+}
+
+// oneLine's text with each byte of no valid UTF-8 sequence replaced by '?' too, for what a
+// message quotes from a file's contents (binary bytes where a number should be: a terminal shows
+// them as garbage, a JSON writer refuses them). UTF-8 stays (Schädel, →).
+inline std::string printableText(std::string text) {
   const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
   for (std::size_t i = 0; i < text.size();) {
     const unsigned char lead = byte(i);
@@ -38,9 +47,7 @@ inline std::string oneLine(std::string text) {
       const unsigned char next = byte(i + k);
       valid = k == 1 ? next >= low && next <= high : next >= 0x80 && next <= 0xbf;
     }
-    if (!valid) {
-      text[i++] = '?';
-    } else if (lead < 0x20 || lead == 0x7f) {
+    if (!valid || lead < 0x20 || lead == 0x7f) {
       text[i++] = '?';
     } else {
       i += length;

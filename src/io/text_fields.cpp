@@ -56,7 +56,7 @@ std::string dataFilePath(const std::string& header, const std::string& label,
 
 std::string quote(std::string_view text) {
   constexpr std::size_t kMaxShown = 40;
-  return "'" + oneLine(std::string(text.substr(0, kMaxShown))) +
+  return "'" + printableText(std::string(text.substr(0, kMaxShown))) +
          (text.size() > kMaxShown ? "...'" : "'");
 }
 

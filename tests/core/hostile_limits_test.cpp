@@ -85,23 +85,23 @@ TEST(HostileLimits, JsonSnippetQuotesTheStartOnly) {
   EXPECT_EQ(jsonSnippet(nlohmann::json(3.5)), "3.5");
 }
 
-// An error message quoting a hostile file's bytes is one line of valid UTF-8: control bytes
-// and bytes of no UTF-8 sequence (binary data, a truncated or overlong sequence, a surrogate)
-// become '?', UTF-8 names stay.
-TEST(HostileLimits, MessagesAreOneLineOfValidUtf8) {
+// A message is one line (control bytes become '?'); what it quotes from a file's contents is
+// valid UTF-8 too (bytes of no UTF-8 sequence: binary data, a truncated or overlong sequence, a
+// surrogate, become '?'), UTF-8 stays; a file name that is not UTF-8 is named as it is.
+TEST(HostileLimits, MessagesAreOneLineAndQuotesValidUtf8) {
   EXPECT_EQ(oneLine("a\nb\x1b[31m\x7f"), "a?b?[31m?");
+  EXPECT_EQ(oneLine("cut\xfe.nrrd"), "cut\xfe.nrrd");
+  EXPECT_EQ(printableText("a\nb\x1b[31m\x7f"), "a?b?[31m?");
   const std::string names =
       "Sch\xc3\xa4"
       "del \xe2\x86\x92 \xf0\x9f\x98\x80";  // Schädel → 😀
-  EXPECT_EQ(oneLine(names), names);
-  EXPECT_EQ(oneLine("\xff\xfe\x80"), "???");
-  EXPECT_EQ(oneLine("cut \xe2\x86"), "cut ??");           // a sequence cut short
-  EXPECT_EQ(oneLine("\xc0\xaf \xe0\x80\xaf"), "?? ???");  // overlong '/'
-  EXPECT_EQ(oneLine("\xed\xa0\x80"), "???");              // a surrogate
-  EXPECT_EQ(oneLine("\xf4\x90\x80\x80"), "????");         // past U+10FFFF
-  EXPECT_EQ(oneLine(std::string("a\0b", 3)), "a?b");
-  EXPECT_STREQ(InputError("x.slc: value [\x86\x01\xc3] is not a number").what(),
-               "x.slc: value [???] is not a number");
+  EXPECT_EQ(printableText(names), names);
+  EXPECT_EQ(printableText("\xff\xfe\x80"), "???");
+  EXPECT_EQ(printableText("cut \xe2\x86"), "cut ??");           // a sequence cut short
+  EXPECT_EQ(printableText("\xc0\xaf \xe0\x80\xaf"), "?? ???");  // overlong '/'
+  EXPECT_EQ(printableText("\xed\xa0\x80"), "???");              // a surrogate
+  EXPECT_EQ(printableText("\xf4\x90\x80\x80"), "????");         // past U+10FFFF
+  EXPECT_EQ(printableText(std::string("a\0b", 3)), "a?b");
 }
 
 }  // namespace
