@@ -24,13 +24,7 @@ std::vector<TableDefinition> makeRegistry() {
   return {
       {"nk3", "Nagy–Klein Table 3: RA, OPS and BS frame rates per dataset and window",
        nk3DatasetNames(), runNk3Table, "", false, classicDatasetFile},
-      {"fft",
-       "broadening cost against sigma: FFT vs OpenCV GaussianBlur",
-       {},
-       runFftTable,
-       "",
-       false,
-       {}},
+      {"fft", "broadening cost against sigma: FFT vs OpenCV GaussianBlur", {}, runFftTable, ""},
       {"animate", "one vsil animate against 36 vsil render processes (a 36-frame orbit)",
        animateDatasetNames(), runAnimateTable, "", false, classicDatasetFile},
       {"dv1", "Díaz–Vázquez Table 1: MIP, DEMIP and DEMIP with colour sphere frame rates",
@@ -49,19 +43,11 @@ std::vector<TableDefinition> makeRegistry() {
       {"large",
        "volumes beyond one 3D texture (512³, 1024³, 2048²·1024 uint8): load + upload, "
        "silhouette frame, peak memory",
-       largeDatasetNames(),
-       runLargeTable,
-       "",
-       /*onlyWhenNamed=*/true,
-       {}},
+       largeDatasetNames(), runLargeTable, "", /*onlyWhenNamed=*/true},
       {"scaling",
        "mpirun -np N vsil render for N = 1..4 over a volume beyond one rank's --max-memory: "
        "frame, reduction share, memory per rank (--only: techniques)",
-       scalingTechniqueNames(),
-       runScalingTable,
-       "",
-       /*onlyWhenNamed=*/true,
-       {}},
+       scalingTechniqueNames(), runScalingTable, "", /*onlyWhenNamed=*/true},
   };
 }
 

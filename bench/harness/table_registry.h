@@ -22,7 +22,7 @@ struct TableDefinition {
   bool onlyWhenNamed = false;
   // The file in the datasets folder a dataset of this table is read from; none for a name it
   // does not read from a file (generated volumes, the paper's Skull, the scaling techniques).
-  std::function<std::optional<std::string>(const std::string& name)> datasetFile;
+  std::function<std::optional<std::string>(const std::string& name)> datasetFile = nullptr;
 };
 
 const std::vector<TableDefinition>& tableRegistry();
