@@ -71,8 +71,21 @@ std::string fsBytes(const py::handle& text) {
 }
 
 // A UserWarning at the caller's line (PyErr_WarnEx's stack level 1).
+// A UserWarning attributed to the caller's line: past the frames of the vsil package's own
+// Python wrappers (warnings' stacklevel counts them), not to vsil/__init__.py.
 void warnUser(const std::string& message) {
-  py::module_::import("warnings").attr("warn")(fsText(message), py::handle(PyExc_UserWarning), 1);
+  const py::object sys = py::module_::import("sys");
+  const std::string package = py::str(
+      py::module_::import("os.path").attr("dirname")(py::module_::import("vsil").attr("__file__")));
+  int level = 1;
+  for (py::object frame = sys.attr("_getframe")(0); !frame.is_none();
+       frame = frame.attr("f_back")) {
+    const std::string file = py::str(frame.attr("f_code").attr("co_filename"));
+    if (!file.starts_with(package + "/")) break;
+    ++level;
+  }
+  py::module_::import("warnings")
+      .attr("warn")(fsText(message), py::handle(PyExc_UserWarning), level);
 }
 
 template <typename Json>
@@ -649,6 +662,7 @@ py::list keywordTable(const std::string& function) {
     except = {"gl", "gl_device"};
   } else if (function == "load") {
     cli::addVolumeOptions(app, volume);
+    except = {"max_texture_mib"};  // render's and add_volume's (load refuses it)
   } else if (function == "Renderer") {
     cli::addGlOptions(app, gl);
   } else {
@@ -700,6 +714,13 @@ PyVolume load(const py::object& path, const py::kwargs& kwargs) {
     throw PythonTypeError("vsil.load: expected a path or a gen: spec, not " + typeNameOf(path));
   }
   const std::string spec = fsBytes(path);
+  // Accepted and ignored before (round 16): how a volume is cut into textures is decided where
+  // it is uploaded.
+  if (kwargs.contains("max_texture_mib")) {
+    throw PythonTypeError(
+        "vsil.load: max_texture_mib is a keyword of render and add_volume, "
+        "where the volume is uploaded, not of load");
+  }
   const LoadOptions options = loadOptionsFromKeywords(kwargs, "vsil.load");
   Volume loaded;
   {
@@ -939,8 +960,23 @@ class PythonRenderer {
       spec.viewFrom = parseNumberPair("--view-from", valueText(pair, viewFrom, function));
       spec.viewTo = parseNumberPair("--view-to", valueText(pair, viewTo, function));
     }
+    // As vsil animate: a keyword the frames set would be lost (the CLI refuses both).
+    const auto given = [&](const std::string& key) {
+      return kwargs.contains(key.c_str()) && !kwargs[key.c_str()].is_none();
+    };
+    if (!viewFrom.is_none() && given("view")) {
+      throw InputError(function +
+                       ": view= is given too, and view_from/view_to set the view of "
+                       "every frame: give one of them");
+    }
     for (const std::string& text : sweepTexts(sweep, function)) {
       spec.sweeps.push_back(parseSweep(text));
+      std::string key = spec.sweeps.back().name;
+      std::replace(key.begin(), key.end(), '-', '_');
+      if (given(key)) {
+        throw InputError(function + ": sweep " + text + ": " + key +
+                         "= is given too, and the sweep sets it on every frame: give one of them");
+      }
     }
     const AnimationPlan plan(request.render, spec, request.load.limits);
     std::string videoPath;
@@ -966,6 +1002,12 @@ class PythonRenderer {
       std::optional<VideoFile> file;
       if (!videoPath.empty()) file.emplace(videoPath, request.render.settings.size, fps);
       for (int i = 0; i < plan.frames(); ++i) {
+        {
+          // Ctrl-C (and any signal handler's exception) between frames, as the CLI stops at
+          // the signal: the video's temporary is removed, no frames are returned.
+          const py::gil_scoped_acquire acquire;
+          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        }
         RenderOutput output = slot.job->render(plan.request(i), request.load.limits);
         if (file) file->write(output.image);
         output.metadata["swept"] = plan.sweptValues(i);
