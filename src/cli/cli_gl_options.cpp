@@ -1,5 +1,7 @@
 #include "cli/cli_gl_options.h"
 
+#include <limits>
+
 namespace vsil::cli {
 
 void addGlOptions(CLI::App& command, GlOptions& options, bool valueOptional) {
@@ -24,7 +26,7 @@ void addGlOptions(CLI::App& command, GlOptions& options, bool valueOptional) {
       .add_option("--gl-device", options.device,
                   "this EGL device only (numbered as `vsil info --gl` lists them); default "
                   "$VSIL_GL_DEVICE, else each in turn")
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Range(0, std::numeric_limits<int>::max()))
       ->group(group);
 }
 
