@@ -1018,6 +1018,22 @@ def test_animate_stops_at_a_signal_between_frames(tmp_path, renderer):
     assert elapsed < 10, elapsed
 
 
+def test_generate_upload_and_add_volume_refuse_wrong_types_in_one_line(renderer):
+    """generate, upload and add_volume name the argument in one line (round 16: pybind11's
+    text of several lines), and a bool is no size."""
+    for call, says in [(lambda: vsil.generate(b"spheres"), "vsil.generate: name takes a str"),
+                       (lambda: vsil.generate("spheres", True), "vsil.generate: size takes an int"),
+                       (lambda: renderer.upload("gen:spheres:8"),
+                        "vsil.Renderer.upload: volume takes a vsil.Volume, not str"),
+                       (lambda: renderer.add_volume(np.zeros((4, 4, 4))),
+                        "vsil.Renderer.add_volume: volume takes a vsil.Volume, not ndarray"),
+                       (lambda: renderer.add_volume(vsil.generate("spheres", 8), 1.5),
+                        "max_texture_mib takes an int, not float")]:
+        with pytest.raises(TypeError) as error:
+            call()
+        assert says in str(error.value) and "\n" not in str(error.value), str(error.value)
+
+
 def test_load_refuses_the_upload_keyword_it_would_ignore():
     """max_texture_mib decides how render cuts the volume into textures; load took it and
     ignored it (round 16)."""

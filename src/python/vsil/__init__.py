@@ -97,7 +97,24 @@ class Renderer(_vsil._Renderer):
 
     def upload(self, volume):
         """Uploads the volume again (after its samples changed in place)."""
+        _require_volume("vsil.Renderer.upload", volume)
         return super().upload(volume)
+
+    def add_volume(self, volume, max_texture_mib=None):
+        """Keeps the volume resident (its own textures, uploaded once now) until remove_volume:
+        renders switching between resident volumes upload nothing."""
+        _require_volume("vsil.Renderer.add_volume", volume)
+        if max_texture_mib is not None and (isinstance(max_texture_mib, bool)
+                                            or not isinstance(max_texture_mib, numbers.Integral)):
+            raise TypeError("vsil.Renderer.add_volume: max_texture_mib takes an int, not "
+                            f"{type(max_texture_mib).__name__}")
+        return super().add_volume(volume, max_texture_mib)
+
+
+def _require_volume(function, volume):
+    """One line naming the argument (pybind11's TypeError lists the whole signature)."""
+    if not isinstance(volume, Volume):
+        raise TypeError(f"{function}: volume takes a vsil.Volume, not {type(volume).__name__}")
 
 
 _SELF = inspect.Parameter("self", inspect.Parameter.POSITIONAL_OR_KEYWORD)
@@ -168,6 +185,11 @@ _signed(info, [inspect.Parameter("volume", inspect.Parameter.POSITIONAL_OR_KEYWO
 
 def generate(name, size=128):
     """A procedural volume, as INPUT gen:NAME:SIZE."""
+    # One line naming the argument; a bool is no size (pybind11 takes True as 1).
+    if not isinstance(name, str):
+        raise TypeError(f"vsil.generate: name takes a str, not {type(name).__name__}")
+    if isinstance(size, bool) or not isinstance(size, numbers.Integral):
+        raise TypeError(f"vsil.generate: size takes an int, not {type(size).__name__}")
     return _vsil.generate(name, size)
 
 
