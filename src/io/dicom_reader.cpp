@@ -843,8 +843,9 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
     }
     const double halfPixel = 0.5 * std::min(spacing.x, spacing.y);
     const double shift = inPlane(step);
-    // Steps equal to a quarter of the shift, or to positions written to a hundredth of a pixel.
-    const bool equalSteps = unequalStep <= std::max(0.25 * shift, 0.02 * halfPixel);
+    // Steps equal to a quarter of the shift or a quarter of a pixel: positions written to 0.1 mm
+    // (or 0.01) make a small tilt's steps differ by that much (round 15), a jump by more.
+    const bool equalSteps = unequalStep <= std::max(0.25 * shift, 0.5 * halfPixel);
     const auto rounded = [](double v) { return formatNumber(std::round(v * 100) / 100); };
     if (largest > halfPixel && irregular <= halfPixel && equalSteps) {
       sliceStep = step;
