@@ -1,5 +1,6 @@
 #include "video/video_file.h"
 
+#include <fstream>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -43,6 +44,55 @@ video::CreateEncoder loadPlugin() {
 #endif
   return reinterpret_cast<video::CreateEncoder>(
       pluginSymbol("video", video::kPluginFile, video::kCreateEncoderSymbol, built));
+}
+
+// Whether the container's own sizes account for the file, to its last byte: a disk that filled
+// late cut an MP4's last box or an AVI's index (or its last frame) with every frame still
+// decodable (round 15). MP4: top-level boxes (32-bit big-endian size and type; size 1: a 64-bit
+// size follows, 0: to the end) ending at the file's end, one of them "moov". AVI: "RIFF" chunks
+// (the first "AVI ", OpenDML's further ones "AVIX"; 32-bit little-endian sizes, padded to even)
+// ending there. Only the headers are read.
+bool containerComplete(const std::filesystem::path& path, const VideoFormat& format) {
+  std::ifstream in(path, std::ios::binary);
+  std::error_code error;
+  const std::uint64_t size = std::filesystem::file_size(path, error);
+  if (!in || error || size == 0) return false;
+  // `length` bytes at `at` as an unsigned word; false where the file ends first.
+  const auto word = [&](std::uint64_t at, int length, bool bigEndian, std::uint64_t& value) {
+    unsigned char bytes[8] = {};
+    if (size - at < std::uint64_t(length)) return false;
+    in.seekg(std::streamoff(at));
+    if (!in.read(reinterpret_cast<char*>(bytes), length)) return false;
+    value = 0;
+    for (int i = 0; i < length; ++i) {
+      value |= std::uint64_t(bytes[i]) << (8 * (bigEndian ? length - 1 - i : i));
+    }
+    return true;
+  };
+  const bool mp4 = std::string_view(format.extension) == ".mp4";
+  bool movie = false;
+  std::uint64_t at = 0, value = 0;
+  while (at < size) {
+    std::uint64_t next = 0;
+    if (mp4) {  // size, then type
+      std::uint64_t type = 0;
+      if (!word(at, 4, true, value) || !word(at + 4, 4, true, type)) return false;
+      movie = movie || type == 0x6d6f6f76;  // "moov"
+      if (value == 1 && !word(at + 8, 8, true, value)) return false;
+      if (value == 0) value = size - at;
+      if (value < 8) return false;
+      next = at + value;
+    } else {  // "RIFF", then the size
+      std::uint64_t riff = 0;
+      if (!word(at, 4, true, riff) || riff != 0x52494646 || !word(at + 4, 4, false, value)) {
+        return false;
+      }
+      next = at + 8 + value + (value % 2);
+    }
+    if (next > size) return false;
+    at = next;
+  }
+  return mp4 ? movie : true;
 }
 
 }  // namespace
@@ -112,6 +162,12 @@ void VideoFile::finish() {
   writer_->encoder->close();
   file_->finish();
   const int readBack = writer_->encoder->framesReadBack();
+  const VideoFormat* format = formatOf(file_->target());
+  if (!containerComplete(file_->temporaryPath(), *format)) {
+    throwInputError(file_->target().string(),
+                    "cannot write the video whole (the file ends before its container's own "
+                    "sizes say; is the disk full?)");
+  }
   if (readBack != frames_) {
     throwInputError(file_->target().string(),
                     "cannot write the video whole (" +

@@ -41,9 +41,10 @@ class VideoFile {
 
   // Appends a frame: 8-bit BGR or BGRA of the size given.
   void write(const cv::Mat& image);
-  // Closes the writer, reads the video back and renames the temporary over the target. Throws
-  // InputError naming the target when the file does not give back every frame written (a full
-  // disk: OpenCV reports no failed write); the temporary is then removed.
+  // Closes the writer, checks the video and renames the temporary over the target. Throws
+  // InputError naming the target when the container's sizes do not account for the file or it
+  // does not give back every frame written (a full disk: OpenCV reports no failed write); the
+  // temporary is then removed.
   void finish();
   int framesWritten() const { return frames_; }
 

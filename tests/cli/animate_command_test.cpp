@@ -243,32 +243,40 @@ TEST(AnimateCommand, VideoHoldsTheFramesOfThePngs) {
 }
 
 // A video the disk cannot hold is refused, not left half-written: OpenCV's VideoWriter reports
-// no failed write, so a full disk (here a file-size limit, 1 KiB, with SIGXFSZ ignored so that
-// writes fail with EFBIG) left an MP4 without its index, or an AVI cut short, exit 0.
+// no failed write, so a full disk (here a file-size limit, with SIGXFSZ ignored so that writes
+// fail with EFBIG) left an MP4 without its index, or an AVI cut short, exit 0. Cut early (at
+// 1 KiB: frames lost) and late (8 bytes short of the whole file: every frame decodable, the
+// MP4's last box or the AVI's index cut, round 15).
 TEST(AnimateCommand, AVideoTheDiskCannotHoldIsRefused) {
   const fs::path dir = test::scratchDir();
+  const std::string args = "animate gen:spheres:48 --size 128x128 --frames 12 --quiet --video ";
   struct rlimit previous {};
   ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &previous), 0);
-  const auto previousHandler = std::signal(SIGXFSZ, SIG_IGN);  // inherited through exec
-  struct rlimit small = previous;
-  small.rlim_cur = 1024;
-  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
-  std::vector<test::CommandResult> results;
   for (const char* name : {"movie.mp4", "movie.avi"}) {
-    results.push_back(
-        test::runVsil("animate gen:spheres:48 --size 128x128 --frames 12 --quiet "
-                      "--video " +
-                      (dir / name).string()));
+    ASSERT_EQ(test::runVsil(args + (dir / "whole").string() + fs::path(name).extension().string())
+                  .exitCode,
+              0);
+    const auto whole = fs::file_size(dir / ("whole" + fs::path(name).extension().string()));
+    for (const rlim_t limit : {rlim_t(1024), rlim_t(whole - 8)}) {
+      SCOPED_TRACE(std::string(name) + " limited to " + std::to_string(limit) + " of " +
+                   std::to_string(whole) + " bytes");
+      const auto previousHandler = std::signal(SIGXFSZ, SIG_IGN);  // inherited through exec
+      struct rlimit small = previous;
+      small.rlim_cur = limit;
+      ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+      const test::CommandResult result = test::runVsil(args + (dir / name).string());
+      setrlimit(RLIMIT_FSIZE, &previous);
+      std::signal(SIGXFSZ, previousHandler);
+      EXPECT_EQ(result.exitCode, 2) << result.out << result.err;
+      EXPECT_NE(result.err.find("cannot write the video whole"), std::string::npos) << result.err;
+      EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+      EXPECT_FALSE(fs::exists(dir / name));
+    }
   }
-  setrlimit(RLIMIT_FSIZE, &previous);
-  std::signal(SIGXFSZ, previousHandler);
-  for (const test::CommandResult& result : results) {
-    EXPECT_EQ(result.exitCode, 2) << result.out << result.err;
-    EXPECT_NE(result.err.find("cannot write the video whole"), std::string::npos) << result.err;
-    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  // Nothing but the whole videos: no temporary left.
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    EXPECT_EQ(entry.path().stem(), "whole") << entry.path();
   }
-  // Neither the videos nor a temporary.
-  EXPECT_TRUE(fs::is_empty(dir));
 }
 
 // "--out-dir new/" names the folder new, created in the current folder (it was refused:
