@@ -630,7 +630,7 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
         std::find_if(all.begin(), all.end(), [&](const Series& s) { return s.uid == wanted; });
     if (it == all.end()) {
       std::string known;
-      for (const Series& s : all) known += (known.empty() ? "" : ", ") + s.uid;
+      for (const Series& s : all) known += (known.empty() ? "" : ", ") + printableText(s.uid);
       throwInputError(path, "has no series " + quote(wanted) + " (series: " + known + ")");
     }
     chosen = &*it;
@@ -639,7 +639,7 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
     const char* first = s.files.front().c_str();
     const std::string description =
         textAsUtf8(trimmed(scanner.GetValue(first, kSeriesDescription)));
-    return s.uid + " (" + std::to_string(s.files.size()) + " slices" +
+    return printableText(s.uid) + " (" + std::to_string(s.files.size()) + " slices" +
            (description.empty() ? "" : ", " + quote(description)) + ")";
   };
   if (all.size() > 1 && options.series.empty()) {
@@ -860,7 +860,9 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
   }
 
   Volume volume = startVolume(path, dims, type, spacing, options, rescale);
-  const std::string modality = trimmed(scanner.GetValue(firstFile, kModality));
+  // File text shown as it is read: no control bytes, valid UTF-8 (round 15: an escape sequence
+  // and a newline in a Modality reached the terminal through info's format line).
+  const std::string modality = printableText(trimmed(scanner.GetValue(firstFile, kModality)));
   volume.format = std::string(frames > 1 ? "DICOM multi-frame (" : "DICOM series (") +
                   (modality.empty() ? std::string() : modality + ", ") +
                   std::to_string(slices.size()) + (frames > 1 ? " frames, " : " slices, ") +

@@ -99,7 +99,8 @@ LegacyHeader parseHeader(const std::string& path, std::string_view text) {
     const auto tokens = splitWhitespace(line);
     if (tokens.empty()) continue;
     const std::string keyword = toLower(tokens[0]);
-    const std::string where = "line " + std::to_string(cursor.lineNumber()) + " " + keyword;
+    const std::string where =
+        "line " + std::to_string(cursor.lineNumber()) + " " + printableText(keyword);
     const auto argument = [&](std::size_t i) {
       if (i >= tokens.size()) throwInputError(path, where + " lacks an argument");
       return tokens[i];

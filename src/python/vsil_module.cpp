@@ -1399,13 +1399,19 @@ PYBIND11_MODULE(_vsil, m) {
                                return py::make_tuple(v.volume->spacing.x, v.volume->spacing.y,
                                                      v.volume->spacing.z);
                              })
-      .def_property_readonly("name", [](const PyVolume& v) { return v.volume->name; })
-      .def_property_readonly("source", [](const PyVolume& v) { return v.volume->source; })
+      // Names as os.fsdecode gives them (a file name need not be UTF-8: round 15).
+      .def_property_readonly("name", [](const PyVolume& v) { return fsText(v.volume->name); })
+      .def_property_readonly("source", [](const PyVolume& v) { return fsText(v.volume->source); })
       .def_property_readonly(
-          "format", [](const PyVolume& v) { return v.volume->format; },
+          "format", [](const PyVolume& v) { return fsText(v.volume->format); },
           "the file's format and variant, '' for generated volumes")
       .def_property_readonly(
-          "warnings", [](const PyVolume& v) { return v.volume->warnings; },
+          "warnings",
+          [](const PyVolume& v) {
+            py::list warnings;
+            for (const std::string& warning : v.volume->warnings) warnings.append(fsText(warning));
+            return warnings;
+          },
           "what reading the file warned about (also issued as UserWarning)")
       .def_property_readonly("dtype", [](const PyVolume& v) { return dtypeOf(v.volume->type()); })
       .def_property_readonly("value_range",
@@ -1415,9 +1421,9 @@ PYBIND11_MODULE(_vsil, m) {
                              })
       .def("__repr__", [](const PyVolume& v) {
         const Volume& volume = *v.volume;
-        return "<vsil.Volume " + volume.name + " " + std::to_string(volume.dims.x) + "x" +
-               std::to_string(volume.dims.y) + "x" + std::to_string(volume.dims.z) + " " +
-               sampleTypeName(volume.type()) + ">";
+        return fsText("<vsil.Volume " + volume.name + " " + std::to_string(volume.dims.x) + "x" +
+                      std::to_string(volume.dims.y) + "x" + std::to_string(volume.dims.z) + " " +
+                      sampleTypeName(volume.type()) + ">");
       });
 
   m.def("load", &load, py::arg("path"),

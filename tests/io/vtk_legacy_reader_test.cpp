@@ -122,6 +122,18 @@ TEST(LegacyReader, AsciiSamplesMayBeFollowedByASectionButNotByAValue) {
 
 // int, unsigned_int, vtktypeint64 and vtktypeuint64 (BINARY, big-endian, and ASCII) are kept as
 // float32, as the other readers keep the wide integers: exact up to 2^24, rounded ones counted.
+// An unknown keyword of binary bytes is named as '?'s, the whole message valid UTF-8 (round 15:
+// the line's raw bytes came first).
+TEST(LegacyReader, AnUnknownKeywordOfBinaryBytesIsPrintable) {
+  const auto path = test::scratchDir() / "keyword.vtk";
+  test::writeFile(path,
+                  "# vtk DataFile Version 3.0\nkeyword\nASCII\nDATASET STRUCTURED_POINTS\n"
+                  "DIMENSIONS 2 2 2\n\xff\xfe\x80 1\n");
+  test::expectInputError([&] { loadVolume(path.string()); }, path.string(),
+                         {": line 6 ???: unknown keyword '??"
+                          "?'"});  // (no trigraph)
+}
+
 TEST(LegacyReader, WideIntegersConvertToFloat32CountingRoundedSamples) {
   const test::WideIntegerCase cases[] = {
       {"int", "int32", 4, {-5, 16777217}, {-5, 16777216}, 1},

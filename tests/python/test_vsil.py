@@ -1158,7 +1158,11 @@ def test_a_file_name_that_is_not_utf8_loads_renders_and_is_named_in_errors(tmp_p
     with open(name, "wb") as file:
         file.write(b"NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n"
                    + bytes([64] * 8))
-    assert vsil.load(name).dims == (2, 2, 2)
+    volume = vsil.load(name)
+    assert volume.dims == (2, 2, 2)
+    # Its name as os.fsdecode gives it (round 15: UnicodeDecodeError from repr, source, name).
+    assert volume.source == name and volume.name == "bad\udcffname"
+    assert "bad\udcffname" in repr(volume)
     assert vsil.info(name)["source"].endswith("bad\ufffdname.nrrd")
     with vsil.Renderer() as renderer:
         frame = renderer.render(pathlib.Path(name), size=(16, 16))
