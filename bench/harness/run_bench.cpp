@@ -85,8 +85,9 @@ std::string markdownReport(const MachineInfo& machine, const std::vector<TableRe
   return out;
 }
 
-// The timed frames of the rows that carry them ("ms"), named by dataset, size and case.
-std::vector<CaseFrames> caseFramesOf(const std::vector<nlohmann::json>& rows) {
+// The timed frames of the rows that carry them ("ms"), named by dataset, size and case; with no
+// warm-up frame the first, which pays for warming up (round 15), left out.
+std::vector<CaseFrames> caseFramesOf(const std::vector<nlohmann::json>& rows, int warmup) {
   std::vector<CaseFrames> cases;
   for (const auto& row : rows) {
     const auto ms = row.find("ms");
@@ -104,8 +105,8 @@ std::vector<CaseFrames> caseFramesOf(const std::vector<nlohmann::json>& rows) {
       if (std::string(key) == "case") break;  // the case names its technique
     }
     CaseFrames frames{name, {}};
-    for (const auto& value : *ms) {
-      if (value.is_number()) frames.ms.push_back(value.get<double>());
+    for (std::size_t i = warmup > 0 ? 0 : 1; i < ms->size(); ++i) {
+      if ((*ms)[i].is_number()) frames.ms.push_back((*ms)[i].get<double>());
     }
     cases.push_back(std::move(frames));
   }
@@ -197,7 +198,8 @@ BenchReport runBench(const BenchOptions& options, std::ostream& out, std::ostrea
       Progress progress(progressOut, progressIsTerminal);
       table = implementedTable(name).run(options, progress);
     }
-    if (auto note = unsteadyNote(caseFramesOf(table.rows))) table.notes.push_back(*note);
+    if (auto note = unsteadyNote(caseFramesOf(table.rows, options.warmup)))
+      table.notes.push_back(*note);
     out << "\n" << table.name << ": " << table.title << "\n" << table.text;
     for (const auto& note : table.notes) out << "  " << note << "\n";
     for (const auto& failure : table.failures) out << "  check FAILED: " << failure << "\n";

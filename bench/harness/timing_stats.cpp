@@ -47,8 +47,8 @@ std::optional<std::string> unsteadyNote(const std::vector<CaseFrames>& cases) {
     if (!(*fastest > 0)) continue;
     ++counted;
     const double spread = *slowest / *fastest;
-    if (spread > kUnsteadySpread) ++over;
-    if (spread > worstSpread) {
+    if (spread > kUnsteadySpread && *slowest - *fastest > kUnsteadyMs) ++over;
+    if (spread > worstSpread && *slowest - *fastest > kUnsteadyMs) {
       worstSpread = spread;
       worst = &c;
     }

@@ -35,9 +35,12 @@ struct CaseFrames {
 // within 1.05-1.56 (the orbit's views differ, llvmpipe's threads are scheduled unevenly); a
 // loaded machine's swung 2x and more (README, "Ratios from paired frames").
 inline constexpr double kUnsteadySpread = 2.0;
-// For a table whose cases' frame times spread past kUnsteadySpread (a case of at least two
-// frames), the note that says so: the machine's speed changed during the run (other load,
-// frequency scaling), so its frame rates may be off by as much; nullopt when every case was
+// ... and by more than this many milliseconds: frames of a few milliseconds (64² images) swing
+// by 2x from the scheduler alone.
+inline constexpr double kUnsteadyMs = 5.0;
+// For a table whose cases' frame times spread past kUnsteadySpread and kUnsteadyMs (a case of
+// at least two frames), the note that says so: the machine's speed changed during the run (other
+// load, frequency scaling), so its frame rates may be off by as much; nullopt when every case was
 // steadier.
 std::optional<std::string> unsteadyNote(const std::vector<CaseFrames>& cases);
 
