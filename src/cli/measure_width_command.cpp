@@ -5,6 +5,8 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -50,9 +52,10 @@ void run(const MeasureWidthArgs& args) {
     throwInputError(args.image, "no pixel has the line colour " + args.lineColor);
   }
   const auto samples = measureLineWidths(mask, args.image, maxBytes);
-  if (const std::string warning = regionsNotLinesWarning(mask, samples, args.image);
-      !warning.empty()) {
-    std::cerr << "vsil: warning: " << warning << "\n";
+  // Said on stderr and kept in the report (--json) beside the numbers they qualify.
+  std::vector<std::string> warnings;
+  if (std::string warning = regionsNotLinesWarning(mask, samples, args.image); !warning.empty()) {
+    warnings.push_back(std::move(warning));
   }
   std::vector<double> widths;
   for (const auto& s : samples) widths.push_back(s.width);
@@ -73,9 +76,9 @@ void run(const MeasureWidthArgs& args) {
       throwInputError(args.depth, "is not the size of " + args.image);
     }
     const auto bins = widthAgainstDepth(samples, depth, args.bins);
-    if (const std::string warning = emptyDepthBinsWarning(samples, bins, "--depth " + args.depth);
+    if (std::string warning = emptyDepthBinsWarning(samples, bins, "--depth " + args.depth);
         !warning.empty()) {
-      std::cerr << "vsil: warning: " << warning << "\n";
+      warnings.push_back(std::move(warning));
     }
     text << "depth from   to  count  mean  median\n";
     for (const auto& bin : bins) {
@@ -87,6 +90,8 @@ void run(const MeasureWidthArgs& args) {
       outputs.add(args.plot, encodePng(args.plot, plotWidthAgainstDepth(samples, depth, bins)));
     }
   }
+  report["warnings"] = warnings;
+  for (const std::string& warning : warnings) std::cerr << "vsil: warning: " << warning << "\n";
   if (!args.json.empty()) outputs.add(args.json, jsonText(report, 2) + "\n");
   outputs.commit();
   reportStream({args.json, args.plot}) << text.str();

@@ -1325,9 +1325,10 @@ py::dict measureWidth(const py::array& image, std::optional<py::array> depth, in
   checkHistogramBinWidth(function + ": bin_width", binWidth);
   const cv::Mat1b mask = maskFromArray(image, function);
   const auto samples = measureLineWidths(mask, function, limits::defaultMemoryBytes());
-  if (const std::string warning = regionsNotLinesWarning(mask, samples, function);
-      !warning.empty()) {
-    warnUser(warning);
+  // Issued as UserWarning and kept in the report, as --json keeps them.
+  std::vector<std::string> warnings;
+  if (std::string warning = regionsNotLinesWarning(mask, samples, function); !warning.empty()) {
+    warnings.push_back(std::move(warning));
   }
   std::vector<double> widths;
   for (const auto& s : samples) widths.push_back(s.width);
@@ -1335,12 +1336,14 @@ py::dict measureWidth(const py::array& image, std::optional<py::array> depth, in
   if (depth) {
     const cv::Mat1f depths = depthFromArray(*depth, mask.size(), function);
     const auto byDepth = widthAgainstDepth(samples, depths, bins);
-    if (const std::string warning = emptyDepthBinsWarning(samples, byDepth, function + ": depth");
+    if (std::string warning = emptyDepthBinsWarning(samples, byDepth, function + ": depth");
         !warning.empty()) {
-      warnUser(warning);
+      warnings.push_back(std::move(warning));
     }
     report["by_depth"] = depthBinsJson(byDepth);
   }
+  report["warnings"] = warnings;
+  for (const std::string& warning : warnings) warnUser(warning);
   py::array_t<double> table({py::ssize_t(samples.size()), py::ssize_t(3)});
   auto rows = table.mutable_unchecked<2>();
   for (std::size_t i = 0; i < samples.size(); ++i) {

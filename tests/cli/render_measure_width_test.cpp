@@ -66,6 +66,7 @@ TEST(RenderThenMeasureWidth, SphereAtWidthNineMeasuresNine) {
   }
   EXPECT_GT(binned, widths["count"].get<int>() / 2) << "most samples find a depth";
   EXPECT_EQ(measure.err, "") << "a sphere's line is a line";
+  EXPECT_EQ(report["warnings"], nlohmann::json::array());
 }
 
 // A line wider than the object it outlines fills it: measure-width still reports the region
@@ -78,10 +79,17 @@ TEST(RenderThenMeasureWidth, ALineWiderThanTheObjectIsSaidToBeNoLine) {
                           out)
                 .exitCode,
             0);
-  const auto measure = test::runVsil("measure-width " + out);
+  const auto json = (dir / "m.json").string();
+  const auto measure = test::runVsil("measure-width " + out + " --json " + json);
   ASSERT_EQ(measure.exitCode, 0) << measure.err;
   EXPECT_NE(measure.err.find("vsil: warning: " + out + ": "), std::string::npos) << measure.err;
   EXPECT_NE(measure.err.find("no longer than wide"), std::string::npos) << measure.err;
+  // The report keeps it beside the numbers it qualifies.
+  std::ifstream in(json);
+  const auto report = nlohmann::json::parse(in);
+  ASSERT_EQ(report["warnings"].size(), 1u) << report.dump();
+  EXPECT_NE(report["warnings"][0].get<std::string>().find("no longer than wide"),
+            std::string::npos);
 }
 
 // A width study as a user runs it (the issue that found the depth PNG read back wrongly):
