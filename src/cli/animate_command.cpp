@@ -68,14 +68,16 @@ void checkOutputs(const AnimateFlags& flags, glm::ivec2 size) {
     throwInputError("--fps " + formatNumber(flags.fps),
                     std::string("must be in ") + VideoFile::kFpsRange);
   }
-  if (!flags.video.empty()) VideoFile::checkTarget("--video", flags.video, size, flags.fps);
+  if (!flags.video.empty()) {
+    VideoFile::checkTarget("--video", flags.video, size, flags.fps, flags.outDir);
+  }
 }
 
 // Creates the frames' folder when missing and makes sure files can be written into it, before
 // the first frame is rendered.
 void prepareOutDir(const fs::path& dir) {
   std::error_code error;
-  if (!fs::exists(dir, error) && !fs::create_directory(dir, error)) {
+  if (!fs::exists(dir, error) && !fs::create_directory(dir.lexically_normal(), error)) {
     throwInputError("--out-dir " + dir.string(), "cannot create the folder: " + error.message());
   }
   try {

@@ -454,7 +454,8 @@ void run(const SweepFlags& flags) {
   if (validateOnly()) return;
   if (!flags.outDir.empty() && mpi::rank() == 0) {
     std::error_code error;
-    fs::create_directory(flags.outDir, error);  // its parent is there (refuseOutputFolder)
+    // Its parent is there (refuseOutputFolder); "out/." is made as out.
+    fs::create_directory(fs::path(flags.outDir).lexically_normal(), error);
     if (error) {
       refusal = "--out-dir " + flags.outDir + ": cannot create the folder: " + error.message();
     }

@@ -168,9 +168,15 @@ void refuseMissingFolder(const std::string& output, const std::filesystem::path&
 }
 
 void refuseOutputFolder(const std::string& output, std::filesystem::path folder) {
+  folder = folder.lexically_normal();                                                     // out/.
   if (!folder.has_filename() && folder.has_parent_path()) folder = folder.parent_path();  // out/
   std::error_code error;
   const std::filesystem::file_type type = std::filesystem::status(folder, error).type();
+  if (type == std::filesystem::file_type::not_found &&
+      std::filesystem::is_symlink(std::filesystem::symlink_status(folder, error))) {
+    throw InputError(output + ": is a link to nothing (" +
+                     std::filesystem::read_symlink(folder, error).string() + ")");
+  }
   if (type == std::filesystem::file_type::not_found) return refuseMissingFolder(output, folder);
   if (error) throw InputError(output + ": cannot be examined: " + error.message());
   if (type != std::filesystem::file_type::directory) throw InputError(output + ": is not a folder");

@@ -102,7 +102,8 @@ struct VideoFile::Writer {
 };
 
 void VideoFile::checkTarget(const std::string& flag, const std::filesystem::path& target,
-                            glm::ivec2 size, double fps) {
+                            glm::ivec2 size, double fps,
+                            const std::filesystem::path& folderToMake) {
   const std::string where = flag + " " + target.string();
   if (!formatOf(target)) {
     std::string known;
@@ -112,7 +113,15 @@ void VideoFile::checkTarget(const std::string& flag, const std::filesystem::path
     throwInputError(
         where, "unknown video format '" + target.extension().string() + "' (known: " + known + ")");
   }
-  refuseMissingFolder(where, target);
+  const auto normal = [](const std::filesystem::path& path) {
+    std::filesystem::path folder = path.lexically_normal();
+    return folder.has_filename() || !folder.has_parent_path() ? folder : folder.parent_path();
+  };
+  const std::filesystem::path folder =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  if (folderToMake.empty() || normal(folder) != normal(folderToMake)) {
+    refuseMissingFolder(where, target);
+  }
   if (size.x % 2 != 0 || size.y % 2 != 0) {
     throwInputError(where, "video needs an even width and height (--size " +
                                std::to_string(size.x) + "x" + std::to_string(size.y) + ")");

@@ -25,10 +25,12 @@ class VideoFile {
   // take is refused also where no video is written.
   static bool validFps(double fps);
   static constexpr const char* kFpsRange = "[0.01, 1000]";  // for messages
-  // The checks that create nothing: a known extension, an existing folder, an even size and a
-  // frame rate in kFpsRange. Throws InputError naming `flag` and the path.
+  // The checks that create nothing: a known extension, an existing folder (or `folderToMake`,
+  // one the command creates before the video: animate's --out-dir), an even size and a frame
+  // rate in kFpsRange. Throws InputError naming `flag` and the path.
   static void checkTarget(const std::string& flag, const std::filesystem::path& target,
-                          glm::ivec2 size, double fps);
+                          glm::ivec2 size, double fps,
+                          const std::filesystem::path& folderToMake = {});
 
   // Opens the writer on a temporary beside `target`. Throws InputError when the folder is not
   // writable or OpenCV cannot write the format here (no FFmpeg backend, codec missing), and
