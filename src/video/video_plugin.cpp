@@ -13,7 +13,7 @@ namespace {
 // Standard error pointed at /dev/null while it lives (FFmpeg logs there, not through OpenCV).
 class QuietStderr {
  public:
-  QuietStderr() : saved_(::dup(STDERR_FILENO)) {
+  QuietStderr() : saved_(::fcntl(STDERR_FILENO, F_DUPFD_CLOEXEC, 0)) {
     const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
     if (null >= 0) {
       ::dup2(null, STDERR_FILENO);
