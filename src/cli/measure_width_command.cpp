@@ -91,7 +91,7 @@ void run(const MeasureWidthArgs& args) {
     }
   }
   report["warnings"] = warnings;
-  for (const std::string& warning : warnings) std::cerr << "vsil: warning: " << warning << "\n";
+  printWarnings(warnings);
   if (!args.json.empty()) outputs.add(args.json, jsonText(report, 2) + "\n");
   outputs.commit();
   reportStream({args.json, args.plot}) << text.str();

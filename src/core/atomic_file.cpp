@@ -167,9 +167,13 @@ void refuseMissingFolder(const std::string& output, const std::filesystem::path&
   }
 }
 
+std::filesystem::path folderNamed(const std::filesystem::path& path) {
+  const std::filesystem::path folder = path.lexically_normal();  // out/. is out/
+  return folder.has_filename() || !folder.has_parent_path() ? folder : folder.parent_path();
+}
+
 void refuseOutputFolder(const std::string& output, std::filesystem::path folder) {
-  folder = folder.lexically_normal();                                                     // out/.
-  if (!folder.has_filename() && folder.has_parent_path()) folder = folder.parent_path();  // out/
+  folder = folderNamed(folder);
   std::error_code error;
   const std::filesystem::file_type type = std::filesystem::status(folder, error).type();
   if (type == std::filesystem::file_type::not_found &&

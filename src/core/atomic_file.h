@@ -113,6 +113,9 @@ class OutputBatch {
 // since a missing one was otherwise found only when the result was written, after the render.
 void refuseMissingFolder(const std::string& output, const std::filesystem::path& target);
 
+// The folder a path names, written plainly: "out/", "out/." and "out" are out.
+std::filesystem::path folderNamed(const std::filesystem::path& path);
+
 // The same for an output folder that a command creates when missing (animate's and sweep's
 // --out-dir): it is a folder, or its parent is there ("out/" names the folder out). Throws
 // InputError "<output>: is not a folder" or as refuseMissingFolder for its parent.

@@ -113,13 +113,9 @@ void VideoFile::checkTarget(const std::string& flag, const std::filesystem::path
     throwInputError(
         where, "unknown video format '" + target.extension().string() + "' (known: " + known + ")");
   }
-  const auto normal = [](const std::filesystem::path& path) {
-    std::filesystem::path folder = path.lexically_normal();
-    return folder.has_filename() || !folder.has_parent_path() ? folder : folder.parent_path();
-  };
   const std::filesystem::path folder =
       target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-  if (folderToMake.empty() || normal(folder) != normal(folderToMake)) {
+  if (folderToMake.empty() || folderNamed(folder) != folderNamed(folderToMake)) {
     refuseMissingFolder(where, target);
   }
   if (size.x % 2 != 0 || size.y % 2 != 0) {
@@ -170,13 +166,13 @@ void VideoFile::write(const cv::Mat& image) {
 void VideoFile::finish() {
   writer_->encoder->close();
   file_->finish();
-  const int readBack = writer_->encoder->framesReadBack();
-  const VideoFormat* format = formatOf(file_->target());
-  if (!containerComplete(file_->temporaryPath(), *format)) {
+  // The headers first: a cut file is told without decoding it.
+  if (!containerComplete(file_->temporaryPath(), *formatOf(file_->target()))) {
     throwInputError(file_->target().string(),
                     "cannot write the video whole (the file ends before its container's own "
                     "sizes say; is the disk full?)");
   }
+  const int readBack = writer_->encoder->framesReadBack();
   if (readBack != frames_) {
     throwInputError(file_->target().string(),
                     "cannot write the video whole (" +
