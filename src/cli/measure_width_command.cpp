@@ -1,7 +1,6 @@
 // vsil measure-width IMAGE [--line-color C] [--json FILE] [--depth FILE [--bins N] [--plot PNG]]
 // Line widths of a finished illustration, sampled on the lines' medial axes (postfx/line_width.h).
 #include <iomanip>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <sstream>
