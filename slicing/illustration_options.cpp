@@ -7,6 +7,10 @@
 
 namespace vsil {
 
+std::string lightCountDefine(const Illustration& illustration) {
+  return "LIGHT_COUNT " + std::to_string(illustration.lights.size());
+}
+
 namespace {
 
 const std::string& textOf(const OptionValue& value) {

@@ -10,6 +10,9 @@
 
 namespace vsil {
 
+// The #define shaders/illustration.glsl needs: "LIGHT_COUNT n", n the illustration's lights.
+std::string lightCountDefine(const Illustration& illustration);
+
 // --param NAME=VALUE,... (repeatable). `allowed` limits the names (empty: every parameter);
 // `owner` names the technique in the message for others.
 OptionSpec parameterOption(std::vector<std::string> allowed = {}, std::string owner = "");

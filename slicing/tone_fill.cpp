@@ -75,7 +75,8 @@ void ToneFill::draw(const FrameContext& frame, const gl::RenderTarget& record) {
   std::vector<std::string> sources = hitRecordSources();
   sources.emplace_back("shaders/illustration.glsl");
   gl::Program& program =
-      frame.programs->get(gl::screenPassProgram(sources, "shaders/tone_fill.frag"));
+      frame.programs->get(gl::screenPassProgram(sources, "shaders/tone_fill.frag",
+                                                {lightCountDefine(illustration_)}));
   program.use();
   for (const auto& name : toneFillParameterNames()) {
     program.set(name.c_str(), float(illustration_[name]));
@@ -83,7 +84,6 @@ void ToneFill::draw(const FrameContext& frame, const gl::RenderTarget& record) {
   program.set("toneScale", float(1.0 / std::max(1.0, toneShadingPeak(illustration_))));
   std::vector<glm::vec3> lights;
   for (const Light& light : illustration_.lights) lights.emplace_back(light.directionEye());
-  program.set("lightCount", int(lights.size()));
   program.set("lightDirections", lights.data(), int(lights.size()));
   program.set("backgroundColor", frame.background.rgb01());
   program.set("fillColor", color_.rgb01());

@@ -10,17 +10,19 @@
 // of the denser side: data that is denser inside its features, as CT and most simulations are),
 // 0 where the gradient vanishes; v towards the viewer; the lights' directions towards the lights.
 
-#ifndef MAX_LIGHTS
-#define MAX_LIGHTS 8
+// LIGHT_COUNT, the number of lights, is a #define (slicing/illustration_options.h
+// lightCountDefine) so that the loops over the lights unroll: llvmpipe runs a loop to a uniform
+// count as a masked loop, which cost illustrate's plain composite about a tenth of its frame.
+#ifndef LIGHT_COUNT
+#error "illustration.glsl needs LIGHT_COUNT (illustration_options.h lightCountDefine)"
 #endif
-uniform int lightCount;
-uniform vec3 lightDirections[MAX_LIGHTS];
+uniform vec3 lightDirections[LIGHT_COUNT];
 
 // The plain lit colour, the paper's I_G: ambient plus diffuse from every light.
 uniform float k_a, k_d;
 vec3 litColor(vec3 color, vec3 n) {
   float diffuse = 0.0;
-  for (int i = 0; i < lightCount; ++i) diffuse += max(dot(n, lightDirections[i]), 0.0);
+  for (int i = 0; i < LIGHT_COUNT; ++i) diffuse += max(dot(n, lightDirections[i]), 0.0);
   return color * (k_a + k_d * diffuse);
 }
 
@@ -105,7 +107,7 @@ uniform float k_ta, k_td, k_ty, k_tb;
 uniform float toneScale;
 vec3 toneShade(vec3 lit, vec3 objectColor, vec3 n) {
   vec3 sum = vec3(0.0);
-  for (int i = 0; i < lightCount; ++i) {
+  for (int i = 0; i < LIGHT_COUNT; ++i) {
     float nl = dot(n, lightDirections[i]);
     float t = (1.0 + nl) * 0.5;
     sum += vec3(k_ty, k_ty, 0.0) * t + vec3(0.0, 0.0, k_tb) * (1.0 - t) +

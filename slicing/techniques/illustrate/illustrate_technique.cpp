@@ -140,6 +140,7 @@ std::vector<std::string> illustrateDefines(const Illustration& illustration, Hal
     }
   }
   if (illustration.transferFunction) defines.emplace_back("TRANSFER_TABLE");
+  defines.push_back(lightCountDefine(illustration));
   return defines;
 }
 
@@ -304,7 +305,6 @@ void IllustrateTechnique::setUniforms(const FrameContext& frame) {
   for (const Light& light : illustration_.lights) {
     lights.push_back(rotation * glm::vec3(light.directionEye()));
   }
-  program.set("lightCount", int(lights.size()));
   program.set("lightDirections", lights.data(), int(lights.size()));
   program.set("sketchColor", illustration_.sketchColor.rgb01());
   program.set("backgroundColor", frame.background.rgb01());
