@@ -1217,6 +1217,19 @@ def test_arguments_of_the_wrong_type_are_one_line_naming_the_function(call):
     assert "\n" not in text and re.match(r"vsil\.(measure_width|broaden): takes \(lines", text), text
 
 
+def test_measure_width_and_broaden_name_an_unknown_keyword_and_describe_arrays_briefly():
+    lines = np.zeros((64, 64), np.uint8)
+    with pytest.raises(TypeError, match=r"^vsil\.measure_width: unknown keyword 'bogus' \(it takes "
+                                        r"lines, depth, bins, bin_width\)$"):
+        vsil.measure_width(lines, bogus=1)
+    with pytest.raises(TypeError, match=r"^vsil\.broaden: unknown keyword 'widht'"):
+        vsil.broaden(lines, widht=3)
+    # A wrong type names the array by dtype and shape, not its 4096 elements.
+    with pytest.raises(TypeError) as error:
+        vsil.broaden(lines, width="3")
+    assert str(error.value).endswith("not (ndarray of uint8 (64, 64), width=str '3')"), error.value
+
+
 @pytest.mark.parametrize("arguments, says", [
     (dict(array=None), "array takes a numpy array (z, y, x), not NoneType"),
     (dict(spacing="1,1,1"), "spacing takes three numbers (x, y, z), not str '1,1,1'"),

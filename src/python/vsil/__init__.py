@@ -15,6 +15,7 @@ import functools
 import inspect
 import numbers
 import os
+import re
 
 from . import _vsil
 from ._vsil import Frame, Volume, __version__
@@ -193,10 +194,19 @@ def generate(name, size=128):
     return _vsil.generate(name, size)
 
 
+def _argument_text(value):
+    """What a wrong argument was, short: an array by its dtype and shape, not its elements."""
+    if hasattr(value, "dtype") and hasattr(value, "shape"):
+        return f"{type(value).__name__} of {value.dtype} {tuple(value.shape)}"
+    text = repr(value)
+    return f"{type(value).__name__} {text[:40] + '...' if len(text) > 40 else text}"
+
+
 def _one_line_type_errors(function, name):
     """pybind11's TypeError for arguments of the wrong types spans several lines (the supported
-    signatures, a blank line, what it was given): one line naming the function instead. Their
-    keywords take numbers and arrays: a bool is refused."""
+    signatures, a blank line, what it was given, arrays element by element): one line naming
+    the function, the keyword it does not know or the arguments' types instead. Their keywords
+    take numbers and arrays: a bool is refused."""
     @functools.wraps(function)
     def call(*args, **kwargs):
         for key, value in kwargs.items():  # pybind11 takes True as the number 1
@@ -210,8 +220,14 @@ def _one_line_type_errors(function, name):
             if not lines or "incompatible function arguments" not in lines[0]:
                 raise
             takes = lines[1].split(". ", 1)[-1].rsplit(" -> ", 1)[0] if len(lines) > 1 else "?"
-            got = " ".join(text.partition("Invoked with: ")[2].split()) or "?"
-            raise TypeError(f"vsil.{name}: takes {takes}, not {got[:200]}") from None
+            known = re.findall(r"(\w+):", takes)
+            unknown = [key for key in kwargs if key not in known]
+            if unknown:
+                raise TypeError(f"vsil.{name}: unknown keyword '{unknown[0]}' (it takes "
+                                f"{', '.join(known)})") from None
+            given = [_argument_text(value) for value in args]
+            given += [f"{key}={_argument_text(value)}" for key, value in kwargs.items()]
+            raise TypeError(f"vsil.{name}: takes {takes}, not ({', '.join(given)})") from None
     return call
 
 
