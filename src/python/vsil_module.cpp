@@ -1498,7 +1498,12 @@ PYBIND11_MODULE(_vsil, m) {
              return "<vsil.Renderer " + std::string(py::str(gl["backend"])) + ", " +
                     std::string(py::str(gl["renderer"])) + ">";
            })
-      .def("__enter__", [](const py::object& self) { return self; })
+      .def("__enter__",
+           [](const py::object& self) {
+             // As a closed file does: a with block on a closed Renderer would fail inside.
+             if (self.cast<PythonRenderer&>().closed()) throwClosed();
+             return self;
+           })
       .def("__exit__", [](PythonRenderer& renderer, const py::args&) { renderer.close(); })
       .def_property_readonly("gl", &PythonRenderer::glInfo,
                              "The GL context: backend, platform, renderer, version, ...")

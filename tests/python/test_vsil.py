@@ -545,6 +545,9 @@ def test_reprs_and_png_for_notebooks(renderer):
     closed = vsil.Renderer()
     closed.close()
     assert repr(closed) == "<vsil.Renderer closed>"
+    with pytest.raises(ValueError, match="this renderer is closed"):
+        with closed:
+            pass
 
 
 def test_a_dicom_series_reads_through_the_plugin_the_package_carries():
