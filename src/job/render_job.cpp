@@ -181,7 +181,8 @@ void checkVolumeWork(const Volume& volume, const RenderRequest& request,
 }
 
 // An iso value outside the data's range finds no surface, and a window that starts above it
-// shows no maximum: the frame is empty, which is what was asked, but rarely what was meant.
+// shows no maximum: the frame is empty, which is what was asked, but rarely what was meant (an
+// LMIP threshold above it makes lmip a mip).
 // `uploadedRange`: the range found when the samples were uploaded, still theirs when the volume
 // owns them.
 std::vector<std::string> warnings(const RenderRequest& request, const Volume& volume,
@@ -223,7 +224,11 @@ std::vector<std::string> warnings(const RenderRequest& request, const Volume& vo
   const auto& options = request.settings.options;
   const auto iso = options.find("iso");
   const std::string* windowText = givenText(options, "window");
-  if (iso == options.end() && !(windowText && !windowText->empty())) return found;
+  const auto lmipThreshold = options.find("lmip-threshold");
+  if (iso == options.end() && !(windowText && !windowText->empty()) &&
+      lmipThreshold == options.end()) {
+    return found;
+  }
   // Borrowed samples as they are now: Python may change an array in place after its upload.
   const ValueRange range = volume.borrowsSamples() ? valueRange(volume) : uploadedRange;
   std::ostringstream line;
@@ -243,6 +248,17 @@ std::vector<std::string> warnings(const RenderRequest& request, const Volume& vo
       line.str("");
       line << "--window " << *windowText << " starts at or above the data's largest value "
            << range.max << " of " << volume.source << ": no pixel shows anything";
+      found.push_back(line.str());
+    }
+  }
+  // LMIP shows a ray's first local maximum at or above the threshold, else its maximum.
+  if (lmipThreshold != options.end()) {
+    const double value = std::get<double>(lmipThreshold->second);
+    if (value > range.max) {
+      line.str("");
+      line << "--lmip-threshold " << value << " is above the data's largest value " << range.max
+           << " of " << volume.source
+           << ": no local maximum reaches it, and every pixel shows its ray's maximum (as mip)";
       found.push_back(line.str());
     }
   }

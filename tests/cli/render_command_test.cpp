@@ -155,7 +155,7 @@ TEST(RenderCommand, LmipThresholdKeepsTheHistogramsWindowAndPresetScale) {
   }
 }
 
-TEST(RenderCommand, WarnsWhenTheIsoValueOrTheWindowLiesOutsideTheData) {
+TEST(RenderCommand, WarnsWhenTheIsoValueTheWindowOrTheLmipThresholdLieOutsideTheData) {
   const auto dir = test::scratchDir();
   const auto out = (dir / "empty.png").string();
   const auto result = test::runVsil("render gen:sphere:16 --size 32x32 --iso 1000 --out " + out);
@@ -179,6 +179,17 @@ TEST(RenderCommand, WarnsWhenTheIsoValueOrTheWindowLiesOutsideTheData) {
   const auto window = test::runVsil(
       "render gen:sphere:16 --size 32x32 --technique mip --window 0.1,2 --out " + out);
   EXPECT_EQ(window.err, "") << "no warning for a window that starts inside the range";
+  // An LMIP threshold above every value: each ray shows its maximum, lmip turns mip.
+  const auto lmip = test::runVsil(
+      "render gen:sphere:16 --size 32x32 --technique lmip --lmip-threshold 5 --out " + out);
+  EXPECT_EQ(lmip.exitCode, 0) << lmip.err;
+  EXPECT_EQ(lmip.err,
+            "vsil: warning: --lmip-threshold 5 is above the data's largest value 0.891747 of "
+            "gen:sphere:16: no local maximum reaches it, and every pixel shows its ray's maximum "
+            "(as mip)\n");
+  const auto threshold = test::runVsil(
+      "render gen:sphere:16 --size 32x32 --technique lmip --lmip-threshold 0.5 --out " + out);
+  EXPECT_EQ(threshold.err, "") << "no warning for a threshold within the range";
 }
 
 // Options that change nothing in the frame they are given for warn, naming why (a user tuning
