@@ -92,7 +92,7 @@ class SlcCursor {
   // The header's numbers are read from the file's first part (they bound what is read whole);
   // one reaching its end may go on beyond it.
   [[noreturn]] void beyondPart() const {
-    throwInputError(path_, "header runs past its first " + std::to_string(bytes_.size()) +
+    throwInputError(path_, "header runs past its first " + std::to_string(kHeaderPart) +
                                " bytes (at most that is read before its sizes are known)");
   }
 
@@ -136,7 +136,8 @@ void decodeRle(const std::string& where, std::string_view in, std::span<std::uin
 Volume readSlc(const std::string& path, const LoadOptions& options) {
   // The header's numbers come first; the limits are checked on them before the rest is read.
   const std::uint64_t fileBytes = regularFileSize(path);
-  const std::uint64_t headBytes = std::min<std::uint64_t>(fileBytes, kHeaderPart);
+  // One byte beyond the part tells a number ending at its end from one going on past it.
+  const std::uint64_t headBytes = std::min<std::uint64_t>(fileBytes, kHeaderPart + 1);
   const auto head = readFileBytes(path, 0, headBytes);
   SlcCursor header(path, std::string_view(reinterpret_cast<const char*>(head.data()), head.size()),
                    /*partOfFile=*/headBytes < fileBytes);

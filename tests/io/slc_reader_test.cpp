@@ -106,6 +106,13 @@ TEST(SlcReader, MalformedFilesAreRefusedNamingTheProblem) {
       writeSlc("longer.slc", 0, {{1, 2, 3, 4, 5, 6}}, "3 2", " X", std::string(70000, ' '));
   test::expectInputError([&] { loadVolume(longHeader); }, longHeader,
                          {"header runs past its first 65536 bytes"});
+  // A header whose last number read before the sizes are known (the third spacing) ends
+  // exactly at the part's end is read.
+  const std::string upTo = "\n3 2 1 8\n0.5 1.000000 2.25";
+  const std::string fits = writeSlc("fits.slc", 0, {{1, 2, 3, 4, 5, 6}}, "3 2", " X",
+                                    std::string(65536 - 5 - upTo.size(), ' '));
+  ASSERT_EQ(test::readFileBytes(fits).find("2.25") + 4, 65536u);
+  EXPECT_EQ(loadVolume(fits).dims, glm::ivec3(3, 2, 1));
 }
 
 }  // namespace
