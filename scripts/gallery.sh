@@ -67,8 +67,8 @@ entries=(
   # right, where the enamel turns transparent and flat so that the dentin shows through.
   "rk_cube_fig6_flat0|gen:cube:64|--technique semantic --rules fig6-cube --flatness 0 --view 30,20"
   "rk_cube_fig6_flat1|gen:cube:64|--technique semantic --rules fig6-cube --flatness 1 --view 30,20"
-  "rk_tooth_cursor_left|$data/tooth.nrrd|--technique semantic --rules tooth-focus-context --view 0,-80 --zoom 1.2 --cursor 25,12,130"
-  "rk_tooth_cursor_right|$data/tooth.nrrd|--technique semantic --rules tooth-focus-context --view 0,-80 --zoom 1.2 --cursor 80,12,130"
+  "rk_tooth_cursor_left|$data/tooth.nrrd|--technique semantic --rules tooth-focus-context --view 0,10 --zoom 1.2 --cursor 25,12,130"
+  "rk_tooth_cursor_right|$data/tooth.nrrd|--technique semantic --rules tooth-focus-context --view 0,10 --zoom 1.2 --cursor 80,12,130"
   # docs/figures.md: the papers' figures side by side with stand-ins, fig_<paper>_<figure>[panel]
   # (er Ebert & Rheingans, nk Nagy & Klein, dv Diaz & Vazquez, rk Rautek et al.). Each names its
   # own background, transfer function and window, so that later changes to the defaults do not
@@ -100,7 +100,7 @@ entries=(
   # The teddy seen from the front (the CT table cut off with --crop), then from its side.
   "fig_nk_8a|$data/teddybear_128x128x62_uint8.nhdr|--technique rightangle --iso 50 --crop :,0:90,: --view 180,-90 --zoom 1.6 --width 2 --background white"
   "fig_nk_8b|$data/teddybear_128x128x62_uint8.nhdr|--iso 50 --crop :,0:90,: --view 180,-90 --zoom 1.6 --width 2 --background white"
-  "fig_nk_8c|$data/teddybear_128x128x62_uint8.nhdr|--iso 50 --crop :,0:90,: --view 270,-10 --zoom 1.3 --width 2 --fill shaded --fill-color #e0d0b0 --background white"
+  "fig_nk_8c|$data/teddybear_128x128x62_uint8.nhdr|--iso 50 --crop :,0:90,: --up -z --view 270,5 --zoom 1.3 --width 2 --fill shaded --fill-color #e0d0b0 --background white"
   "fig_nk_9a|$data/hydrogen_atom_128x128x128_uint8.nhdr|--iso 20 --view 60,30 --zoom 1.6 --width-near 8 --width-far 1 --background white"
   "fig_nk_9b|$data/hydrogen_atom_128x128x128_uint8.nhdr|--iso 20 --view 60,30 --zoom 2.4 --width-near 8 --width-far 1 --background white"
   "fig_nk_9c|$data/hydrogen_atom_128x128x128_uint8.nhdr|--iso 20 --view 60,30 --zoom 3 --width-near 8 --width-far 1 --background white"
@@ -129,9 +129,9 @@ entries=(
   "fig_rk_6a|gen:cube:64|--technique semantic --rules fig6-cube --flatness 0 --view 30,20 --background white"
   "fig_rk_6b|gen:cube:64|--technique semantic --rules fig6-cube --flatness 0.5 --view 30,20 --background white"
   "fig_rk_6c|gen:cube:64|--technique semantic --rules fig6-cube --flatness 1 --view 30,20 --background white"
-  "fig_rk_7|$data/tooth.nrrd|--technique semantic --rules docs/rules/fig7-tooth-plane.rules --plane 51,47,90,0,0,1 --plane-show --view 200,-75 --zoom 1.2 --background white"
-  "fig_rk_8a|$data/tooth.nrrd|--technique semantic --rules tooth-focus-context --cursor 25,12,130 --view 0,-80 --zoom 1.2 --background white"
-  "fig_rk_8b|$data/tooth.nrrd|--technique semantic --rules tooth-focus-context --cursor 80,12,130 --view 0,-80 --zoom 1.2 --background white"
+  "fig_rk_7|$data/tooth.nrrd|--technique semantic --rules docs/rules/fig7-tooth-plane.rules --plane 51,47,90,0,0,1 --plane-show --view 20,20 --zoom 1.2 --background white"
+  "fig_rk_8a|$data/tooth.nrrd|--technique semantic --rules tooth-focus-context --cursor 25,12,130 --view 0,10 --zoom 1.2 --background white"
+  "fig_rk_8b|$data/tooth.nrrd|--technique semantic --rules tooth-focus-context --cursor 80,12,130 --view 0,10 --zoom 1.2 --background white"
 )
 
 count=0

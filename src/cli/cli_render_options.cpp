@@ -4,6 +4,7 @@
 #include "cli/cli_postfx_options.h"
 #include "cli/cli_technique_options.h"
 #include "core/number_pair.h"
+#include "core/upright.h"
 
 namespace vsil::cli {
 
@@ -16,7 +17,14 @@ void addRenderOptions(CLI::App& command, RenderFlags& flags) {
   command.add_flag("--no-empty-space-skipping", flags.noEmptySpaceSkipping,
                    "sample every pixel of every slice (slower; the same pixels)");
   command.add_option("--size", flags.size, "Image size WxH")->capture_default_str();
-  command.add_option("--view", flags.view, "Orbit angles AZ,EL in degrees")->capture_default_str();
+  command.add_option("--view", flags.view, "Orbit angles AZ,EL in degrees about the up axis")
+      ->capture_default_str();
+  command
+      .add_option("--up", flags.up,
+                  "The axis shown upward, which the orbit turns about: auto (a file's "
+                  "anatomical placement stands superior up, seen from anterior; else +y), or "
+                  "+x, -x, +y, -y, +z, -z")
+      ->capture_default_str();
   command.add_flag("--ortho", flags.orthographic, "Orthographic instead of perspective");
   command.add_option("--zoom", flags.zoom, "Magnification (0.001 .. 1000)")->capture_default_str();
   command.add_option("--sampling", flags.sampling, "Slices per voxel along the view")
@@ -37,6 +45,8 @@ RenderRequest toRenderRequest(const RenderFlags& flags) {
   settings.camera.elevationDeg = view.y;
   settings.camera.orthographic = flags.orthographic;
   settings.camera.zoom = flags.zoom;
+  resolveUpright(flags.up, {});  // its text checked before the volume is read
+  request.up = flags.up;
   settings.samplesPerVoxel = flags.sampling;
   settings.emptySpaceSkipping = !flags.noEmptySpaceSkipping;
   request.postfx = flags.postfx;

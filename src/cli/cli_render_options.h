@@ -31,6 +31,7 @@ struct RenderFlags {
   OptionValues techniqueOptions;
   std::string size = "512x512";
   std::string view = "30,20";
+  std::string up = "auto";
   bool orthographic = false;
   double zoom = 1.0;
   double sampling = 1.0;

@@ -132,7 +132,7 @@ void run(const RenderFlags& flags, const RenderOutputs& outputs) {
     const glm::ivec3 dims = mpi::fileDims(probe);
     const int ghost = techniqueGhostVoxels(
         technique, request.settings.options,
-        makeView(request.settings.camera, dims, probe.spacing, request.settings.size), dims);
+        makeView(cameraFor(request, probe), dims, probe.spacing, request.settings.size), dims);
     slab.emplace(mpi::readSlab(flags.input, load, load.limits.maxTextureBytes, ghost));
     mpiMeta["ranks"] = mpi::size();
     mpiMeta["slabs"] = slab->slabs;

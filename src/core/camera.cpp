@@ -39,8 +39,15 @@ View makeView(const CameraSpec& camera, glm::ivec3 dims, glm::dvec3 spacing, glm
   const double distance = camera.orthographic ? 2.0 * radius + 1.0 : radius / std::sin(fovHalf);
   const double az = glm::radians(camera.azimuthDeg);
   const double el = glm::radians(camera.elevationDeg);
-  // worldFromEye = rotY(az) * rotX(-el) * translate(0, 0, distance): the eye orbits the centre.
-  glm::dmat4 worldFromEye = glm::rotate(glm::dmat4(1.0), az, glm::dvec3(0, 1, 0)) *
+  // The orbit in the upright frame (its +y up, +z front; right = up × front keeps it a
+  // rotation), laid onto the world's axes.
+  const Upright& upright = camera.upright;
+  const glm::dmat4 worldFromUpright(
+      glm::dmat3(glm::cross(upright.up, upright.front), upright.up, upright.front));
+  // worldFromEye = upright * rotY(az) * rotX(-el) * translate(0, 0, distance): the eye orbits
+  // the centre.
+  glm::dmat4 worldFromEye = worldFromUpright *
+                            glm::rotate(glm::dmat4(1.0), az, glm::dvec3(0, 1, 0)) *
                             glm::rotate(glm::dmat4(1.0), -el, glm::dvec3(1, 0, 0)) *
                             glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, distance));
   view.eyeFromWorld = glm::inverse(worldFromEye);

@@ -14,12 +14,21 @@
 
 namespace vsil {
 
+// The world axes the camera's orbit is laid out by: `up` shows upward on screen and the orbit
+// turns about it; `front` faces the viewer at azimuth 0, elevation 0. Unit and perpendicular
+// (core/upright.h resolves --up into them: +y and +z, or a file's superior and anterior).
+struct Upright {
+  glm::dvec3 up{0, 1, 0};
+  glm::dvec3 front{0, 0, 1};
+};
+
 struct CameraSpec {
-  double azimuthDeg = 30.0;    // orbit around world +y; 0 looks at the volume from +z
-  double elevationDeg = 20.0;  // orbit up towards +y; 90 looks straight down
+  double azimuthDeg = 30.0;    // orbit around `upright.up`; 0 looks at the volume from its front
+  double elevationDeg = 20.0;  // orbit up towards `upright.up`; 90 looks straight down
   double zoom = 1.0;           // > 1 magnifies
   bool orthographic = false;
   double fovYDeg = 30.0;  // perspective only, before zoom
+  Upright upright{};
 };
 
 // Everything needed to go from a voxel to a pixel, fixed for one frame.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/upright.h"
 #include "io/file_access.h"
 #include "io/inflate.h"
 #include "io/readers.h"
@@ -138,49 +139,74 @@ StoredType parseType(const std::string& path, const std::string& name) {
           "double)");
 }
 
-// "(1,0,0) (0,2,0) (0,0,0.5)": the spacing along each axis is the length of its vector.
-glm::dvec3 spacingFromDirections(const std::string& path, const std::string& text) {
+// "(1,0,-0.5)": a vector of `field`.
+glm::dvec3 parseVector(const std::string& path, const std::string& field, std::string_view text) {
+  std::string_view vector = text;
+  if (vector.size() < 2 || vector.front() != '(' || vector.back() != ')') {
+    throwInputError(path, field + " vector " + quote(text) + " is not '(x,y,z)'");
+  }
+  vector = vector.substr(1, vector.size() - 2);
+  glm::dvec3 result(0.0);
+  int components = 0;
+  while (true) {
+    const std::size_t comma = vector.find(',');
+    const double value = parseReal(path, field, trim(vector.substr(0, comma)));
+    if (components < 3) result[components] = value;
+    ++components;
+    if (comma == std::string_view::npos) break;
+    vector.remove_prefix(comma + 1);
+  }
+  if (components != 3) throwInputError(path, field + " vector " + quote(text) + " needs 3 components");
+  return result;
+}
+
+// "(1,0,0) (0,2,0) (0,0,0.5)": each axis's step in the space; the spacing along an axis is the
+// length of its vector.
+struct SpaceDirections {
+  glm::dvec3 spacing;
+  glm::dmat3 columns;  // column a: axis a's vector
+};
+
+SpaceDirections parseSpaceDirections(const std::string& path, const std::string& text) {
   const std::string field = "space directions";
   const auto vectors = splitWhitespace(text);
   if (vectors.size() != 3) {
     throwInputError(path, field + " needs 3 vectors, found " + std::to_string(vectors.size()));
   }
-  glm::dvec3 spacing;
-  glm::dmat3 columns;
+  SpaceDirections result;
   for (int axis = 0; axis < 3; ++axis) {
-    std::string_view vector = vectors[axis];
-    if (vector == "none") throwInputError(path, field + " has 'none' for a spatial axis");
-    if (vector.size() < 2 || vector.front() != '(' || vector.back() != ')') {
-      throwInputError(path, field + " vector " + quote(vector) + " is not '(x,y,z)'");
-    }
-    vector = vector.substr(1, vector.size() - 2);
-    double lengthSquared = 0.0;
-    int components = 0;
-    while (true) {
-      const std::size_t comma = vector.find(',');
-      const double value = parseReal(path, field, trim(vector.substr(0, comma)));
-      lengthSquared += value * value;
-      if (components < 3) columns[axis][components] = value;
-      ++components;
-      if (comma == std::string_view::npos) break;
-      vector.remove_prefix(comma + 1);
-    }
-    if (components != 3) {
-      throwInputError(path, field + " vector " + quote(vectors[axis]) + " needs 3 components");
-    }
-    spacing[axis] = std::sqrt(lengthSquared);
+    if (vectors[axis] == "none") throwInputError(path, field + " has 'none' for a spatial axis");
+    result.columns[axis] = parseVector(path, field, vectors[axis]);
+    result.spacing[axis] = glm::length(result.columns[axis]);
   }
-  checkSpacing(path, field, spacing);
+  checkSpacing(path, field, result.spacing);
   // vsil reads the spacing alone (the lengths), which only means something for axes spanning
   // space: parallel or coplanar vectors would make the volume flat. (DICOM's orientations are
   // checked alike.) The volume of the unit vectors' parallelepiped: 1 for orthogonal axes.
-  const glm::dmat3 unit(columns[0] / spacing[0], columns[1] / spacing[1], columns[2] / spacing[2]);
+  const glm::dmat3& c = result.columns;
+  const glm::dmat3 unit(c[0] / result.spacing[0], c[1] / result.spacing[1],
+                        c[2] / result.spacing[2]);
   if (!(std::abs(glm::determinant(unit)) > 1e-6)) {
     throwInputError(path, field + " " + quote(text) +
                               ": the three axes do not span space (two are parallel, or all "
                               "three lie in one plane)");
   }
-  return spacing;
+  return result;
+}
+
+// The letters of the +x, +y, +z of NRRD's anatomical spaces ("LPS" for left-posterior-superior
+// and its -time variant), "" for the others (scanner-xyz, 3D-right-handed, ...).
+std::string anatomicalSpaceAxes(const std::string& space) {
+  std::string name = toLower(space);
+  if (name.ends_with("-time")) {
+    name.resize(name.size() - 5);
+  } else if (name.size() == 4 && name.back() == 't') {  // RAST, LAST, LPST
+    name.pop_back();
+  }
+  if (name == "right-anterior-superior" || name == "ras") return "RAS";
+  if (name == "left-anterior-superior" || name == "las") return "LAS";
+  if (name == "left-posterior-superior" || name == "lps") return "LPS";
+  return "";
 }
 
 // Where the payload lives: the data file (detached) or this file after the header (attached).
@@ -281,12 +307,28 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
   const std::string encoding = toLower(required({"encoding"}));
 
   glm::dvec3 spacing(1.0);
+  // An anatomical space with the axes' directions in it places the volume in a patient's frame
+  // (recorded, not applied: core/upright.h stands it superior up by it).
+  std::optional<Orientation> placement;
   if (const std::string* directions = header.find({"space directions"})) {
     // The format's rule: an axis has one or the other.
     if (header.find({"spacings"})) {
       throwInputError(path, "has both 'space directions' and 'spacings' (the format allows one)");
     }
-    spacing = spacingFromDirections(path, *directions);
+    const SpaceDirections parsed = parseSpaceDirections(path, *directions);
+    spacing = parsed.spacing;
+    const std::string* space = header.find({"space"});
+    const std::string spaceAxes = space ? anatomicalSpaceAxes(*space) : "";
+    if (!spaceAxes.empty()) {
+      const std::string* origin = header.find({"space origin"});
+      const glm::dvec3 at = origin ? parseVector(path, "space origin", trim(*origin)) : glm::dvec3(0);
+      const glm::dmat3& c = parsed.columns;
+      placement = Orientation{"space", spaceAxes,
+                              glm::dmat4(glm::dvec4(c[0], 0), glm::dvec4(c[1], 0),
+                                         glm::dvec4(c[2], 0), glm::dvec4(at, 1)),
+                              {anatomicalLetter(c[0], spaceAxes), anatomicalLetter(c[1], spaceAxes),
+                               anatomicalLetter(c[2], spaceAxes)}};
+    }
   } else if (const std::string* spacings = header.find({"spacings"})) {
     spacing = parseSpacing(path, "spacings", *spacings);
   }
@@ -319,6 +361,16 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
   const std::string format =
       "NRRD (" + encoding + ", " + (payload.path == path ? "attached" : "detached") + ")";
 
+  const auto start = [&] {
+    Volume volume = startVolume(path, dims, type, spacing, options);
+    volume.format = format;
+    if (placement) {
+      volume.orientations.push_back(*placement);
+      volume.orientations.back().worldFromIndex *= fileFromKept(subsetOf(volume));
+    }
+    return volume;
+  };
+
   if (encoding == "raw") {
     std::uint64_t offset = payload.offset;
     std::uint64_t available = payload.size;
@@ -336,8 +388,7 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
       throwInputError(path, payload.label + " holds " + std::to_string(available) + " bytes, " +
                                 std::to_string(expected) + " expected" + layout);
     }
-    Volume volume = startVolume(path, dims, type, spacing, options);
-    volume.format = format;
+    Volume volume = start();
     SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
     readUncompressed(FileReader(payload.path), offset, sink, options);
     return volume;
@@ -350,8 +401,7 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
     const std::uint64_t inflated = expected + std::uint64_t(byteSkip);
     const std::string what = "gzip " + payload.label;
     checkInflatable(path, what, payload.size, inflated);
-    Volume volume = startVolume(path, dims, type, spacing, options);
-    volume.format = format;
+    Volume volume = start();
     SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
     // Streamed: compressed pieces in, inflated pieces straight into the sink, which keeps only
     // the samples of the subset (a compressed stream cannot be entered in the middle).
@@ -384,8 +434,7 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
       throwInputError(path, payload.label + " holds " + std::to_string(payload.size) +
                                 " bytes, too many for ascii text of" + layout);
     }
-    Volume volume = startVolume(path, dims, type, spacing, options);
-    volume.format = format;
+    Volume volume = start();
     SampleSink sink(path, volume, subsetOf(volume), type, bigEndian);
     const auto bytes = readFileBytes(payload.path, payload.offset, payload.size);
     const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());

@@ -17,6 +17,7 @@
 #include "core/limits.h"
 #include "core/number_pair.h"
 #include "core/options.h"
+#include "core/upright.h"
 #include "core/version.h"
 #include "postfx/broaden.h"
 #include "slicing/gl_context.h"
@@ -60,11 +61,13 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
                         const gl::ContextInfo& glContext, StageTime postfx) {
   const RenderSettings& settings = request.settings;
   const TechniqueInfo& technique = findTechnique(settings.technique);
+  const ResolvedUpright upright = resolveUpright(request.up, volume.orientations);
   nlohmann::json parameters = {{"input", input},
                                {"technique", settings.technique},
                                {"empty_space_skipping", settings.emptySpaceSkipping},
                                {"size", {settings.size.x, settings.size.y}},
                                {"view", {settings.camera.azimuthDeg, settings.camera.elevationDeg}},
+                               {"up", request.up},
                                {"orthographic", settings.camera.orthographic},
                                {"zoom", settings.camera.zoom},
                                {"fov_y_deg", settings.camera.fovYDeg},
@@ -105,7 +108,8 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
                     {"clip_from_eye", matrixRowMajor(result.view.clipFromEye)},
                     {"viewport", {result.view.viewport.x, result.view.viewport.y}},
                     {"depth_range_eye", {result.view.nearEye, result.view.farEye}},
-                    {"orthographic", result.view.orthographic}};
+                    {"orthographic", result.view.orthographic},
+                    {"upright", {{"up", upright.up}, {"front", upright.front}, {"from", upright.from}}}};
   meta["pixels"] = pixelCounts(result.frame);
   // The frame's stages in wall time and in the process's CPU time; the caller adds its own
   // (render_command.cpp: start-up, context, read, upload, write, total).
@@ -328,14 +332,21 @@ namespace {
 
 // The render settings as the renderer needs them: the background (what distance colour
 // blending blends towards) and the tone fill are composition flags the technique reads.
-RenderSettings settingsFor(const RenderRequest& request) {
+RenderSettings settingsFor(const RenderRequest& request, const Volume& volume) {
   RenderSettings settings = request.settings;
+  settings.camera = cameraFor(request, volume);
   if (request.postfx.background) settings.background = request.postfx.background;
   if (request.postfx.fill == FillMode::Tone) settings.toneFill = request.postfx.fillColor;
   return settings;
 }
 
 }  // namespace
+
+CameraSpec cameraFor(const RenderRequest& request, const Volume& volume) {
+  CameraSpec camera = request.settings.camera;
+  camera.upright = resolveUpright(request.up, volume.orientations).upright;
+  return camera;
+}
 
 void RenderJob::checkRequest(const RenderRequest& request, const VolumeLimits& limits) {
   Renderer::validateSettings(request.settings);
@@ -390,7 +401,7 @@ RenderOutput RenderJob::render(const RenderRequest& request, const VolumeLimits&
   impl_->context.makeCurrent();
 
   RenderOutput output;
-  output.result = impl_->renderer->render(settingsFor(request));
+  output.result = impl_->renderer->render(settingsFor(request, volume));
   StageClock postfxClock;
   PostfxOptions postfx = request.postfx;
   postfx.background = output.result.background;

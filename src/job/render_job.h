@@ -30,7 +30,12 @@ struct RenderRequest {
   // The line flags the caller was given (--width, --line-color, --fill, ...: cli_postfx_options.h).
   // A technique that draws no lines ignores `postfx` but the background, and warns that it did.
   std::vector<std::string> lineFlagsGiven;
+  // --up (core/upright.h): "auto" or an axis, resolved per volume into settings.camera.upright.
+  std::string up = "auto";
 };
+
+// The request's camera for a volume: --up resolved by the volume's anatomical placement.
+CameraSpec cameraFor(const RenderRequest& request, const Volume& volume);
 
 struct RenderOutput {
   RenderResult result;

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
@@ -487,6 +488,60 @@ INSTANTIATE_TEST_SUITE_P(
         BadRender{"unknown_generator", "gen:nosuchthing", "nosuchthing"},
         BadRender{"missing_file", "/nonexistent/volume.nrrd", "/nonexistent/volume.nrrd"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+
+// A file that places its volume in a patient's frame stands superior up, seen from anterior
+// (--up auto); --up +y gives the plain axes back. A ball near the top of the superior axis of
+// an NRRD in LPS space shows in the image's upper part by default, and --meta-out says why.
+TEST(RenderCommand, AnAnatomicalPlacementStandsTheVolumeSuperiorUp) {
+  const auto dir = test::scratchDir();
+  std::string samples(32 * 32 * 32, '\0');
+  for (int z = 0; z < 32; ++z)
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 32; ++x) {
+        const int d2 = (x - 16) * (x - 16) + (y - 16) * (y - 16) + (z - 26) * (z - 26);
+        if (d2 <= 16) samples[std::size_t((z * 32 + y) * 32 + x)] = char(200);
+      }
+  const auto input = dir / "oriented.nrrd";
+  std::ofstream(input, std::ios::binary)
+      << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 32 32 32\n"
+         "space: left-posterior-superior\nspace directions: (1,0,0) (0,1,0) (0,0,1)\n"
+         "encoding: raw\n\n"
+      << samples;
+  // The mean image row and column of the ball's pixels, as fractions of the side.
+  const auto ballAt = [&](const std::string& up) {
+    const auto out = dir / "up.png";
+    const auto meta = dir / "up.json";
+    const auto run = test::runVsil("render " + input.string() + " --technique mip --size 64x64" +
+                                   up + " --out " + out.string() + " --meta-out " + meta.string());
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+    const cv::Mat grey = cv::imread(out.string(), cv::IMREAD_GRAYSCALE);
+    double rows = 0, columns = 0, count = 0;
+    for (int y = 0; y < grey.rows; ++y)
+      for (int x = 0; x < grey.cols; ++x)
+        if (grey.at<std::uint8_t>(y, x) > 40) rows += y, columns += x, ++count;
+    EXPECT_GT(count, 20) << up;
+    const auto upright = nlohmann::json::parse(test::readFileBytes(meta))["camera"]["upright"];
+    return std::make_tuple(rows / count / 64, columns / count / 64, upright);
+  };
+  const auto [autoRow, autoColumn, autoUpright] = ballAt("");
+  EXPECT_LT(autoRow, 0.4);
+  EXPECT_NEAR(autoColumn, 0.5, 0.05) << "the orbit turns about the superior axis";
+  EXPECT_EQ(autoUpright, nlohmann::json({{"up", "+z"},
+                                         {"front", "-y"},
+                                         {"from", "the file's space (LPS): superior up, "
+                                                  "anterior front"}}));
+  const auto [plainRow, plainColumn, plainUpright] = ballAt(" --up +y");
+  EXPECT_GT(plainRow, 0.45);
+  EXPECT_EQ(plainUpright["from"], "--up +y");
+  // A bad axis: one line, exit 2, no image.
+  const auto out = dir / "bad_up.png";
+  const auto bad = test::runVsil("render gen:sphere:16 --up sideways --out " + out.string());
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_EQ(bad.err,
+            "vsil: --up: 'sideways' is not auto or an axis (+x, -x, +y, -y, +z, -z)\n");
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
 
 }  // namespace
 }  // namespace vsil

@@ -171,6 +171,34 @@ TEST(NrrdReader, SpacingIsTheLengthOfEachSpaceDirection) {
   EXPECT_EQ(v.spacing, glm::dvec3(0.5, 5.0, 2.0));
 }
 
+// An anatomical space with space directions places the volume (recorded, not applied): each
+// index axis named by the direction it runs most along; other spaces place nothing.
+TEST(NrrdReader, AnAnatomicalSpaceIsRecordedAsThePlacement) {
+  const Volume v = loadAttached(
+      "type: uint8\nencoding: raw\nspace: left-posterior-superior\n"
+      "space directions: (0,0.5,0) (-2,0,0.1) (0,0,3)\nspace origin: (10,-20,30.5)\n",
+      {1, 2, 3, 4});
+  ASSERT_EQ(v.orientations.size(), 1u);
+  const Orientation& o = v.orientations.front();
+  EXPECT_EQ(o.name, "space");
+  EXPECT_EQ(o.space, "LPS");
+  EXPECT_EQ(o.axes, "PRS");  // +i along +y (Posterior), +j along -x (Right), +k Superior
+  EXPECT_EQ(o.worldFromIndex * glm::dvec4(1, 1, 1, 1), glm::dvec4(8, -19.5, 33.6, 1));
+  // The short name with time, and RAS: the same letters mean the same directions.
+  const Volume ras = loadAttached(
+      "type: uint8\nencoding: raw\nspace: RAST\nspace directions: (1,0,0) (0,0,-1) (0,1,0)\n",
+      {1, 2, 3, 4});
+  ASSERT_EQ(ras.orientations.size(), 1u);
+  EXPECT_EQ(ras.orientations.front().axes, "RIA");
+  for (const char* none : {"space: scanner-xyz\nspace directions: (1,0,0) (0,1,0) (0,0,1)\n",
+                           "space: left-posterior-superior\nspacings: 1 1 1\n", ""}) {
+    EXPECT_TRUE(
+        loadAttached(std::string("type: uint8\nencoding: raw\n") + none, {1, 2, 3, 4})
+            .orientations.empty())
+        << none;
+  }
+}
+
 // What the format allows for the axes reads: spatial kinds, and one unit, quoted, for all three
 // (units may hold blanks).
 TEST(NrrdReader, SpatialKindsAndOneQuotedUnitRead) {
