@@ -24,6 +24,7 @@
 #include "slice_sampler.h"
 #include "slicing/renderer.h"
 #include "slicing/shader_program.h"
+#include "slicing/techniques/semantic/rule_compiler.h"
 
 namespace vsil {
 namespace {
@@ -136,6 +137,29 @@ const RandomCase kRandomCases[] = {
 
 class SemanticMatchesReference : public test::GlTest,
                                  public ::testing::WithParamInterface<RandomCase> {};
+
+// The rule base's name goes into the generated GLSL's comments only as text a comment holds: a
+// newline in a file's name started shader code there ("#error", or worse, a "#define").
+TEST(RuleCompiler, AFileNameCannotStartShaderCode) {
+  const RuleBase base = parseRulesText(
+      "attribute a from gradient { x = triangle(0, 0.5, 1) }\n"
+      "style s { spheres = \"blue\" v = points((0, 0), (1, 1)) }\n"
+      "rule if a is x then s is v\n",
+      "in\n#define semanticData 1.0\r\n#error injected\\\n\xff.rules");
+  const std::string glsl = compileRules(base).glsl;
+  std::istringstream lines(glsl);
+  int comments = 0;
+  for (std::string line; std::getline(lines, line);) {
+    EXPECT_FALSE(line.starts_with("#error") || line.starts_with("#define semanticData"))
+        << line;
+    if (line.find("//") != std::string::npos) {
+      ++comments;
+      EXPECT_EQ(line.find_first_of("\\\r"), std::string::npos) << line;
+    }
+  }
+  EXPECT_GE(comments, 2);  // the header and the rule's line
+  EXPECT_NE(glsl.find("in?#define semanticData 1.0??#error injected???.rules"), std::string::npos);
+}
 
 TEST_P(SemanticMatchesReference, EveryChannelWithin2Of255) {
   const RandomCase& c = GetParam();
@@ -337,6 +361,16 @@ TEST_F(SemanticTest, MovingTheCursorChangesOnlyTheRegionTheFocusRulesName) {
   const RenderResult first = renderer.render(settings);
   settings.options["cursor"] = std::string("32,24,24");
   const RenderResult second = renderer.render(settings);
+  // The options record the interaction as used: the cursor given, its pixel and the plane
+  // resolved (round 18: the defaults were recorded as "" alone).
+  const nlohmann::json& used = second.options["semantic"];
+  EXPECT_EQ(used["cursor"], nlohmann::json({32.0, 24.0, 24.0}));
+  EXPECT_EQ(used["plane"], nlohmann::json({23.5, 23.5, 23.5, 0.0, 0.0, 1.0}));
+  EXPECT_EQ(used["cursor_pixel"].size(), 2u);
+  settings.options.erase("cursor");
+  EXPECT_EQ(renderer.render(settings).options["semantic"]["cursor"],
+            nlohmann::json({23.5, 23.5, 23.5}))
+      << "the default: the volume's centre";
   // Where the focus balls (radius 0.1 of the diagonal) around either cursor project, with a
   // pixel to spare.
   const double radius = 0.1 * glm::length(glm::dvec3(volume.dims));

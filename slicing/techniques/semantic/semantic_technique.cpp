@@ -186,6 +186,13 @@ ResolvedOptions SemanticTechnique::resolve(const FrameContext& frame) {
   details["program_compiled"] = frame.programs->builds() > buildsBefore;
   details["program_build_ms"] = buildMs;
   details["warnings"] = rules_.warnings;
+  // The interaction as used, defaults resolved (the options hold "" for those not given): the
+  // values --cursor, --cursor-pixel and --plane take to replay it.
+  const SemanticInteraction& i = interaction_;
+  details["cursor"] = {i.cursorVoxel.x, i.cursorVoxel.y, i.cursorVoxel.z};
+  details["cursor_pixel"] = {i.cursorPixel.x, i.cursorPixel.y};
+  details["plane"] = {i.planePointVoxel.x, i.planePointVoxel.y, i.planePointVoxel.z,
+                      i.planeNormal.x,     i.planeNormal.y,     i.planeNormal.z};
   return resolved;
 }
 
