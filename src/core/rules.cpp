@@ -176,8 +176,10 @@ class Lexer {
   char current() const { return more() ? text_[at_] : '\0'; }
   char ahead(std::size_t n) const { return at_ + n < text_.size() ? text_[at_ + n] : '\0'; }
   FilePosition here() const { return {line_, int(at_ - lineStart_) + 1}; }
+  // A line ends at "\n", "\r\n" or a lone "\r" (old Mac files).
+  bool endsLine() const { return current() == '\n' || (current() == '\r' && ahead(1) != '\n'); }
   void advance() {
-    if (text_[at_] == '\n') {
+    if (endsLine()) {
       ++line_;
       lineStart_ = at_ + 1;
     }
@@ -194,7 +196,7 @@ class Lexer {
       if (c == ' ' || c == '\t' || c == '\n' || c == '\r') {
         advance();
       } else if (c == '#') {
-        while (more() && current() != '\n') advance();
+        while (more() && !endsLine()) advance();
       } else {
         return;
       }
@@ -432,7 +434,9 @@ class Parser {
     if (lexer_.peek().isWord("priority")) {
       lexer_.next();
       const Token priority = expectNumber("an integer priority");
-      if (priority.number != std::floor(priority.number) || priority.number < 0 ||
+      // Written as an integer: 1e2 and 100.0 are numbers of another kind.
+      if (priority.text.find_first_of(".eE") != std::string::npos ||
+          priority.number != std::floor(priority.number) || priority.number < 0 ||
           priority.number > 1000) {
         fail(priority.position,
              "priority must be an integer from 0 to 1000, found " + priority.describe());

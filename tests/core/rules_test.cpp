@@ -169,6 +169,21 @@ TEST(Rules, OneLineBlocksCommentsAndNumberForms) {
   EXPECT_EQ(base.rules.size(), 1u);
 }
 
+// Lines ending in CR alone (old Mac files) read as those ending in LF or CR LF.
+TEST(Rules, LinesEndAtLfCrLfOrCr) {
+  const std::string text =
+      "# a comment\nattribute a from gradient { x = triangle(0, 0.5, 1) }\n"
+      "style s { spheres = \"blue\" v = points((0, 0), (1, 1)) }\n"
+      "rule if a is x then s is v\n";
+  for (const std::string ending : {"\r\n", "\r"}) {
+    std::string changed;
+    for (char c : text) changed += c == '\n' ? ending : std::string(1, c);
+    const RuleBase base = parseRulesText(changed, "t.rules");
+    EXPECT_EQ(base.rules.size(), 1u);
+    EXPECT_EQ(base.rules.at(0).position.line, 4);
+  }
+}
+
 // A UTF-8 byte-order mark before the text (a Windows editor's) is skipped.
 TEST(Rules, AByteOrderMarkIsSkipped) {
   const std::string text =
@@ -328,6 +343,12 @@ INSTANTIATE_TEST_SUITE_P(
                  "t.rules:1:41: expected a number, found 'nan'"},
         BadInput{"fractional_priority", "style s priority 2.5 { }",
                  "t.rules:1:18: priority must be an integer from 0 to 1000, found 2.5"},
+        BadInput{"exponent_priority", "style s priority 1e2 { }",
+                 "t.rules:1:18: priority must be an integer from 0 to 1000, found 1e2"},
+        // Lines end at a lone CR too (old Mac files): the comment ends there and the error is
+        // on line 2.
+        BadInput{"cr_line_ends", "# comment\rstyle s priority 1.5 { }",
+                 "t.rules:2:18: priority must be an integer from 0 to 1000, found 1.5"},
         // Sizes.
         BadInput{"too_deep", kStyle + kAttribute + "rule if " + std::string(40, '(') + "a is x",
                  "t.rules:3:41: condition nested deeper than 32 (not and parentheses; the limit)"},
