@@ -248,8 +248,13 @@ AtomicOutputFile::AtomicOutputFile(const std::filesystem::path& target) : target
   // enough to be one: long names keep their room below the file system's limit.
   std::string extension = destination_.extension().string();
   if (extension.size() > 8) extension.clear();
-  std::string temp =
-      (dir / ("." + destination_.filename().string() + ".XXXXXX" + extension)).string();
+  // The target's name, cut where the temporary's would pass the file system's limit on a name
+  // (a legal target of 244 to 255 bytes could not be written): it only has to be unique.
+  std::string name = destination_.filename().string();
+  const std::size_t room = std::size_t(NAME_MAX) - std::string(".").size() -
+                           std::string(".XXXXXX").size() - extension.size();
+  if (name.size() > room) name.resize(room);
+  std::string temp = (dir / ("." + name + ".XXXXXX" + extension)).string();
   {
     const SignalBlock block;
     fd_ = UniqueFd(mkstemps(temp.data(), int(extension.size())));

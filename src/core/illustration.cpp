@@ -179,10 +179,13 @@ void addEffectOnce(EffectSet& effects, Effect effect, const std::string& where) 
 
 }  // namespace
 
+constexpr const char* kNoneStandsAlone = "'none' (no effect) stands alone, not beside others";
+
 EffectSet parseEffects(std::string_view text, const std::string& where) {
   EffectSet effects;
   if (trimmed(text).empty() || trimmed(text) == "none") return effects;
   for (std::string_view name : splitCommas(text)) {
+    if (name == "none") throwInputError(where, kNoneStandsAlone);
     const auto* found = std::find(std::begin(kEffectNames), std::end(kEffectNames), name);
     if (found == std::end(kEffectNames)) {
       throwInputError(where, "unknown effect " + quotedText(name) + " (known: " +
@@ -297,6 +300,9 @@ EffectSet styleEffects(const nlohmann::json& value, const std::string& where) {
   EffectSet effects;
   for (std::size_t i = 0; i < value.size(); ++i) {
     const std::string at = where + " " + std::to_string(i + 1);
+    if (value.size() > 1 && trimmed(jsonString(value[i], at)) == "none") {
+      throwInputError(at, kNoneStandsAlone);
+    }
     for (Effect e : parseEffects(jsonString(value[i], at), at).list())
       addEffectOnce(effects, e, at);
   }
@@ -369,6 +375,9 @@ IllustrationStyle parseStyle(const nlohmann::json& json, const std::string& sour
     const nlohmann::json& tf = json["transfer_function"];
     if (tf.is_string()) {
       const std::string& text = tf.get_ref<const std::string&>();
+      if (text.empty()) {
+        throwInputError(where("transfer_function"), "is empty: name a FILE.json or hold the points");
+      }
       std::filesystem::path file = text;
       if (file.is_relative()) file = baseDir / file;
       // A preset scales by the volume's histogram, which a style is read without.
@@ -381,7 +390,11 @@ IllustrationStyle parseStyle(const nlohmann::json& json, const std::string& sour
                             " is a preset, which goes with --tf; a style names a FILE.json or "
                             "holds the points");
       }
-      style.transferFunction = loadTransferFunction(file.string());
+      try {
+        style.transferFunction = loadTransferFunction(file.string());
+      } catch (const InputError& e) {  // the file's own message, and the style's key it came from
+        throwInputError(where("transfer_function"), e.what());
+      }
     } else {
       style.transferFunction = parseTransferFunction(tf, where("transfer_function"));
     }

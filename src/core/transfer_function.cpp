@@ -52,6 +52,12 @@ nlohmann::json TransferFunction::toJson() const {
 }
 
 TransferFunction parseTransferFunction(const nlohmann::json& json, const std::string& source) {
+  if (json.is_object() && json.contains("points") && json.contains("units")) {
+    throwInputError(source,
+                    "holds a preset's {\"units\", \"points\"}, whose values are mapped per "
+                    "volume: a file holds the list of points alone, in the data's values (or name "
+                    "the preset with --tf)");
+  }
   if (!json.is_array()) {
     throwInputError(source,
                     "must be a list of control points {\"value\", \"color\", "

@@ -100,6 +100,19 @@ std::vector<SweepTarget> sweepTargets(const RenderRequest& request) {
   return targets;
 }
 
+// The line width is one law, fixed (--width) or between two ends (--width-near, --width-far,
+// given together): a sweep sets its part of it on every frame, so a width flag given beside it
+// would be lost or mixed in unsaid.
+void AnimationPlan::checkWidthSweep(const std::string& where, const std::string& name) const {
+  if (name != "width" && name != "width-near" && name != "width-far") return;
+  for (const std::string& flag : base_.lineFlagsGiven) {
+    if (flag == "--width" || flag == "--width-near" || flag == "--width-far") {
+      throwInputError(where, flag + " is given too, and the sweep sets the line width on every "
+                                    "frame: give one of them");
+    }
+  }
+}
+
 AnimationPlan::AnimationPlan(RenderRequest base, AnimationSpec spec, const VolumeLimits& limits)
     : base_(std::move(base)), spec_(std::move(spec)) {
   if (spec_.frames < 1 || spec_.frames > limits::kMaxFrames) {
@@ -139,6 +152,7 @@ AnimationPlan::AnimationPlan(RenderRequest base, AnimationSpec spec, const Volum
                         "'" + sweep.name + "' is already swept by --sweep " + earlier.sweep.text);
       }
     }
+    checkWidthSweep(where, sweep.name);
     sweeps_.push_back({sweep, *target});
     // Each end alone over the base, so that an error names this sweep. A number's checks are
     // ranges, which hold between ends that pass; a vector's need not (a plane's normal passes
@@ -156,6 +170,19 @@ AnimationPlan::AnimationPlan(RenderRequest base, AnimationSpec spec, const Volum
                                                         : "frame " + std::to_string(frame + 1)) +
                                    ": " + e.what());
       }
+    }
+  }
+  // A sweep of one end of a width law needs the other swept too (as render's --width-near
+  // needs --width-far): it would take the default's 3 unsaid.
+  for (const auto& [end, other] : {std::pair<const char*, const char*>{"width-near", "width-far"},
+                                   {"width-far", "width-near"}}) {
+    const auto swept = [&](const char* name) {
+      return std::any_of(sweeps_.begin(), sweeps_.end(),
+                         [&](const Resolved& r) { return r.sweep.name == name; });
+    };
+    if (swept(end) && !swept(other)) {
+      throwInputError(std::string("--sweep ") + end, std::string("needs --sweep ") + other +
+                                                         " too: a width law has two ends");
     }
   }
   if (spec_.viewFrom) {

@@ -88,6 +88,8 @@ class AnimationPlan {
     Sweep sweep;
     SweepTarget target;
   };
+  // Refuses width flags given beside a sweep of the line width (`where` names the sweep).
+  void checkWidthSweep(const std::string& where, const std::string& name) const;
   std::vector<double> valueAt(const Resolved& sweep, double t) const;
   glm::dvec2 viewAt(int frame) const;
 

@@ -561,7 +561,17 @@ std::string valueText(const Keyword& keyword, const py::handle& value,
     return parameterText(py::reinterpret_borrow<py::dict>(value));
   }
   if (keyword.kind == "text" && isDictOrDicts(value)) {
-    return py::str(py::module_::import("json").attr("dumps")(value));
+    // numpy's numbers and arrays as the Python numbers and lists they hold (a transfer
+    // function from numpy.linspace); anything else JSON lacks is a TypeError naming the keyword.
+    const py::object numpyGeneric = py::module_::import("numpy").attr("generic");
+    const py::cpp_function asJson([=, key = keyword.key](const py::handle& item) -> py::object {
+      if (py::isinstance<py::array>(item) || py::isinstance(item, numpyGeneric)) {
+        return item.attr("tolist")();
+      }
+      throw PythonTypeError(function + ": " + key + " takes JSON values (numbers, texts, lists, " +
+                            "dicts), not " + typeNameOf(item));
+    });
+    return py::str(py::module_::import("json").attr("dumps")(value, py::arg("default") = asJson));
   }
   if (py::hasattr(value, "__fspath__")) {
     return fsBytes(py::module_::import("os").attr("fspath")(value));

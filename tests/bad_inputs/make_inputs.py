@@ -74,6 +74,12 @@ write('tf_bad_opacity.json', '[{"value": 0, "color": "red", "opacity": 1.5}]\n')
 write('tf_duplicate_key.json', '[{"value": 0, "color": "red", "opacity": 0.5, "opacity": 1}]\n')
 write('style_unknown_key.json', '{"effects": ["tone"], "shininess": 3}\n')
 write('style_bad_effect.json', '{"effects": ["tone", "glow"]}\n')
+write('style_none_and_tone.json', '{"effects": ["none", "tone"]}\n')
+write('style_empty_tf.json', '{"transfer_function": ""}\n')
+write('style_tf_folder.json', '{"transfer_function": "."}\n')
+write('tf_preset_format.json', '{"description": "a copy of a preset", "units": "hu", "points": '
+      '[{"value": 0, "color": "#000000", "opacity": 0}, {"value": 100, "color": "#ffffff", '
+      '"opacity": 1}]}\n')
 write('style_bad_parameter.json', '{"parameters": {"k_gc": "high"}}\n')
 # Headers that misdescribe their axes or payload (round 6): a colour axis and a kinds count
 # unlike the dimension, units that differ between axes, more text values than the sizes give,

@@ -731,6 +731,23 @@ def test_tf_takes_a_list_of_dicts_as_the_file_holds_it(tmp_path, renderer):
     with pytest.raises(ValueError, match=r"--tf: point 2: .*opacity"):
         renderer.render("gen:spheres:32", technique="mip", size=(8, 8),
                         tf=[tf[0], dict(tf[1], opacity=2)])
+    # numpy's numbers, as numpy.linspace gives them, are the numbers they hold (round 19: a bare
+    # "Object of type float64 is not JSON serializable"); what JSON lacks names the keyword.
+    values = np.array([0.1, 0.5, 1.0], np.float32)
+    from_numpy = [dict(point, value=value, opacity=np.float64(point["opacity"]))
+                  for point, value in zip(tf, values)]
+    assert np.array_equal(renderer.render("gen:spheres:32", tf=from_numpy, **options).image,
+                          renderer.render("gen:spheres:32", tf=[dict(p, value=float(v)) for p, v
+                                                                in zip(tf, values)],
+                                          **options).image)
+    assert np.array_equal(
+        renderer.render("gen:spheres:32", technique="illustrate", size=(48, 40),
+                        style={"effects": ["tone"], "parameters": {"k_ty": np.float32(0.25)}}).image,
+        renderer.render("gen:spheres:32", technique="illustrate", size=(48, 40),
+                        style={"effects": ["tone"], "parameters": {"k_ty": 0.25}}).image)
+    with pytest.raises(TypeError, match=r"^vsil\.Renderer\.render: tf takes JSON values \(numbers, "
+                                        r"texts, lists, dicts\), not complex$"):
+        renderer.render("gen:spheres:32", technique="mip", tf=[dict(tf[0], value=1j)])
 
 
 def test_style_takes_a_dict_as_the_file_holds_it(tmp_path, renderer):
@@ -990,6 +1007,17 @@ def test_animate_refuses_what_its_frames_would_overwrite(renderer):
     with pytest.raises(ValueError, match=r"view= is given too"):
         renderer.animate("gen:spheres:16", frames=2, size=(16, 16), view=(10, 10),
                          view_from=(0, 0), view_to=(90, 0))
+    # The width law is one: a width sweep beside the other kind of law, or one end swept
+    # without the other (round 19: the given law was dropped, a far width of 3 taken unsaid).
+    with pytest.raises(ValueError, match=r"--width-near is given too, and the sweep sets the "
+                                         r"line width"):
+        renderer.animate("gen:spheres:16", frames=2, size=(16, 16), width_near=1, width_far=3,
+                         sweep=["width=1:8"])
+    with pytest.raises(ValueError, match=r"needs --sweep width-far too"):
+        renderer.animate("gen:spheres:16", frames=2, size=(16, 16), sweep=["width-near=1:8"])
+    frames = renderer.animate("gen:spheres:16", frames=2, size=(16, 16),
+                              sweep=["width-near=1:8", "width-far=2:1"])
+    assert [f.metadata["parameters"]["width_near"] for f in frames] == [1, 8]
 
 
 def test_animate_stops_at_a_signal_between_frames(tmp_path, renderer):
