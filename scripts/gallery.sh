@@ -95,8 +95,8 @@ entries=(
   "fig_nk_6a|$data/neghip_64x64x64_uint8.nhdr|--technique rightangle --iso 64 --view 30,20 --zoom 1.1 --width 2 --background white"
   "fig_nk_6b|$data/neghip_64x64x64_uint8.nhdr|--iso 64 --view 30,20 --zoom 1.1 --width 1 --background white"
   "fig_nk_6c|$data/neghip_64x64x64_uint8.nhdr|--iso 64 --view 30,20 --zoom 1.1 --width 3 --background white"
-  "fig_nk_7a|$data/bonsai.vti|--technique rightangle --iso 40 --view 30,10 --zoom 1.1 --width 2 --background white"
-  "fig_nk_7b|$data/bonsai.vti|--iso 40 --view 30,10 --zoom 1.1 --width 2 --background white"
+  "fig_nk_7a|$data/bonsai.vti|--technique rightangle --iso 40 --crop :,24:,: --view 30,10 --zoom 1.1 --width 2 --background white"
+  "fig_nk_7b|$data/bonsai.vti|--iso 40 --crop :,24:,: --view 30,10 --zoom 1.1 --width 2 --background white"
   # The teddy seen from the front (the CT table cut off with --crop), then from its side.
   "fig_nk_8a|$data/teddybear_128x128x62_uint8.nhdr|--technique rightangle --iso 50 --crop :,0:90,: --view 180,-90 --zoom 1.6 --width 2 --background white"
   "fig_nk_8b|$data/teddybear_128x128x62_uint8.nhdr|--iso 50 --crop :,0:90,: --view 180,-90 --zoom 1.6 --width 2 --background white"
