@@ -70,6 +70,24 @@ TEST(MipCommand, DemipWritesTheFirstHitDepthAndEveryParameter) {
   EXPECT_GT(withDepth, 100);
 }
 
+// With --tf the metadata records the function's points in the data's values: a preset's are
+// mapped per volume (round 18: "window": "" alone said nothing of where the ramp landed).
+TEST(MipCommand, ATransferFunctionIsRecordedInTheDatasValues) {
+  const auto dir = test::scratchDir();
+  const std::string out = (dir / "m.png").string(), meta = (dir / "meta.json").string();
+  const auto result = test::runVsil("render gen:blobs:48 --technique mip --tf ct-bone --size 32x32"
+                                    " --out " + out + " --meta-out " + meta);
+  ASSERT_EQ(result.exitCode, 0) << result.err;
+  const auto json = nlohmann::json::parse(test::readFileBytes(meta));
+  const auto& points = json["parameters"]["transfer_function"];
+  ASSERT_EQ(points.size(), 4u) << "ct-bone's four points";
+  // Rising, and not the preset's Hounsfield values (-3024 .. 3071) on these 0 .. 1 blobs.
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    EXPECT_GT(points[i]["value"].get<double>(), points[i - 1]["value"].get<double>());
+  }
+  EXPECT_LT(points.back()["value"].get<double>(), 10.0);
+}
+
 // --sphere-map FILE.png: the render reads the map, the metadata names the file and its size,
 // and --legend draws it (the inset's pixels take the map's one colour).
 TEST(MipCommand, DemipReadsAPngSphereMapAndRecordsIt) {

@@ -57,8 +57,11 @@ ResolvedOptions resolveMipFamily(const OptionReader& options) {
   // Over black, as in the papers' figures: the window's low end and everything below it (air,
   // noise) is black like the background, so the background does not outline the noise.
   resolved.background = Rgba{0, 0, 0, 255};
-  // The window used, given or derived, for the metadata (with --tf there is none).
-  if (!mipTransferFunction(options)) {
+  // The window used, given or derived, for the metadata; with --tf the function's points in
+  // the data's values (a preset's are mapped per volume: where its ramp landed).
+  if (const auto tf = mipTransferFunction(options)) {
+    resolved.details["transfer_function"] = tf->toJson();
+  } else {
     resolved.details["window"] = windowText(intensityWindow(options));
   }
   return resolved;
