@@ -74,9 +74,8 @@ void ToneFill::draw(const FrameContext& frame, const gl::RenderTarget& record) {
   }
   std::vector<std::string> sources = hitRecordSources();
   sources.emplace_back("shaders/illustration.glsl");
-  gl::Program& program =
-      frame.programs->get(gl::screenPassProgram(sources, "shaders/tone_fill.frag",
-                                                {lightCountDefine(illustration_)}));
+  gl::Program& program = frame.programs->get(
+      gl::screenPassProgram(sources, "shaders/tone_fill.frag", {lightCountDefine(illustration_)}));
   program.use();
   for (const auto& name : toneFillParameterNames()) {
     program.set(name.c_str(), float(illustration_[name]));

@@ -376,7 +376,8 @@ IllustrationStyle parseStyle(const nlohmann::json& json, const std::string& sour
     if (tf.is_string()) {
       const std::string& text = tf.get_ref<const std::string&>();
       if (text.empty()) {
-        throwInputError(where("transfer_function"), "is empty: name a FILE.json or hold the points");
+        throwInputError(where("transfer_function"),
+                        "is empty: name a FILE.json or hold the points");
       }
       std::filesystem::path file = text;
       if (file.is_relative()) file = baseDir / file;

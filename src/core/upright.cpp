@@ -22,12 +22,18 @@ ResolvedUpright make(glm::dvec3 up, glm::dvec3 front, std::string from) {
 // The opposite anatomical direction's letter.
 char opposite(char letter) {
   switch (letter) {
-    case 'R': return 'L';
-    case 'L': return 'R';
-    case 'A': return 'P';
-    case 'P': return 'A';
-    case 'S': return 'I';
-    case 'I': return 'S';
+    case 'R':
+      return 'L';
+    case 'L':
+      return 'R';
+    case 'A':
+      return 'P';
+    case 'P':
+      return 'A';
+    case 'S':
+      return 'I';
+    case 'I':
+      return 'S';
   }
   return '?';
 }
@@ -49,9 +55,8 @@ glm::dvec3 indexAxisToward(const std::string& axes, char letter) {
 bool namesEachDirectionOnce(const std::string& axes) {
   if (axes.size() != 3) return false;
   for (const char* pair : {"RL", "AP", "SI"}) {
-    if (std::count_if(axes.begin(), axes.end(), [&](char c) {
-          return c == pair[0] || c == pair[1];
-        }) != 1) {
+    if (std::count_if(axes.begin(), axes.end(),
+                      [&](char c) { return c == pair[0] || c == pair[1]; }) != 1) {
       return false;
     }
   }
@@ -93,8 +98,8 @@ ResolvedUpright resolveUpright(const std::string& flag,
   std::string text = flag;
   if (text.size() == 1) text = "+" + text;
   if (text.size() != 2 || (text[0] != '+' && text[0] != '-') || text[1] < 'x' || text[1] > 'z') {
-    throwInputError("--up", "'" + printableText(flag) +
-                                "' is not auto or an axis (+x, -x, +y, -y, +z, -z)");
+    throwInputError(
+        "--up", "'" + printableText(flag) + "' is not auto or an axis (+x, -x, +y, -y, +z, -z)");
   }
   const double sign = text[0] == '+' ? 1.0 : -1.0;
   glm::dvec3 up(0.0), front(0.0);

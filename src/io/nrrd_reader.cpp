@@ -156,7 +156,8 @@ glm::dvec3 parseVector(const std::string& path, const std::string& field, std::s
     if (comma == std::string_view::npos) break;
     vector.remove_prefix(comma + 1);
   }
-  if (components != 3) throwInputError(path, field + " vector " + quote(text) + " needs 3 components");
+  if (components != 3)
+    throwInputError(path, field + " vector " + quote(text) + " needs 3 components");
   return result;
 }
 
@@ -321,9 +322,11 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
     const std::string spaceAxes = space ? anatomicalSpaceAxes(*space) : "";
     if (!spaceAxes.empty()) {
       const std::string* origin = header.find({"space origin"});
-      const glm::dvec3 at = origin ? parseVector(path, "space origin", trim(*origin)) : glm::dvec3(0);
+      const glm::dvec3 at =
+          origin ? parseVector(path, "space origin", trim(*origin)) : glm::dvec3(0);
       const glm::dmat3& c = parsed.columns;
-      placement = Orientation{"space", spaceAxes,
+      placement = Orientation{"space",
+                              spaceAxes,
                               glm::dmat4(glm::dvec4(c[0], 0), glm::dvec4(c[1], 0),
                                          glm::dvec4(c[2], 0), glm::dvec4(at, 1)),
                               {anatomicalLetter(c[0], spaceAxes), anatomicalLetter(c[1], spaceAxes),

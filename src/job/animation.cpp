@@ -107,8 +107,9 @@ void AnimationPlan::checkWidthSweep(const std::string& where, const std::string&
   if (name != "width" && name != "width-near" && name != "width-far") return;
   for (const std::string& flag : base_.lineFlagsGiven) {
     if (flag == "--width" || flag == "--width-near" || flag == "--width-far") {
-      throwInputError(where, flag + " is given too, and the sweep sets the line width on every "
-                                    "frame: give one of them");
+      throwInputError(where, flag +
+                                 " is given too, and the sweep sets the line width on every "
+                                 "frame: give one of them");
     }
   }
 }
@@ -181,8 +182,8 @@ AnimationPlan::AnimationPlan(RenderRequest base, AnimationSpec spec, const Volum
                          [&](const Resolved& r) { return r.sweep.name == name; });
     };
     if (swept(end) && !swept(other)) {
-      throwInputError(std::string("--sweep ") + end, std::string("needs --sweep ") + other +
-                                                         " too: a width law has two ends");
+      throwInputError(std::string("--sweep ") + end,
+                      std::string("needs --sweep ") + other + " too: a width law has two ends");
     }
   }
   if (spec_.viewFrom) {

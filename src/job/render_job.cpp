@@ -104,12 +104,13 @@ nlohmann::json metadata(const RenderRequest& request, const std::string& input,
   meta["volume_texture"] = {
       {"format", result.textureFormat},
       {"bricks", {result.textureBricks.x, result.textureBricks.y, result.textureBricks.z}}};
-  meta["camera"] = {{"eye_from_voxel", matrixRowMajor(result.view.eyeFromVoxel)},
-                    {"clip_from_eye", matrixRowMajor(result.view.clipFromEye)},
-                    {"viewport", {result.view.viewport.x, result.view.viewport.y}},
-                    {"depth_range_eye", {result.view.nearEye, result.view.farEye}},
-                    {"orthographic", result.view.orthographic},
-                    {"upright", {{"up", upright.up}, {"front", upright.front}, {"from", upright.from}}}};
+  meta["camera"] = {
+      {"eye_from_voxel", matrixRowMajor(result.view.eyeFromVoxel)},
+      {"clip_from_eye", matrixRowMajor(result.view.clipFromEye)},
+      {"viewport", {result.view.viewport.x, result.view.viewport.y}},
+      {"depth_range_eye", {result.view.nearEye, result.view.farEye}},
+      {"orthographic", result.view.orthographic},
+      {"upright", {{"up", upright.up}, {"front", upright.front}, {"from", upright.from}}}};
   meta["pixels"] = pixelCounts(result.frame);
   // The frame's stages in wall time and in the process's CPU time; the caller adds its own
   // (render_command.cpp: start-up, context, read, upload, write, total).

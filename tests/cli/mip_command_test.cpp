@@ -75,8 +75,10 @@ TEST(MipCommand, DemipWritesTheFirstHitDepthAndEveryParameter) {
 TEST(MipCommand, ATransferFunctionIsRecordedInTheDatasValues) {
   const auto dir = test::scratchDir();
   const std::string out = (dir / "m.png").string(), meta = (dir / "meta.json").string();
-  const auto result = test::runVsil("render gen:blobs:48 --technique mip --tf ct-bone --size 32x32"
-                                    " --out " + out + " --meta-out " + meta);
+  const auto result = test::runVsil(
+      "render gen:blobs:48 --technique mip --tf ct-bone --size 32x32"
+      " --out " +
+      out + " --meta-out " + meta);
   ASSERT_EQ(result.exitCode, 0) << result.err;
   const auto json = nlohmann::json::parse(test::readFileBytes(meta));
   const auto& points = json["parameters"]["transfer_function"];

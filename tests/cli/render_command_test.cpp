@@ -489,7 +489,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadRender{"missing_file", "/nonexistent/volume.nrrd", "/nonexistent/volume.nrrd"}),
     [](const auto& info) { return std::string(info.param.name); });
 
-
 // A file that places its volume in a patient's frame stands superior up, seen from anterior
 // (--up auto); --up +y gives the plain axes back. A ball near the top of the superior axis of
 // an NRRD in LPS space shows in the image's upper part by default, and --meta-out says why.
@@ -529,8 +528,9 @@ TEST(RenderCommand, AnAnatomicalPlacementStandsTheVolumeSuperiorUp) {
   EXPECT_NEAR(autoColumn, 0.5, 0.05) << "the orbit turns about the superior axis";
   EXPECT_EQ(autoUpright, nlohmann::json({{"up", "+z"},
                                          {"front", "-y"},
-                                         {"from", "the file's space (LPS): superior up, "
-                                                  "anterior front"}}));
+                                         {"from",
+                                          "the file's space (LPS): superior up, "
+                                          "anterior front"}}));
   const auto [plainRow, plainColumn, plainUpright] = ballAt(" --up +y");
   EXPECT_GT(plainRow, 0.45);
   EXPECT_EQ(plainUpright["from"], "--up +y");
@@ -538,8 +538,7 @@ TEST(RenderCommand, AnAnatomicalPlacementStandsTheVolumeSuperiorUp) {
   const auto out = dir / "bad_up.png";
   const auto bad = test::runVsil("render gen:sphere:16 --up sideways --out " + out.string());
   EXPECT_EQ(bad.exitCode, 2);
-  EXPECT_EQ(bad.err,
-            "vsil: --up: 'sideways' is not auto or an axis (+x, -x, +y, -y, +z, -z)\n");
+  EXPECT_EQ(bad.err, "vsil: --up: 'sideways' is not auto or an axis (+x, -x, +y, -y, +z, -z)\n");
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 

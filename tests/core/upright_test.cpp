@@ -30,8 +30,8 @@ TEST(Upright, AutoStandsAnAnatomicalPlacementSuperiorUpSeenFromAnterior) {
   EXPECT_EQ(lps.front, "-y");
   EXPECT_EQ(lps.from, "the file's space (LPS): superior up, anterior front");
   // NIfTI: the sform rules where there are both; letters flipped per axis.
-  const ResolvedUpright nifti = resolveUpright(
-      "auto", {placement("sform", "RIA"), placement("qform", "LPS")});
+  const ResolvedUpright nifti =
+      resolveUpright("auto", {placement("sform", "RIA"), placement("qform", "LPS")});
   EXPECT_EQ(nifti.up, "-y");
   EXPECT_EQ(nifti.front, "+z");
   // Without a placement, or one that does not name superior and anterior on their own axes:
@@ -63,8 +63,8 @@ TEST(Upright, AnAxisGivenFixesItsFrontAndOverridesThePlacement) {
       resolveUpright(bad, {});
       ADD_FAILURE() << "'" << bad << "' was taken";
     } catch (const InputError& e) {
-      EXPECT_EQ(std::string(e.what()), "--up: '" + std::string(bad) +
-                                           "' is not auto or an axis (+x, -x, +y, -y, +z, -z)");
+      EXPECT_EQ(std::string(e.what()),
+                "--up: '" + std::string(bad) + "' is not auto or an axis (+x, -x, +y, -y, +z, -z)");
     }
   }
 }

@@ -192,9 +192,8 @@ TEST(NrrdReader, AnAnatomicalSpaceIsRecordedAsThePlacement) {
   EXPECT_EQ(ras.orientations.front().axes, "RIA");
   for (const char* none : {"space: scanner-xyz\nspace directions: (1,0,0) (0,1,0) (0,0,1)\n",
                            "space: left-posterior-superior\nspacings: 1 1 1\n", ""}) {
-    EXPECT_TRUE(
-        loadAttached(std::string("type: uint8\nencoding: raw\n") + none, {1, 2, 3, 4})
-            .orientations.empty())
+    EXPECT_TRUE(loadAttached(std::string("type: uint8\nencoding: raw\n") + none, {1, 2, 3, 4})
+                    .orientations.empty())
         << none;
   }
 }

@@ -150,8 +150,7 @@ TEST(RuleCompiler, AFileNameCannotStartShaderCode) {
   std::istringstream lines(glsl);
   int comments = 0;
   for (std::string line; std::getline(lines, line);) {
-    EXPECT_FALSE(line.starts_with("#error") || line.starts_with("#define semanticData"))
-        << line;
+    EXPECT_FALSE(line.starts_with("#error") || line.starts_with("#define semanticData")) << line;
     if (line.find("//") != std::string::npos) {
       ++comments;
       EXPECT_EQ(line.find_first_of("\\\r"), std::string::npos) << line;

@@ -211,8 +211,8 @@ CompiledRules compileRules(const RuleBase& rules) {
     const Rule& rule = rules.rules[i];
     out += "  // " +
            glslCommentText(rules.source + ":" + std::to_string(rule.position.line) + ": if " +
-                           conditionText(rules, rule.antecedent, false) + " then " +
-                           rule.target + " is " + rule.valueName) +
+                           conditionText(rules, rule.antecedent, false) + " then " + rule.target +
+                           " is " + rule.valueName) +
            "\n";
     out += "  float r" + std::to_string(i) + " = " + conditionGlsl(rule.antecedent, layout) + ";\n";
   }
