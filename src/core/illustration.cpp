@@ -462,7 +462,10 @@ nlohmann::json Illustration::toJson() const {
       {"color", color.hex()}, {"sketch_color", sketchColor.hex()}, {"lights", lightList}};
   json["transfer_function"] =
       transferFunction ? transferFunction->toJson() : nlohmann::json("power (k_os, k_oe)");
-  if (!transferFunction) json["power_opacity_from"] = powerOpacityFrom;
+  if (!transferFunction) {
+    json["power_opacity_from"] = powerOpacityFrom;
+    if (std::isfinite(powerOpacityTo)) json["power_opacity_to"] = powerOpacityTo;
+  }
   if (transferFunction) json["transfer_function_source"] = transferFunction->source;
   return json;
 }

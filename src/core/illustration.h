@@ -8,6 +8,7 @@
 // Everything here is plain data and parsing (no GL), so the style and transfer-function readers
 // are fuzz targets (tests/fuzz/fuzz_style.cpp, fuzz_tf.cpp).
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -148,6 +149,10 @@ struct Illustration {
   // fog box (illustration_options.cpp illustrationFromOptions); the paper leaves the transfer
   // function to the user.
   float powerOpacityFrom = 0.0f;
+  // Where v reaches 1: the top of the MIP family's default window (DerivedDefaults::windowHigh,
+  // the 99.5th percentile of the values above Otsu's threshold), so that a few bright voxels (a
+  // nucleus, metal) do not leave everything else near transparent; infinity: the range's max.
+  float powerOpacityTo = std::numeric_limits<float>::infinity();
 
   double operator[](std::string_view name) const;
   // For --meta-out: effects, every parameter, colours, lights, the transfer function.

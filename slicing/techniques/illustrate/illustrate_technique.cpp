@@ -224,7 +224,9 @@ std::function<bool(float, float)> transparentValues(const Illustration& illustra
 }
 
 ValueRange powerOpacityDomain(const Illustration& illustration, ValueRange range) {
-  return {std::clamp(illustration.powerOpacityFrom, range.min, range.max), range.max};
+  const float from = std::clamp(illustration.powerOpacityFrom, range.min, range.max);
+  const float to = illustration.powerOpacityTo;
+  return {from, to > from && to < range.max ? to : range.max};
 }
 
 float transparentBelow(const Illustration& illustration, const std::vector<glm::vec4>& table,

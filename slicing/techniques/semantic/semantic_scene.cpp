@@ -71,7 +71,10 @@ RuleBase loadSemanticRules(const OptionReader& options) {
 ValueRange semanticDataDomain(const OptionReader& options, ValueRange range) {
   const std::string& rules = options.text("rules");
   if (!rules.empty() && rules != "default") return range;
-  return {std::clamp(float(options.derived().iso), range.min, range.max), range.max};
+  const DerivedDefaults& derived = options.derived();
+  const float from = std::clamp(float(derived.iso), range.min, range.max);
+  const float to = float(derived.windowHigh);
+  return {from, to > from && to < range.max ? to : range.max};
 }
 
 SemanticInteraction resolveSemanticInteraction(const OptionReader& options, glm::ivec3 dims,
