@@ -119,7 +119,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
   vsil::ProgressLine progress(std::cerr, isatty(STDERR_FILENO) == 1);
   AnimationWarnings warnings;
   nlohmann::ordered_json frameList = nlohmann::ordered_json::array();
-  nlohmann::json dataset, glInfo;
+  nlohmann::json dataset, upright, glInfo;
   std::string glRenderer;
   double renderMs = 0, readbackMs = 0, postfxMs = 0, writeMs = 0;
   const auto loopStart = Clock::now();
@@ -145,6 +145,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
     writeMs += frameWriteMs;
     if (i == 0) {
       dataset = meta["dataset"];
+      upright = meta["camera"]["upright"];  // the volume's: the same for every frame
       glRenderer = meta["gl_renderer"];
       glInfo = meta["gl"];
     }
@@ -185,6 +186,7 @@ void run(const RenderFlags& renderFlags, const AnimateFlags& flags) {
     document["technique"] = base.settings.technique;
     document["animation"] = plan.describe();
     document["dataset"] = dataset;
+    document["upright"] = upright;
     if (video) {
       document["video"] = flags.video;
       document["video_fps"] = flags.fps;

@@ -45,8 +45,8 @@ RenderRequest toRenderRequest(const RenderFlags& flags) {
   settings.camera.elevationDeg = view.y;
   settings.camera.orthographic = flags.orthographic;
   settings.camera.zoom = flags.zoom;
-  resolveUpright(flags.up, {});  // its text checked before the volume is read
-  request.up = flags.up;
+  // Checked before the volume is read, and recorded as written out ("x" as "+x").
+  request.up = flags.up == "auto" ? flags.up : resolveUpright(flags.up, {}).up;
   settings.samplesPerVoxel = flags.sampling;
   settings.emptySpaceSkipping = !flags.noEmptySpaceSkipping;
   request.postfx = flags.postfx;

@@ -75,11 +75,26 @@ const Orientation* anatomicalPlacement(const std::vector<Orientation>& placement
 
 }  // namespace
 
-char anatomicalLetter(const glm::dvec3& direction, std::string_view spaceAxes) {
-  const glm::dvec3 a = glm::abs(direction);
-  const int axis = a.x >= a.y && a.x >= a.z ? 0 : a.y >= a.z ? 1 : 2;
-  const char positive = spaceAxes[std::size_t(axis)];
-  return direction[axis] > 0 ? positive : opposite(positive);
+std::string anatomicalAxes(const glm::dmat3& directions, std::string_view spaceAxes) {
+  static constexpr int kPermutations[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
+                                              {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  const auto cosine = [&](int axis, int space) {
+    const double length = glm::length(directions[axis]);
+    return length > 0 ? std::abs(directions[axis][space]) / length : 0.0;
+  };
+  const int* best = kPermutations[0];
+  double bestScore = -1;
+  for (const auto& permutation : kPermutations) {
+    const double score = cosine(0, permutation[0]) + cosine(1, permutation[1]) +
+                         cosine(2, permutation[2]);
+    if (score > bestScore) best = permutation, bestScore = score;
+  }
+  std::string axes;
+  for (int axis = 0; axis < 3; ++axis) {
+    const char positive = spaceAxes[std::size_t(best[axis])];
+    axes += directions[axis][best[axis]] >= 0 ? positive : opposite(positive);
+  }
+  return axes;
 }
 
 ResolvedUpright resolveUpright(const std::string& flag,
@@ -89,8 +104,13 @@ ResolvedUpright resolveUpright(const std::string& flag,
       const glm::dvec3 superior = indexAxisToward(o->axes, 'S');
       const glm::dvec3 anterior = indexAxisToward(o->axes, 'A');
       if (namesEachDirectionOnce(o->axes)) {
+        // Right-handed index axes show the patient as seen; a mirror image (LAS) stays one.
+        const glm::dvec3 right = indexAxisToward(o->axes, 'R');
+        const bool mirrored = glm::dot(glm::cross(right, anterior), superior) < 0;
         return make(superior, anterior,
-                    "the file's " + o->name + " (" + o->axes + "): superior up, anterior front");
+                    "the file's " + o->name + " (" + o->axes + "): superior up, anterior front" +
+                        (mirrored ? "; its axes store the patient mirrored, and so is the picture"
+                                  : ""));
       }
     }
     return make({0, 1, 0}, {0, 0, 1}, "the default (no anatomical placement in the file)");

@@ -30,8 +30,11 @@ struct ResolvedUpright {
 // Throws InputError "--up: ..." for other text.
 ResolvedUpright resolveUpright(const std::string& flag, const std::vector<Orientation>& placements);
 
-// The letter of the anatomical direction `direction` runs most along, in a space whose +x, +y,
-// +z are `spaceAxes` ("RAS": Right, Anterior, Superior; "LPS"): 'R' 'L' 'A' 'P' 'S' 'I'.
-char anatomicalLetter(const glm::dvec3& direction, std::string_view spaceAxes);
+// The anatomical letters of three index axes whose directions are `directions`' columns, in a
+// space whose +x, +y, +z are `spaceAxes` ("RAS": Right, Anterior, Superior; "LPS"): "LPS" for
+// axes towards Left, Posterior, Superior. Chosen together, as nifticlib and nibabel choose
+// them: the assignment of axes to directions whose cosines sum highest, so that an oblique
+// placement (rows 45° between x and y) still names each direction once.
+std::string anatomicalAxes(const glm::dmat3& directions, std::string_view spaceAxes);
 
 }  // namespace vsil

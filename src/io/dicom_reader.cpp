@@ -37,6 +37,7 @@
 #include "core/error.h"
 #include "core/options.h"
 #include "core/unique_fd.h"
+#include "core/upright.h"
 #include "io/dicom_child.h"
 #include "io/dicom_plugin.h"
 #include "io/file_access.h"
@@ -584,14 +585,6 @@ FrameGeometry multiFrameSlices(const std::string& path, const std::string& file,
   return geometry;
 }
 
-char axisLetter(const glm::dvec3& direction) {
-  // DICOM's patient frame (LPS): +x toward the patient's Left, +y Posterior, +z Superior.
-  const glm::dvec3 a = glm::abs(direction);
-  if (a.x >= a.y && a.x >= a.z) return direction.x > 0 ? 'L' : 'R';
-  if (a.y >= a.z) return direction.y > 0 ? 'P' : 'A';
-  return direction.z > 0 ? 'S' : 'I';
-}
-
 }  // namespace
 
 Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& options) {
@@ -880,7 +873,8 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
   volume.orientations.push_back({"patient",
                                  "LPS",
                                  worldFromFile * fileFromKept(subset),
-                                 {axisLetter(rowDir), axisLetter(columnDir), axisLetter(normal)}});
+                                 // DICOM's patient frame: +x Left, +y Posterior, +z Superior.
+                                 anatomicalAxes(glm::dmat3(rowDir, columnDir, normal), "LPS")});
 
   // Decode the kept slices in order; each must match the first's size, format and rescale.
   SampleSink sink(path, volume, subset, type, /*bigEndian=*/false, rescale);

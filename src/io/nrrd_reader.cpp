@@ -324,13 +324,15 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
       const std::string* origin = header.find({"space origin"});
       const glm::dvec3 at =
           origin ? parseVector(path, "space origin", trim(*origin)) : glm::dvec3(0);
+      if (glm::any(glm::isnan(at)) || glm::any(glm::isinf(at))) {
+        throwInputError(path, "space origin " + quote(trim(*origin)) + " is not finite");
+      }
       const glm::dmat3& c = parsed.columns;
       placement = Orientation{"space",
                               spaceAxes,
                               glm::dmat4(glm::dvec4(c[0], 0), glm::dvec4(c[1], 0),
                                          glm::dvec4(c[2], 0), glm::dvec4(at, 1)),
-                              {anatomicalLetter(c[0], spaceAxes), anatomicalLetter(c[1], spaceAxes),
-                               anatomicalLetter(c[2], spaceAxes)}};
+                              anatomicalAxes(c, spaceAxes)};
     }
   } else if (const std::string* spacings = header.find({"spacings"})) {
     spacing = parseSpacing(path, "spacings", *spacings);

@@ -46,7 +46,7 @@ class MpiRelay : public SlabRelay {
       throw EveryRankError(
           "--view, --zoom: this perspective view has rays that leave the eye both ways along "
           "the volume's z, so no order of the z slabs is every ray's order; use --ortho, "
-          "another view or one rank");
+          "another view (a higher or lower --view elevation, or --up +y) or one rank");
     }
     // Rank r owns the r-th slab from low z (readSlab): the key is its place along the rays.
     const int key = *zDirection < 0 ? size() - 1 - rank() : rank();

@@ -571,7 +571,22 @@ std::string valueText(const Keyword& keyword, const py::handle& value,
       throw PythonTypeError(function + ": " + key + " takes JSON values (numbers, texts, lists, " +
                             "dicts), not " + typeNameOf(item));
     });
-    return py::str(py::module_::import("json").attr("dumps")(value, py::arg("default") = asJson));
+    try {
+      return py::str(py::module_::import("json").attr("dumps")(value, py::arg("default") = asJson,
+                                                                py::arg("allow_nan") = false));
+    } catch (py::error_already_set& e) {
+      // NaN and infinities (not JSON), keys that are not texts: one line naming the keyword.
+      if (e.matches(PyExc_ValueError)) {
+        throw InputError(function + ": " + keyword.key + " takes finite numbers, not NaN or inf");
+      }
+      if (e.matches(PyExc_TypeError)) {
+        const std::string why = py::str(e.value());
+        if (why.starts_with("keys must be")) {
+          throw PythonTypeError(function + ": " + keyword.key + "'s dict keys must be texts");
+        }
+      }
+      throw;
+    }
   }
   if (py::hasattr(value, "__fspath__")) {
     return fsBytes(py::module_::import("os").attr("fspath")(value));
@@ -1230,8 +1245,18 @@ class PythonRenderer {
 
 // ---- postfx on arrays ----
 
+// "a uint8 array of shape (64, 64, 4)": what a wrong array was, for a message.
+std::string arrayText(const py::array& array) {
+  return "a " + std::string(py::str(array.dtype())) + " array of shape " +
+         std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(
+             array.shape(), array.shape() + array.ndim())))));
+}
+
 cv::Mat1b maskFromArray(const py::array& lines, const std::string& function) {
-  if (lines.ndim() != 2) throw InputError(function + ": expected a 2-dimensional line mask");
+  if (lines.ndim() != 2) {
+    throw InputError(function + ": expected a 2-dimensional line mask (non-zero = line), not " +
+                     arrayText(lines));
+  }
   // The image side of a render (--size), checked before the array is copied or converted.
   if (lines.shape(0) < 1 || lines.shape(1) < 1 || lines.shape(0) > limits::kMaxImageSide ||
       lines.shape(1) > limits::kMaxImageSide) {
@@ -1329,7 +1354,8 @@ py::dict measureWidth(const py::array& image, std::optional<py::array> depth, in
                       double binWidth) {
   const std::string function = "vsil.measure_width";
   if (image.ndim() != 2) {
-    throw InputError(function + ": expected a 2-dimensional line mask (non-zero = line)");
+    throw InputError(function + ": expected a 2-dimensional line mask (non-zero = line), not " +
+                     arrayText(image));
   }
   if (!(bins >= 1 && bins <= 1000)) throw InputError(function + ": bins must be in 1 .. 1000");
   checkHistogramBinWidth(function + ": bin_width", binWidth);

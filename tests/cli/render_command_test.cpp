@@ -531,9 +531,17 @@ TEST(RenderCommand, AnAnatomicalPlacementStandsTheVolumeSuperiorUp) {
                                          {"from",
                                           "the file's space (LPS): superior up, "
                                           "anterior front"}}));
-  const auto [plainRow, plainColumn, plainUpright] = ballAt(" --up +y");
+  const auto [plainRow, plainColumn, plainUpright] = ballAt(" --up y");
   EXPECT_GT(plainRow, 0.45);
-  EXPECT_EQ(plainUpright["from"], "--up +y");
+  EXPECT_EQ(plainUpright["from"], "--up +y") << "recorded written out";
+  // An animation records it once, for all its frames.
+  const auto frames = dir / "frames";
+  const auto animated = test::runVsil("animate " + input.string() +
+                                      " --technique mip --size 16x16 --frames 2 --quiet"
+                                      " --out-dir " + frames.string());
+  ASSERT_EQ(animated.exitCode, 0) << animated.err;
+  const auto manifest = nlohmann::json::parse(test::readFileBytes(frames / "frames.json"));
+  EXPECT_EQ(manifest["upright"], autoUpright);
   // A bad axis: one line, exit 2, no image.
   const auto out = dir / "bad_up.png";
   const auto bad = test::runVsil("render gen:sphere:16 --up sideways --out " + out.string());

@@ -34,6 +34,10 @@ TEST(Upright, AutoStandsAnAnatomicalPlacementSuperiorUpSeenFromAnterior) {
       resolveUpright("auto", {placement("sform", "RIA"), placement("qform", "LPS")});
   EXPECT_EQ(nifti.up, "-y");
   EXPECT_EQ(nifti.front, "+z");
+  // Index axes that store the patient mirrored (NIfTI's radiological LAS): said so.
+  EXPECT_EQ(resolveUpright("auto", {placement("sform", "LAS")}).from,
+            "the file's sform (LAS): superior up, anterior front; its axes store the patient "
+            "mirrored, and so is the picture");
   // Without a placement, or one that does not name superior and anterior on their own axes:
   // +y up, +z front.
   for (const std::vector<Orientation>& none :
@@ -43,6 +47,24 @@ TEST(Upright, AutoStandsAnAnatomicalPlacementSuperiorUpSeenFromAnterior) {
     EXPECT_EQ(r.front, "+z");
     EXPECT_EQ(r.from, "the default (no anatomical placement in the file)");
   }
+}
+
+// Letters are chosen for the three axes together: a double-oblique acquisition (rows 45°
+// between x and y, then tilted 40° about x) names each direction once, as nibabel's
+// io_orientation does (each axis by its largest cosine alone gave "LRS", round 20).
+TEST(Upright, AnObliquePlacementNamesEachDirectionOnce) {
+  const glm::dvec3 row(0.707, 0.542, 0.455), column(-0.707, 0.542, 0.455);
+  const glm::dmat3 directions(row, column, glm::cross(row, column));
+  EXPECT_EQ(anatomicalAxes(directions, "LPS"), "LPS");
+  EXPECT_EQ(anatomicalAxes(directions, "RAS"), "RAS");
+  EXPECT_EQ(anatomicalAxes(glm::dmat3(-row, column, -glm::cross(row, column)), "LPS"), "RPI");
+  // Permuted axes: i along z, j along -x, k along y.
+  EXPECT_EQ(anatomicalAxes(glm::dmat3(glm::dvec3(0, 0.1, 2), glm::dvec3(-3, 0, 0),
+                                      glm::dvec3(0, 1, 0)),
+                           "LPS"),
+            "SRP");
+  EXPECT_EQ(resolveUpright("auto", {placement("patient", anatomicalAxes(directions, "LPS"))}).up,
+            "+z");
 }
 
 TEST(Upright, AnAxisGivenFixesItsFrontAndOverridesThePlacement) {

@@ -190,6 +190,16 @@ TEST(NrrdReader, AnAnatomicalSpaceIsRecordedAsThePlacement) {
       {1, 2, 3, 4});
   ASSERT_EQ(ras.orientations.size(), 1u);
   EXPECT_EQ(ras.orientations.front().axes, "RIA");
+  // A placement's origin must be a point.
+  const auto path = (test::scratchDir() / "v.nrrd").string();
+  test::expectInputError(
+      [&] {
+        loadAttached(
+            "type: uint8\nencoding: raw\nspace: LPS\nspace directions: (1,0,0) (0,1,0) (0,0,1)\n"
+            "space origin: (nan,0,0)\n",
+            {1, 2, 3, 4});
+      },
+      path, {"space origin '(nan,0,0)' is not finite"});
   for (const char* none : {"space: scanner-xyz\nspace directions: (1,0,0) (0,1,0) (0,0,1)\n",
                            "space: left-posterior-superior\nspacings: 1 1 1\n", ""}) {
     EXPECT_TRUE(loadAttached(std::string("type: uint8\nencoding: raw\n") + none, {1, 2, 3, 4})

@@ -748,6 +748,11 @@ def test_tf_takes_a_list_of_dicts_as_the_file_holds_it(tmp_path, renderer):
     with pytest.raises(TypeError, match=r"^vsil\.Renderer\.render: tf takes JSON values \(numbers, "
                                         r"texts, lists, dicts\), not complex$"):
         renderer.render("gen:spheres:32", technique="mip", tf=[dict(tf[0], value=1j)])
+    with pytest.raises(ValueError, match=r"^vsil\.Renderer\.render: tf takes finite numbers, not "
+                                         r"NaN or inf$"):
+        renderer.render("gen:spheres:32", technique="mip", tf=[dict(tf[0], value=np.nan)])
+    with pytest.raises(TypeError, match=r"^vsil\.Renderer\.render: style's dict keys must be texts$"):
+        renderer.render("gen:spheres:32", technique="illustrate", style={"parameters": {np.int64(1): 2}})
 
 
 def test_style_takes_a_dict_as_the_file_holds_it(tmp_path, renderer):
@@ -1250,6 +1255,11 @@ def test_arguments_of_the_wrong_type_are_one_line_naming_the_function(call):
 
 def test_measure_width_and_broaden_name_an_unknown_keyword_and_describe_arrays_briefly():
     lines = np.zeros((64, 64), np.uint8)
+    for function in (vsil.measure_width, vsil.broaden):
+        with pytest.raises(ValueError, match=r"expected a 2-dimensional line mask \(non-zero = "
+                                             r"line\), not a uint8 array of shape \(64, 64, 4\)$"):
+            function(np.zeros((64, 64, 4), np.uint8), **({"width": 2} if function is vsil.broaden
+                                                         else {}))
     with pytest.raises(TypeError, match=r"^vsil\.measure_width: unknown keyword 'bogus' \(it takes "
                                         r"lines, depth, bins, bin_width\)$"):
         vsil.measure_width(lines, bogus=1)
