@@ -85,8 +85,8 @@ std::string anatomicalAxes(const glm::dmat3& directions, std::string_view spaceA
   const int* best = kPermutations[0];
   double bestScore = -1;
   for (const auto& permutation : kPermutations) {
-    const double score = cosine(0, permutation[0]) + cosine(1, permutation[1]) +
-                         cosine(2, permutation[2]);
+    const double score =
+        cosine(0, permutation[0]) + cosine(1, permutation[1]) + cosine(2, permutation[2]);
     if (score > bestScore) best = permutation, bestScore = score;
   }
   std::string axes;
@@ -107,10 +107,10 @@ ResolvedUpright resolveUpright(const std::string& flag,
         // Right-handed index axes show the patient as seen; a mirror image (LAS) stays one.
         const glm::dvec3 right = indexAxisToward(o->axes, 'R');
         const bool mirrored = glm::dot(glm::cross(right, anterior), superior) < 0;
-        return make(superior, anterior,
-                    "the file's " + o->name + " (" + o->axes + "): superior up, anterior front" +
-                        (mirrored ? "; its axes store the patient mirrored, and so is the picture"
-                                  : ""));
+        return make(
+            superior, anterior,
+            "the file's " + o->name + " (" + o->axes + "): superior up, anterior front" +
+                (mirrored ? "; its axes store the patient mirrored, and so is the picture" : ""));
       }
     }
     return make({0, 1, 0}, {0, 0, 1}, "the default (no anatomical placement in the file)");

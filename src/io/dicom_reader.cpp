@@ -870,9 +870,7 @@ Volume readDicomSeriesWithGdcm(const std::string& path, const LoadOptions& optio
   const glm::dmat4 worldFromFile(glm::dvec4(rowDir * spacing.x, 0),
                                  glm::dvec4(columnDir * spacing.y, 0), glm::dvec4(sliceStep, 0),
                                  glm::dvec4(slices.front().origin, 1));
-  volume.orientations.push_back({"patient",
-                                 "LPS",
-                                 worldFromFile * fileFromKept(subset),
+  volume.orientations.push_back({"patient", "LPS", worldFromFile * fileFromKept(subset),
                                  // DICOM's patient frame: +x Left, +y Posterior, +z Superior.
                                  anatomicalAxes(glm::dmat3(rowDir, columnDir, normal), "LPS")});
 

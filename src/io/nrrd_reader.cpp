@@ -328,8 +328,7 @@ Volume readNrrd(const std::string& path, const LoadOptions& options) {
         throwInputError(path, "space origin " + quote(trim(*origin)) + " is not finite");
       }
       const glm::dmat3& c = parsed.columns;
-      placement = Orientation{"space",
-                              spaceAxes,
+      placement = Orientation{"space", spaceAxes,
                               glm::dmat4(glm::dvec4(c[0], 0), glm::dvec4(c[1], 0),
                                          glm::dvec4(c[2], 0), glm::dvec4(at, 1)),
                               anatomicalAxes(c, spaceAxes)};

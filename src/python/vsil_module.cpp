@@ -573,7 +573,7 @@ std::string valueText(const Keyword& keyword, const py::handle& value,
     });
     try {
       return py::str(py::module_::import("json").attr("dumps")(value, py::arg("default") = asJson,
-                                                                py::arg("allow_nan") = false));
+                                                               py::arg("allow_nan") = false));
     } catch (py::error_already_set& e) {
       // NaN and infinities (not JSON), keys that are not texts: one line naming the keyword.
       if (e.matches(PyExc_ValueError)) {
@@ -1248,8 +1248,8 @@ class PythonRenderer {
 // "a uint8 array of shape (64, 64, 4)": what a wrong array was, for a message.
 std::string arrayText(const py::array& array) {
   return "a " + std::string(py::str(array.dtype())) + " array of shape " +
-         std::string(py::str(py::tuple(py::cast(std::vector<py::ssize_t>(
-             array.shape(), array.shape() + array.ndim())))));
+         std::string(py::str(py::tuple(
+             py::cast(std::vector<py::ssize_t>(array.shape(), array.shape() + array.ndim())))));
 }
 
 cv::Mat1b maskFromArray(const py::array& lines, const std::string& function) {

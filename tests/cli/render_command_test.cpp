@@ -538,7 +538,8 @@ TEST(RenderCommand, AnAnatomicalPlacementStandsTheVolumeSuperiorUp) {
   const auto frames = dir / "frames";
   const auto animated = test::runVsil("animate " + input.string() +
                                       " --technique mip --size 16x16 --frames 2 --quiet"
-                                      " --out-dir " + frames.string());
+                                      " --out-dir " +
+                                      frames.string());
   ASSERT_EQ(animated.exitCode, 0) << animated.err;
   const auto manifest = nlohmann::json::parse(test::readFileBytes(frames / "frames.json"));
   EXPECT_EQ(manifest["upright"], autoUpright);

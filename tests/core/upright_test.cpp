@@ -59,10 +59,10 @@ TEST(Upright, AnObliquePlacementNamesEachDirectionOnce) {
   EXPECT_EQ(anatomicalAxes(directions, "RAS"), "RAS");
   EXPECT_EQ(anatomicalAxes(glm::dmat3(-row, column, -glm::cross(row, column)), "LPS"), "RPI");
   // Permuted axes: i along z, j along -x, k along y.
-  EXPECT_EQ(anatomicalAxes(glm::dmat3(glm::dvec3(0, 0.1, 2), glm::dvec3(-3, 0, 0),
-                                      glm::dvec3(0, 1, 0)),
-                           "LPS"),
-            "SRP");
+  EXPECT_EQ(
+      anatomicalAxes(glm::dmat3(glm::dvec3(0, 0.1, 2), glm::dvec3(-3, 0, 0), glm::dvec3(0, 1, 0)),
+                     "LPS"),
+      "SRP");
   EXPECT_EQ(resolveUpright("auto", {placement("patient", anatomicalAxes(directions, "LPS"))}).up,
             "+z");
 }
