@@ -153,7 +153,7 @@ Illustration illustrationFromOptions(const std::vector<OptionSpec>& declared,
   Illustration illustration = resolveIllustration(base, styleFromOptions(declared, options),
                                                   styled ? options.text("style") : "");
   illustration.powerOpacityFrom = float(options.derived().iso);
-  illustration.powerOpacityTo = float(options.derived().windowHigh);
+  illustration.powerOpacityTo = float(defaultClassificationTop(options.derived()));
   return illustration;
 }
 

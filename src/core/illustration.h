@@ -149,9 +149,8 @@ struct Illustration {
   // fog box (illustration_options.cpp illustrationFromOptions); the paper leaves the transfer
   // function to the user.
   float powerOpacityFrom = 0.0f;
-  // Where v reaches 1: the top of the MIP family's default window (DerivedDefaults::windowHigh,
-  // the 99.5th percentile of the values above Otsu's threshold), so that a few bright voxels (a
-  // nucleus, metal) do not leave everything else near transparent; infinity: the range's max.
+  // Where v reaches 1 (core/transfer_function.h defaultClassificationTop: the top of the MIP
+  // family's default window, the range's for data in Hounsfield units); infinity: the range's.
   float powerOpacityTo = std::numeric_limits<float>::infinity();
 
   double operator[](std::string_view name) const;

@@ -113,6 +113,11 @@ bool inHounsfieldUnits(const DerivedDefaults& volume) {
   return volume.valueMin < -500.0;
 }
 
+double defaultClassificationTop(const DerivedDefaults& volume) {
+  const double top = volume.valueMin + volume.valueRangeWidth;
+  return inHounsfieldUnits(volume) ? top : std::min(volume.windowHigh, top);
+}
+
 std::vector<std::string> transferFunctionPresetNames() {
   std::vector<std::string> names;
   for (std::string_view path : embeddedTransferFunctionPaths()) {

@@ -72,6 +72,13 @@ inline constexpr double kHounsfieldAtOtsu = -500.0;
 inline constexpr double kHounsfieldAtWindowTop = 3000.0;
 // Whether a volume's values read as Hounsfield units.
 bool inHounsfieldUnits(const DerivedDefaults& volume);
+// Where the default classifications without a transfer function (illustrate's power opacity,
+// semantic's default rule base), which start at Otsu's threshold, reach their top: the default
+// MIP window's top (the 99.5th percentile above the threshold), so that a few bright voxels (the
+// hydrogen atom's nucleus) do not leave the rest near transparent; never above the range's top.
+// Data in Hounsfield units keep the range's top: a CT's soft tissue lies far below its bone, and
+// a top in bone made it an opaque barrel (round 21; CTs take --tf ct-bone, as info suggests).
+double defaultClassificationTop(const DerivedDefaults& volume);
 std::vector<std::string> transferFunctionPresetNames();  // sorted
 // Whether `text` names a file (ends in .json or holds a '/') rather than a preset.
 bool isTransferFunctionFile(std::string_view text);

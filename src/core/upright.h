@@ -32,9 +32,10 @@ ResolvedUpright resolveUpright(const std::string& flag, const std::vector<Orient
 
 // The anatomical letters of three index axes whose directions are `directions`' columns, in a
 // space whose +x, +y, +z are `spaceAxes` ("RAS": Right, Anterior, Superior; "LPS"): "LPS" for
-// axes towards Left, Posterior, Superior. Chosen together, as nifticlib and nibabel choose
-// them: the assignment of axes to directions whose cosines sum highest, so that an oblique
-// placement (rows 45° between x and y) still names each direction once.
+// axes towards Left, Posterior, Superior. Chosen together, as nifticlib chooses NIfTI's: the
+// assignment of axes to directions whose cosines sum highest, so that an oblique placement (rows
+// 45° between x and y) still names each direction once. (nibabel's aff2axcodes takes each axis
+// alone and may differ near 45°.)
 std::string anatomicalAxes(const glm::dmat3& directions, std::string_view spaceAxes);
 
 }  // namespace vsil

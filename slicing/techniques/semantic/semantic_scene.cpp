@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/transfer_function.h"
 
 namespace vsil {
 
@@ -73,7 +74,7 @@ ValueRange semanticDataDomain(const OptionReader& options, ValueRange range) {
   if (!rules.empty() && rules != "default") return range;
   const DerivedDefaults& derived = options.derived();
   const float from = std::clamp(float(derived.iso), range.min, range.max);
-  const float to = float(derived.windowHigh);
+  const float to = float(defaultClassificationTop(derived));
   return {from, to > from && to < range.max ? to : range.max};
 }
 

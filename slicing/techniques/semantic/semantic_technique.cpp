@@ -186,6 +186,9 @@ ResolvedOptions SemanticTechnique::resolve(const FrameContext& frame) {
   details["program_compiled"] = frame.programs->builds() > buildsBefore;
   details["program_build_ms"] = buildMs;
   details["warnings"] = rules_.warnings;
+  // The values the data source's [0, 1] spans (semanticDataDomain).
+  const ValueRange domain = semanticDataDomain(*frame.options, frame.valueRange);
+  details["data_domain"] = {domain.min, domain.max};
   // The interaction as used, defaults resolved (the options hold "" for those not given): the
   // values --cursor, --cursor-pixel and --plane take to replay it.
   const SemanticInteraction& i = interaction_;
