@@ -114,15 +114,14 @@ TEST(TransferFunctionPresets, SuggestsCtBoneForHuAndTheRampOtherwise) {
 // (a nucleus does not leave the rest near transparent), HU data at the range's top (a CT's
 // soft tissue under a top in bone was an opaque barrel, round 21), never beyond the range.
 TEST(TransferFunctionPresets, TheDefaultClassificationEndsAtTheWindowsTopButForHu) {
-  EXPECT_EQ(defaultClassificationTop({.iso = 15.6, .valueRangeWidth = 250, .valueMin = 0,
-                                      .windowHigh = 75.2}),
+  EXPECT_EQ(defaultClassificationTop(
+                {.iso = 15.6, .valueRangeWidth = 250, .valueMin = 0, .windowHigh = 75.2}),
             75.2);
-  EXPECT_EQ(defaultClassificationTop({.iso = -480, .valueRangeWidth = 4095, .valueMin = -1024,
-                                      .windowHigh = 1119}),
+  EXPECT_EQ(defaultClassificationTop(
+                {.iso = -480, .valueRangeWidth = 4095, .valueMin = -1024, .windowHigh = 1119}),
             3071);
-  EXPECT_EQ(defaultClassificationTop({.iso = 7, .valueRangeWidth = 0, .valueMin = 7,
-                                      .windowHigh = 8}),
-            7)
+  EXPECT_EQ(
+      defaultClassificationTop({.iso = 7, .valueRangeWidth = 0, .valueMin = 7, .windowHigh = 8}), 7)
       << "a constant volume: its one value";
 }
 
