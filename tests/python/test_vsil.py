@@ -1268,7 +1268,8 @@ def test_measure_width_and_broaden_name_an_unknown_keyword_and_describe_arrays_b
     # A wrong type names the array by dtype and shape, not its 4096 elements.
     with pytest.raises(TypeError) as error:
         vsil.broaden(lines, width="3")
-    assert str(error.value).endswith("not (ndarray of uint8 (64, 64), width=str '3')"), error.value
+    assert str(error.value).endswith("not (a uint8 array of shape (64, 64), width=str '3')"), \
+        error.value
 
 
 @pytest.mark.parametrize("arguments, says", [

@@ -195,9 +195,10 @@ def generate(name, size=128):
 
 
 def _argument_text(value):
-    """What a wrong argument was, short: an array by its dtype and shape, not its elements."""
+    """What a wrong argument was, short: an array by its dtype and shape, not its elements (as
+    the module's own messages say it)."""
     if hasattr(value, "dtype") and hasattr(value, "shape"):
-        return f"{type(value).__name__} of {value.dtype} {tuple(value.shape)}"
+        return f"a {value.dtype} array of shape {tuple(value.shape)}"
     text = repr(value)
     return f"{type(value).__name__} {text[:40] + '...' if len(text) > 40 else text}"
 
