@@ -118,6 +118,11 @@ double defaultClassificationTop(const DerivedDefaults& volume) {
   return inHounsfieldUnits(volume) ? top : std::min(volume.windowHigh, top);
 }
 
+ValueRange classificationDomain(float from, float to, ValueRange range) {
+  const float start = std::clamp(from, range.min, range.max);
+  return {start, to > start && to < range.max ? to : range.max};
+}
+
 std::vector<std::string> transferFunctionPresetNames() {
   std::vector<std::string> names;
   for (std::string_view path : embeddedTransferFunctionPaths()) {

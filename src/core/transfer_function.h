@@ -79,6 +79,9 @@ bool inHounsfieldUnits(const DerivedDefaults& volume);
 // Data in Hounsfield units keep the range's top: a CT's soft tissue lies far below its bone, and
 // a top in bone made it an opaque barrel (round 21; CTs take --tf ct-bone, as info suggests).
 double defaultClassificationTop(const DerivedDefaults& volume);
+// The values such a classification spans in `range`: from `from` (clamped to the range) to
+// `to`, or to the range's top where `to` is not between them.
+ValueRange classificationDomain(float from, float to, ValueRange range);
 std::vector<std::string> transferFunctionPresetNames();  // sorted
 // Whether `text` names a file (ends in .json or holds a '/') rather than a preset.
 bool isTransferFunctionFile(std::string_view text);

@@ -224,9 +224,7 @@ std::function<bool(float, float)> transparentValues(const Illustration& illustra
 }
 
 ValueRange powerOpacityDomain(const Illustration& illustration, ValueRange range) {
-  const float from = std::clamp(illustration.powerOpacityFrom, range.min, range.max);
-  const float to = illustration.powerOpacityTo;
-  return {from, to > from && to < range.max ? to : range.max};
+  return classificationDomain(illustration.powerOpacityFrom, illustration.powerOpacityTo, range);
 }
 
 float transparentBelow(const Illustration& illustration, const std::vector<glm::vec4>& table,

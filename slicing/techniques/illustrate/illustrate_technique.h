@@ -44,8 +44,7 @@ std::vector<HaloTap> haloTaps(double radiusVoxels);
 
 // The data values the power opacity o_v = k_os·v^k_oe spans (no transfer function): v = 0 at
 // the illustration's powerOpacityFrom (Otsu's threshold, clamped to the range), 1 at its
-// powerOpacityTo (the default window's top) or, where that is not above the start, the range's
-// top.
+// powerOpacityTo (core/transfer_function.h classificationDomain).
 ValueRange powerOpacityDomain(const Illustration& illustration, ValueRange range);
 // Whether a voxel of value `value` is visible (opacity above 0) under the illustration's
 // transfer function; conservative by one table entry, as the occupancy is.

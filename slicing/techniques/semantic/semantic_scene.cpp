@@ -73,9 +73,7 @@ ValueRange semanticDataDomain(const OptionReader& options, ValueRange range) {
   const std::string& rules = options.text("rules");
   if (!rules.empty() && rules != "default") return range;
   const DerivedDefaults& derived = options.derived();
-  const float from = std::clamp(float(derived.iso), range.min, range.max);
-  const float to = float(defaultClassificationTop(derived));
-  return {from, to > from && to < range.max ? to : range.max};
+  return classificationDomain(float(derived.iso), float(defaultClassificationTop(derived)), range);
 }
 
 SemanticInteraction resolveSemanticInteraction(const OptionReader& options, glm::ivec3 dims,

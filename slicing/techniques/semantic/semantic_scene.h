@@ -46,11 +46,11 @@ SemanticInteraction resolveSemanticInteraction(const OptionReader& options, glm:
 RuleBase loadSemanticRules(const OptionReader& options);
 
 // The data values the `data` source's [0, 1] spans. The default rule base (`default.rules`) sees
-// the values from Otsu's threshold (the default --iso) to the top of the MIP family's default
-// window (the 99.5th percentile above it; values beyond read 1), so its materials lie above the
-// air and noise of a CT, which read 0 (no membership: transparent), and a few bright voxels (a
-// nucleus, metal) do not squeeze the rest towards 0; a rule base given by name or file sees the
-// whole value range, as its author wrote it for.
+// the values from Otsu's threshold (the default --iso) to core/transfer_function.h's
+// defaultClassificationTop (the default MIP window's top; values beyond read 1), so its
+// materials lie above the air and noise of a CT, which read 0 (no membership: transparent), and
+// a few bright voxels (a nucleus) do not squeeze the rest towards 0; a rule base given by name
+// or file sees the whole value range, as its author wrote it for.
 ValueRange semanticDataDomain(const OptionReader& options, ValueRange range);
 
 // Styles bottom to top: by priority, equal priorities in declaration order.
