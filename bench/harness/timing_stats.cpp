@@ -46,9 +46,10 @@ std::optional<std::string> unsteadyNote(const std::vector<CaseFrames>& cases) {
     const auto [fastest, slowest] = std::minmax_element(c.ms.begin(), c.ms.end());
     if (!(*fastest > 0)) continue;
     ++counted;
+    if (*slowest - *fastest <= kUnsteadyMs) continue;  // the scheduler's swing, not the machine's
     const double spread = *slowest / *fastest;
-    if (spread > kUnsteadySpread && *slowest - *fastest > kUnsteadyMs) ++over;
-    if (spread > worstSpread && *slowest - *fastest > kUnsteadyMs) {
+    if (spread > kUnsteadySpread) ++over;
+    if (spread > worstSpread) {
       worstSpread = spread;
       worst = &c;
     }

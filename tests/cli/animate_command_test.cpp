@@ -283,32 +283,22 @@ TEST(AnimateCommand, AVideoTheDiskCannotHoldIsRefused) {
 // "folder new does not exist", the trailing slash's empty name taken for the folder).
 TEST(AnimateCommand, AnOutDirWithATrailingSlashIsCreated) {
   const fs::path dir = test::scratchDir();
-  const auto result = test::runVsil(
-      "animate gen:sphere:16 --size 32x32 --frames 2 --quiet "
-      "--out-dir " +
-      (dir / "new").string() + "/");
+  const std::string animate = "animate gen:sphere:16 --size 32x32 --frames 2 --quiet --out-dir ";
+  const auto result = test::runVsil(animate + (dir / "new").string() + "/");
   ASSERT_EQ(result.exitCode, 0) << result.err;
   EXPECT_TRUE(fs::exists(dir / "new" / "frames.json"));
   EXPECT_TRUE(fs::exists(dir / "new" / "frame_0001.png"));
   // "dot/." alike; a video into the --out-dir the command makes (round 15: both refused); a
   // link to nothing said as such (it was "cannot create the folder: File exists").
-  const auto dot = test::runVsil(
-      "animate gen:sphere:16 --size 32x32 --frames 2 --quiet "
-      "--out-dir " +
-      (dir / "dot").string() + "/.");
+  const auto dot = test::runVsil(animate + (dir / "dot").string() + "/.");
   ASSERT_EQ(dot.exitCode, 0) << dot.err;
   EXPECT_TRUE(fs::exists(dir / "dot" / "frames.json"));
-  const auto video = test::runVsil(
-      "animate gen:sphere:16 --size 32x32 --frames 2 --quiet "
-      "--out-dir " +
-      (dir / "both").string() + " --video " + (dir / "both" / "v.avi").string());
+  const auto video = test::runVsil(animate + (dir / "both").string() + " --video " +
+                                   (dir / "both" / "v.avi").string());
   ASSERT_EQ(video.exitCode, 0) << video.err;
   EXPECT_TRUE(fs::exists(dir / "both" / "v.avi"));
   fs::create_symlink(dir / "nowhere", dir / "dangling");
-  const auto dangling = test::runVsil(
-      "animate gen:sphere:16 --size 32x32 --frames 2 --quiet "
-      "--out-dir " +
-      (dir / "dangling").string());
+  const auto dangling = test::runVsil(animate + (dir / "dangling").string());
   EXPECT_EQ(dangling.exitCode, 2);
   EXPECT_EQ(dangling.err, "vsil: --out-dir " + (dir / "dangling").string() +
                               ": is a link to nothing (" + (dir / "nowhere").string() + ")\n");
